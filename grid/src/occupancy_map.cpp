@@ -1,0 +1,50 @@
+#include "grid/occupancy_map.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace grid {
+
+OccupancyMap::OccupancyMap(int width, int height, double resolution, const Pose2D& origin)
+    : width_(width), height_(height), resolution_(resolution), origin_(origin) {
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument("OccupancyMap: size must be positive, got " +
+                                std::to_string(width) + " x " + std::to_string(height));
+  }
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw std::invalid_argument("OccupancyMap: resolution must be positive, got " +
+                                std::to_string(resolution));
+  }
+  origin_cos_ = std::cos(origin.yaw);
+  origin_sin_ = std::sin(origin.yaw);
+  cells_.assign(static_cast<std::size_t>(width) * height, Cell::kFree);
+}
+
+Eigen::Vector2d OccupancyMap::WorldToCellCoords(const Eigen::Vector2d& world) const {
+  const double dx = world.x() - origin_.x, dy = world.y() - origin_.y;
+  return Eigen::Vector2d(origin_cos_ * dx + origin_sin_ * dy, -origin_sin_ * dx + origin_cos_ * dy) /
+         resolution_;
+}
+
+Eigen::Vector2d OccupancyMap::CellCoordsToWorld(const Eigen::Vector2d& cell) const {
+  const Eigen::Vector2d p = cell * resolution_;
+  return {origin_.x + origin_cos_ * p.x() - origin_sin_ * p.y(),
+          origin_.y + origin_sin_ * p.x() + origin_cos_ * p.y()};
+}
+
+Eigen::Vector2i OccupancyMap::WorldToCell(const Eigen::Vector2d& world) const {
+  const Eigen::Vector2d c = WorldToCellCoords(world);
+  return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
+}
+
+Eigen::Vector2d OccupancyMap::CellCenter(int i, int j) const {
+  return CellCoordsToWorld({i + 0.5, j + 0.5});
+}
+
+bool OccupancyMap::IsFreeAt(const Eigen::Vector2d& world) const {
+  const Eigen::Vector2i c = WorldToCell(world);
+  return !Blocks(c.x(), c.y());
+}
+
+}  // namespace grid

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Installs every Debian package multirobot_audio needs (only what is missing), then configures
+# and builds the package in Release into build/.
+#
+#   scripts/setup.sh [--no-build]
+set -euo pipefail
+
+# A pyenv or conda python3 ahead of Debian's breaks catkin and roslaunch: Debian's first.
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+packages=(
+  # toolchain
+  build-essential cmake git pkg-config
+  # ROS 1 as Debian packages it: core, build tools, and both halves of each message package
+  catkin ros-environment ros-cmake-modules libroscpp-dev librosconsole-dev
+  ros-message-generation ros-message-runtime
+  ros-std-msgs libstd-msgs-dev ros-geometry-msgs libgeometry-msgs-dev
+  ros-sensor-msgs libsensor-msgs-dev ros-nav-msgs libnav-msgs-dev
+  ros-visualization-msgs libvisualization-msgs-dev ros-rosgraph-msgs libros-rosgraph-msgs-dev
+  ros-std-srvs libstd-srvs-dev ros-actionlib-msgs libactionlib-msgs-dev libactionlib-dev
+  ros-diagnostic-msgs libdiagnostic-msgs-dev
+  libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-geometry-msgs-dev ros-tf2-msgs
+  python3-roslaunch python3-rosmaster python3-rosgraph python3-rosnode python3-rosparam
+  python3-rosservice rosout rosbash python3-rostopic python3-rosbag librosbag-dev
+  librostest-dev python3-rostest rviz
+  # libraries the ROS-free components use
+  libyaml-cpp-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # headless rviz and screenshots
+  xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=()
+  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+  echo "setup.sh: installing ${#missing[@]} missing packages: ${missing[*]}"
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+[ "${1:-}" = "--no-build" ] && exit 0
+
+cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release -DCATKIN_DEVEL_PREFIX="$here/build/devel" >/dev/null
+cmake --build "$here/build" -j "$(nproc)"

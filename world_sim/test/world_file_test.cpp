@@ -1,0 +1,152 @@
+#include "world_sim/world_file.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "grid/input_error.h"
+
+namespace world_sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each test writes world files next to a copy-free reference to the shipped test room map.
+class WorldFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           (std::string("world_file_test_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& body, bool with_map = true) {
+    const fs::path p = dir_ / "world.yaml";
+    std::ofstream out(p);
+    if (with_map) out << "map: " << PROJECT_MAPS_DIR << "/test_room.yaml\n";
+    out << body;
+    return p.string();
+  }
+
+  void ExpectError(const std::string& body, const std::string& words, bool with_map = true) {
+    const std::string file = Write(body, with_map);
+    try {
+      LoadWorldFile(file);
+      FAIL() << "expected an error containing '" << words << "'";
+    } catch (const grid::InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(file, 0), 0u) << "should start with the file name: " << msg;
+      EXPECT_NE(msg.find(words), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(WorldFileTest, LoadsEveryField) {
+  const LoadedWorld w = LoadWorldFile(Write(
+      "seed: 42\n"
+      "robot_model: {radius: 0.1, camera_fov: 1.0, odometry: {linear: 0.0}, battery: {charge_rate: 0.01}}\n"
+      "robots:\n"
+      "  - {name: a, pose: [1.0, 1.0, 0.5], microphone: bidirectional, battery: 0.5}\n"
+      "  - {name: b, pose: [4.5, 1.0, 0.0]}\n"
+      "markers: [{id: 3, position: [1.0, 3.0]}]\n"
+      "chargers: [{pose: [5.0, 3.0, 0.0], radius: 0.3, marker: 9}]\n"));
+  EXPECT_EQ(w.config.seed, 42u);
+  EXPECT_DOUBLE_EQ(w.config.model.radius, 0.1);
+  EXPECT_DOUBLE_EQ(w.config.model.camera_fov, 1.0);
+  EXPECT_DOUBLE_EQ(w.config.model.odometry.linear, 0.0);
+  EXPECT_DOUBLE_EQ(w.config.model.battery.charge_rate, 0.01);
+  ASSERT_EQ(w.config.robots.size(), 2u);
+  EXPECT_EQ(w.config.robots[0].microphone, Microphone::kBidirectional);
+  EXPECT_DOUBLE_EQ(w.config.robots[0].battery, 0.5);
+  EXPECT_DOUBLE_EQ(w.config.robots[0].start.yaw, 0.5);
+  EXPECT_EQ(w.config.robots[1].microphone, Microphone::kOmni);
+  ASSERT_EQ(w.config.markers.size(), 1u);
+  EXPECT_EQ(w.config.markers[0].id, 3u);
+  ASSERT_EQ(w.config.chargers.size(), 1u);
+  EXPECT_EQ(*w.config.chargers[0].marker, 9u);
+  EXPECT_EQ(w.map.width(), 120);
+}
+
+TEST_F(WorldFileTest, ShippedWorldsLoad) {
+  for (const char* name : {"office_world.yaml", "test_room_world.yaml"}) {
+    const LoadedWorld w = LoadWorldFile(std::string(PROJECT_MAPS_DIR) + "/" + name);
+    EXPECT_FALSE(w.config.robots.empty()) << name;
+  }
+}
+
+TEST_F(WorldFileTest, MissingFile) {
+  try {
+    LoadWorldFile((dir_ / "absent.yaml").string());
+    FAIL();
+  } catch (const grid::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("world file not found"), std::string::npos);
+  }
+}
+
+TEST_F(WorldFileTest, MalformedYaml) { ExpectError("robots: [\n", "malformed YAML"); }
+
+TEST_F(WorldFileTest, UnknownKeys) {
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nwind: 3\n", "wind: unknown key");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0], colour: red}]\n", "robots[0].colour: unknown key");
+  ExpectError("robot_model: {legs: 4}\nrobots: [{name: a, pose: [1, 1, 0]}]\n",
+              "robot_model.legs: unknown key");
+}
+
+TEST_F(WorldFileTest, MissingMapAndBadMap) {
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\n", "map: missing", false);
+  ExpectError("map: nowhere.yaml\nrobots: [{name: a, pose: [1, 1, 0]}]\n", "map: cannot load the map",
+              false);
+}
+
+TEST_F(WorldFileTest, NoRobots) { ExpectError("markers: []\n", "robots: expected a list of at least one"); }
+
+TEST_F(WorldFileTest, RobotInsideAWall) {
+  ExpectError("robots: [{name: a, pose: [3.0, 1.0, 0]}]\n", "robots[0].pose: robot 'a' starts outside");
+  ExpectError("robots: [{name: a, pose: [2.95, 1.0, 0]}]\n", "robots[0].pose: robot 'a' overlaps a wall");
+}
+
+TEST_F(WorldFileTest, RobotOffTheMap) {
+  ExpectError("robots: [{name: a, pose: [7.0, 1.0, 0]}]\n", "robots[0].pose");
+  ExpectError("robots: [{name: a, pose: [1.0, -1.0, 0]}]\n", "starts outside the map");
+}
+
+TEST_F(WorldFileTest, DuplicateNamesAndOverlaps) {
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}, {name: a, pose: [2, 2, 0]}]\n",
+              "robots[1].name: duplicate robot name 'a'");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}, {name: b, pose: [1.1, 1, 0]}]\n",
+              "robots[1].pose: robot 'b' overlaps robot 'a'");
+}
+
+TEST_F(WorldFileTest, BadFields) {
+  ExpectError("robots: [{name: a, pose: [1, 1]}]\n", "robots[0].pose: expected [x, y, yaw]");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0], microphone: stereo}]\n",
+              "robots[0].microphone: expected omni, bidirectional or none");
+  ExpectError("robots: [{name: 3a, pose: [1, 1, 0]}]\n", "robots[0].name: expected a ROS name");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0], battery: 2}]\n", "robots[0].battery");
+  ExpectError("robot_model: {radius: -1}\nrobots: [{name: a, pose: [1, 1, 0]}]\n",
+              "robot_model.radius: expected a radius");
+  ExpectError("seed: -3\nrobots: [{name: a, pose: [1, 1, 0]}]\n", "seed: expected a whole number");
+}
+
+TEST_F(WorldFileTest, MarkerInsideAWall) {
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nmarkers: [{id: 1, position: [3.0, 1.0]}]\n",
+              "markers[0].position: marker 1 is inside a wall");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nmarkers: [{id: 1, position: [9.0, 1.0]}]\n",
+              "markers[0].position");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nmarkers: [{id: -1, position: [1.0, 2.0]}]\n",
+              "markers[0].id: expected a whole number");
+}
+
+TEST_F(WorldFileTest, MapOverrideLoadsAnotherMapByPath) {
+  const std::string file = Write("robots: [{name: a, pose: [1.0, 7.0, 0]}]\n");
+  const LoadedWorld w = LoadWorldFile(file, std::string(PROJECT_MAPS_DIR) + "/office.yaml");
+  EXPECT_EQ(w.map.width(), 680);
+}
+
+}  // namespace
+}  // namespace world_sim
