@@ -1,0 +1,60 @@
+# The ROS side: messages, nodes (all in src/), rostests and launch-file checks (in test/).
+
+add_message_files(DIRECTORY msg FILES
+  AudioPacket.msg
+  AudioReception.msg
+  CarrierSense.msg
+  Fiducial.msg
+  FiducialArray.msg
+)
+generate_messages(DEPENDENCIES std_msgs)
+
+catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sensor_msgs nav_msgs
+               visualization_msgs rosgraph_msgs tf2_msgs)
+
+# Bridges between the components and ROS: conversions and the node classes.
+add_library(multirobot_audio_ros STATIC
+  src/conversions.cpp
+  src/params.cpp
+  src/world_sim_ros.cpp
+  src/wanderer_ros.cpp
+)
+target_include_directories(multirobot_audio_ros PUBLIC ${PROJECT_SOURCE_DIR}/src)
+target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
+target_link_libraries(multirobot_audio_ros PUBLIC world_sim grid ${catkin_LIBRARIES})
+add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
+
+# Node executables keep their ROS names (rosrun multirobot_audio world_sim).
+function(multirobot_audio_node target name source)
+  add_executable(${target} ${source})
+  set_target_properties(${target} PROPERTIES OUTPUT_NAME ${name})
+  target_link_libraries(${target} multirobot_audio_ros)
+  install(TARGETS ${target} RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+endfunction()
+multirobot_audio_node(world_sim_node world_sim src/world_sim_node.cpp)
+multirobot_audio_node(wanderer_node wanderer src/wanderer_node.cpp)
+
+install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
+if(MULTIROBOT_AUDIO_TESTS)
+  find_package(rostest REQUIRED)
+  find_package(roslaunch REQUIRED)
+
+  catkin_add_gtest(conversions_test test/conversions_test.cpp)
+  target_link_libraries(conversions_test multirobot_audio_ros)
+
+  add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp)
+  target_link_libraries(world_sim_rostest multirobot_audio_ros)
+  add_dependencies(world_sim_rostest world_sim_node)
+
+  add_rostest_gtest(record_rostest test/record.test test/record_rostest.cpp)
+  target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})
+  add_dependencies(record_rostest world_sim_node)
+
+  foreach(launch_file sim_team.launch)
+    roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node)
+  endforeach()
+  foreach(launch_file record.launch replay.launch)
+    roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
+  endforeach()
+endif()

@@ -1,0 +1,240 @@
+#include "conversions.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "world_sim/battery.h"
+
+namespace multirobot_audio {
+
+geometry_msgs::Quaternion ToYawQuaternion(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(0.5 * yaw);
+  q.w = std::cos(0.5 * yaw);
+  return q;
+}
+
+double FromQuaternionYaw(const geometry_msgs::Quaternion& q) {
+  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
+                                        const ros::Time& stamp) {
+  nav_msgs::OccupancyGrid msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.info.map_load_time = stamp;
+  msg.info.resolution = static_cast<float>(map.resolution());
+  msg.info.width = map.width();
+  msg.info.height = map.height();
+  msg.info.origin.position.x = map.origin().x;
+  msg.info.origin.position.y = map.origin().y;
+  msg.info.origin.orientation = ToYawQuaternion(map.origin().yaw);
+  msg.data.reserve(map.cells().size());
+  for (grid::Cell c : map.cells()) {
+    msg.data.push_back(c == grid::Cell::kFree ? 0 : (c == grid::Cell::kOccupied ? 100 : -1));
+  }
+  return msg;
+}
+
+grid::OccupancyMap FromOccupancyGrid(const nav_msgs::OccupancyGrid& msg) {
+  grid::OccupancyMap map(msg.info.width, msg.info.height, msg.info.resolution,
+                         {msg.info.origin.position.x, msg.info.origin.position.y,
+                          FromQuaternionYaw(msg.info.origin.orientation)});
+  if (msg.data.size() != map.cells().size()) {
+    throw std::invalid_argument("OccupancyGrid: data has " + std::to_string(msg.data.size()) +
+                                " cells, expected width x height = " +
+                                std::to_string(map.cells().size()));
+  }
+  for (int j = 0; j < map.height(); ++j) {
+    for (int i = 0; i < map.width(); ++i) {
+      const int v = msg.data[static_cast<std::size_t>(j) * map.width() + i];
+      // map_server's convention: 0 free, 100 occupied, -1 unknown; treat 1..99 by threshold.
+      map.set(i, j, v < 0 ? grid::Cell::kUnknown : (v >= 50 ? grid::Cell::kOccupied : grid::Cell::kFree));
+    }
+  }
+  return map;
+}
+
+sensor_msgs::LaserScan ToLaserScan(const std::vector<float>& ranges,
+                                   const world_sim::RobotModel& model, const std::string& frame,
+                                   const ros::Time& stamp) {
+  sensor_msgs::LaserScan msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  const double increment = ranges.empty() ? 0.0 : 2.0 * M_PI / ranges.size();
+  msg.angle_min = 0.0f;
+  msg.angle_increment = static_cast<float>(increment);
+  msg.angle_max = static_cast<float>(increment * (ranges.size() - (ranges.empty() ? 0 : 1)));
+  msg.range_min = static_cast<float>(model.radius);
+  msg.range_max = static_cast<float>(model.radius + model.ir_range);
+  msg.ranges = ranges;
+  return msg;
+}
+
+nav_msgs::Odometry ToOdometry(const grid::Pose2D& pose, double v, double w,
+                              const std::string& frame, const std::string& child,
+                              const ros::Time& stamp) {
+  nav_msgs::Odometry msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.child_frame_id = child;
+  msg.pose.pose.position.x = pose.x;
+  msg.pose.pose.position.y = pose.y;
+  msg.pose.pose.orientation = ToYawQuaternion(pose.yaw);
+  msg.twist.twist.linear.x = v;
+  msg.twist.twist.angular.z = w;
+  return msg;
+}
+
+geometry_msgs::TransformStamped ToTransform(const grid::Pose2D& pose, const std::string& parent,
+                                            const std::string& child, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = parent;
+  t.header.stamp = stamp;
+  t.child_frame_id = child;
+  t.transform.translation.x = pose.x;
+  t.transform.translation.y = pose.y;
+  t.transform.rotation = ToYawQuaternion(pose.yaw);
+  return t;
+}
+
+sensor_msgs::BatteryState ToBatteryState(double level, bool docked,
+                                         const world_sim::BatteryModel& model,
+                                         const std::string& frame, const ros::Time& stamp) {
+  sensor_msgs::BatteryState msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.voltage = static_cast<float>(world_sim::BatteryVoltage(level, model));
+  msg.percentage = static_cast<float>(level);
+  msg.capacity = static_cast<float>(model.capacity_ah);
+  msg.design_capacity = static_cast<float>(model.capacity_ah);
+  msg.charge = static_cast<float>(level * model.capacity_ah);
+  msg.current = std::numeric_limits<float>::quiet_NaN();
+  msg.temperature = std::numeric_limits<float>::quiet_NaN();
+  msg.present = true;
+  msg.power_supply_technology = sensor_msgs::BatteryState::POWER_SUPPLY_TECHNOLOGY_LION;
+  msg.power_supply_health = sensor_msgs::BatteryState::POWER_SUPPLY_HEALTH_GOOD;
+  if (docked) {
+    msg.power_supply_status = level >= 1.0 ? sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_FULL
+                                           : sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_CHARGING;
+  } else {
+    msg.power_supply_status = sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_DISCHARGING;
+  }
+  return msg;
+}
+
+multirobot_audio::FiducialArray ToFiducialArray(
+    const std::vector<world_sim::FiducialSighting>& seen, const std::string& frame,
+    const ros::Time& stamp) {
+  multirobot_audio::FiducialArray msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  for (const auto& s : seen) {
+    multirobot_audio::Fiducial f;
+    f.id = s.id;
+    f.range = static_cast<float>(s.range);
+    f.bearing = static_cast<float>(s.bearing);
+    msg.fiducials.push_back(f);
+  }
+  return msg;
+}
+
+namespace {
+
+visualization_msgs::Marker BaseMarker(const std::string& frame, const ros::Time& stamp,
+                                      const std::string& ns, int id, int type) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.color.a = 1.0f;
+  return m;
+}
+
+void SetColour(visualization_msgs::Marker& m, float r, float g, float b, float a = 1.0f) {
+  m.color.r = r;
+  m.color.g = g;
+  m.color.b = b;
+  m.color.a = a;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
+                                               const std::string& frame, const ros::Time& stamp) {
+  using visualization_msgs::Marker;
+  visualization_msgs::MarkerArray out;
+  const double r = world.config().model.radius;
+  int id = 0;
+  for (const world_sim::RobotState& robot : world.robots()) {
+    Marker body = BaseMarker(frame, stamp, "robots", id, Marker::CYLINDER);
+    body.pose.position.x = robot.pose.x;
+    body.pose.position.y = robot.pose.y;
+    body.pose.position.z = 0.05;
+    body.scale.x = body.scale.y = 2.0 * r;
+    body.scale.z = 0.1;
+    if (robot.stalled) {
+      SetColour(body, 0.9f, 0.1f, 0.1f);
+    } else {
+      SetColour(body, 0.1f, 0.4f, 0.9f);
+    }
+    out.markers.push_back(body);
+
+    Marker heading = BaseMarker(frame, stamp, "headings", id, Marker::ARROW);
+    heading.pose.position.x = robot.pose.x;
+    heading.pose.position.y = robot.pose.y;
+    heading.pose.position.z = 0.11;
+    heading.pose.orientation = ToYawQuaternion(robot.pose.yaw);
+    heading.scale.x = 2.0 * r;
+    heading.scale.y = heading.scale.z = 0.04;
+    SetColour(heading, 1.0f, 1.0f, 1.0f);
+    out.markers.push_back(heading);
+
+    Marker name = BaseMarker(frame, stamp, "names", id, Marker::TEXT_VIEW_FACING);
+    name.pose.position.x = robot.pose.x;
+    name.pose.position.y = robot.pose.y + 2.0 * r;
+    name.pose.position.z = 0.3;
+    name.scale.z = 0.25;
+    name.text = robot.name;
+    SetColour(name, 0.0f, 0.0f, 0.0f);
+    out.markers.push_back(name);
+    ++id;
+  }
+  id = 0;
+  for (const world_sim::MarkerSpec& m : world.config().markers) {
+    Marker cube = BaseMarker(frame, stamp, "fiducials", id++, Marker::CUBE);
+    cube.pose.position.x = m.x;
+    cube.pose.position.y = m.y;
+    cube.pose.position.z = 0.1;
+    cube.scale.x = cube.scale.y = cube.scale.z = 0.2;
+    SetColour(cube, 1.0f, 0.6f, 0.0f);
+    out.markers.push_back(cube);
+    Marker label = BaseMarker(frame, stamp, "fiducial_ids", id, Marker::TEXT_VIEW_FACING);
+    label.pose = cube.pose;
+    label.pose.position.z = 0.4;
+    label.scale.z = 0.25;
+    label.text = std::to_string(m.id);
+    SetColour(label, 0.0f, 0.0f, 0.0f);
+    out.markers.push_back(label);
+  }
+  id = 0;
+  for (const world_sim::ChargerSpec& c : world.config().chargers) {
+    Marker zone = BaseMarker(frame, stamp, "chargers", id++, Marker::CYLINDER);
+    zone.pose.position.x = c.pose.x;
+    zone.pose.position.y = c.pose.y;
+    zone.pose.position.z = 0.005;
+    zone.scale.x = zone.scale.y = 2.0 * c.radius;
+    zone.scale.z = 0.01;
+    SetColour(zone, 0.1f, 0.8f, 0.2f, 0.6f);
+    out.markers.push_back(zone);
+  }
+  return out;
+}
+
+}  // namespace multirobot_audio

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/Quaternion.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <multirobot_audio/FiducialArray.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/time.h>
+#include <sensor_msgs/BatteryState.h>
+#include <sensor_msgs/LaserScan.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "grid/occupancy_map.h"
+#include "grid/pose2d.h"
+#include "world_sim/fiducial_camera.h"
+#include "world_sim/world.h"
+
+// Pure conversions between the ROS-free components and ROS messages.
+namespace multirobot_audio {
+
+geometry_msgs::Quaternion ToYawQuaternion(double yaw);
+double FromQuaternionYaw(const geometry_msgs::Quaternion& q);
+
+// Occupied -> 100, free -> 0, unknown -> -1; same cell order (row 0 at the origin).
+nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
+                                        const ros::Time& stamp);
+grid::OccupancyMap FromOccupancyGrid(const nav_msgs::OccupancyGrid& msg);
+
+// A ring of IR ranges as a LaserScan in `frame` (ranges measured from the robot's centre).
+sensor_msgs::LaserScan ToLaserScan(const std::vector<float>& ranges,
+                                   const world_sim::RobotModel& model, const std::string& frame,
+                                   const ros::Time& stamp);
+
+// A pose and body-frame velocities as Odometry of `child` in `frame`.
+nav_msgs::Odometry ToOdometry(const grid::Pose2D& pose, double v, double w,
+                              const std::string& frame, const std::string& child,
+                              const ros::Time& stamp);
+
+geometry_msgs::TransformStamped ToTransform(const grid::Pose2D& pose, const std::string& parent,
+                                            const std::string& child, const ros::Time& stamp);
+
+sensor_msgs::BatteryState ToBatteryState(double level, bool docked,
+                                         const world_sim::BatteryModel& model,
+                                         const std::string& frame, const ros::Time& stamp);
+
+multirobot_audio::FiducialArray ToFiducialArray(
+    const std::vector<world_sim::FiducialSighting>& seen, const std::string& frame,
+    const ros::Time& stamp);
+
+// What rviz draws of a world: each robot as a disc with a heading arrow and its name, each
+// marker as a cube with its id, each charger as a flat green zone.
+visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
+                                               const std::string& frame, const ros::Time& stamp);
+
+}  // namespace multirobot_audio

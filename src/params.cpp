@@ -1,0 +1,55 @@
+#include "params.h"
+
+#include <cmath>
+
+namespace multirobot_audio {
+namespace {
+
+std::string Name(const ros::NodeHandle& pnh, const std::string& name) {
+  return pnh.resolveName(name);
+}
+
+}  // namespace
+
+double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback, double lo,
+                   double hi) {
+  if (!pnh.hasParam(name)) return fallback;
+  double value = 0.0;
+  int as_int = 0;
+  if (!pnh.getParam(name, value)) {
+    if (!pnh.getParam(name, as_int)) throw ParamError(Name(pnh, name) + ": expected a number");
+    value = as_int;
+  }
+  if (!std::isfinite(value) || value < lo || value > hi) {
+    throw ParamError(Name(pnh, name) + ": expected a number in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "], got " + std::to_string(value));
+  }
+  return value;
+}
+
+int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, int lo, int hi) {
+  if (!pnh.hasParam(name)) return fallback;
+  int value = 0;
+  if (!pnh.getParam(name, value)) throw ParamError(Name(pnh, name) + ": expected a whole number");
+  if (value < lo || value > hi) {
+    throw ParamError(Name(pnh, name) + ": expected a whole number in [" + std::to_string(lo) +
+                     ", " + std::to_string(hi) + "], got " + std::to_string(value));
+  }
+  return value;
+}
+
+std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
+                        const std::string& fallback) {
+  if (!pnh.hasParam(name)) return fallback;
+  std::string value;
+  if (!pnh.getParam(name, value)) throw ParamError(Name(pnh, name) + ": expected a string");
+  return value;
+}
+
+std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name) {
+  const std::string value = StringParam(pnh, name, "");
+  if (value.empty()) throw ParamError(Name(pnh, name) + ": missing; this parameter is required");
+  return value;
+}
+
+}  // namespace multirobot_audio

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <string>
+
+#include <ros/node_handle.h>
+
+namespace multirobot_audio {
+
+// Thrown for a parameter that cannot be used; the message names the parameter and what was
+// expected. Nodes print it and exit 1.
+class ParamError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Reads ~name (from `pnh`), or `fallback` when unset; throws ParamError on a value of the
+// wrong type or outside [lo, hi].
+double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback, double lo,
+                   double hi);
+int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, int lo, int hi);
+std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
+                        const std::string& fallback);
+// Throws when the parameter is unset or empty.
+std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name);
+
+}  // namespace multirobot_audio

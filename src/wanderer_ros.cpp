@@ -1,0 +1,37 @@
+#include "wanderer_ros.h"
+
+#include <geometry_msgs/Twist.h>
+
+#include "params.h"
+
+namespace multirobot_audio {
+
+world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
+  world_sim::WanderOptions o;
+  o.cruise_speed = NumberParam(pnh, "cruise_speed", o.cruise_speed, 0.0, 10.0);
+  o.turn_rate = NumberParam(pnh, "turn_rate", o.turn_rate, 0.0, 20.0);
+  o.avoid_range = NumberParam(pnh, "avoid_range", o.avoid_range, 0.0, 100.0);
+  o.slow_range = NumberParam(pnh, "slow_range", std::max(o.slow_range, o.avoid_range + 0.1),
+                             o.avoid_range + 1e-3, 100.0);
+  return o;
+}
+
+WandererRos::WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options,
+                         std::uint32_t seed)
+    : nh_(nh), wanderer_(options, seed) {
+  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 10);
+  scan_sub_ = nh_.subscribe("scan", 10, &WandererRos::OnScan, this);
+}
+
+void WandererRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& scan) {
+  // The behaviour wants ranger 0 ahead and an even ring, which is what world_sim publishes.
+  const double dt = last_scan_.isZero() ? 0.1 : (scan->header.stamp - last_scan_).toSec();
+  last_scan_ = scan->header.stamp;
+  const world_sim::VelocityCommand c = wanderer_.Update(scan->ranges, std::max(dt, 0.0));
+  geometry_msgs::Twist cmd;
+  cmd.linear.x = c.v;
+  cmd.angular.z = c.w;
+  cmd_pub_.publish(cmd);
+}
+
+}  // namespace multirobot_audio

@@ -1,0 +1,20 @@
+// world_sim: the team's simulated world and clock. See README.md for topics and parameters.
+#include <cstdio>
+
+#include <ros/ros.h>
+
+#include "params.h"
+#include "world_sim_ros.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "world_sim");
+  try {
+    ros::NodeHandle pnh("~");
+    multirobot_audio::WorldSimRos sim(ros::NodeHandle(), pnh, multirobot_audio::ReadWorldSimOptions(pnh));
+    std::printf("%s\n", sim.Run().c_str());
+  } catch (const std::exception& e) {
+    ROS_FATAL("world_sim: %s", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include "world_sim/world.h"
+
+namespace multirobot_audio {
+
+// Options of the world_sim node, filled from its private parameters.
+struct WorldSimOptions {
+  std::string world_file;       // ~world (required)
+  std::string map_file;         // ~map: replaces the world file's map when set
+  double speed = 1.0;           // ~speed: real-time factor; 0 runs as fast as possible
+  double duration = 0.0;        // ~duration: simulated seconds to run, 0 = until shutdown
+  double cmd_vel_timeout = 0.5; // ~cmd_vel_timeout: s of simulated time before a robot stops
+  int seed = -1;                // ~seed: replaces the world file's seed when >= 0
+  double markers_rate = 10.0;   // ~markers_rate: Hz of the rviz markers
+  world_sim::WorldOptions world;  // ~step, ~scan_rate, ~camera_rate, ~odom_rate
+};
+
+// Reads the options from `pnh`; throws ParamError on anything out of range.
+WorldSimOptions ReadWorldSimOptions(const ros::NodeHandle& pnh);
+
+// The ROS face of world_sim::World: owns /clock, publishes the map, every robot's sensors,
+// ground truth and TF, and drives the robots from their cmd_vel topics.
+class WorldSimRos {
+ public:
+  // Loads the world; throws grid::InputError or std::invalid_argument on bad input.
+  WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSimOptions& options);
+
+  // Steps until shutdown or the set duration; returns the one-line summary.
+  std::string Run();
+
+ private:
+  struct RobotIo {
+    ros::Subscriber cmd_vel;
+    ros::Publisher scan, odom, ground_truth, fiducials, battery;
+    double last_cmd_time = -1e9;
+    std::string odom_frame, base_frame;
+  };
+
+  void OnCmdVel(std::size_t index, const geometry_msgs::Twist::ConstPtr& msg);
+  void Publish();
+
+  ros::NodeHandle nh_, pnh_;
+  WorldSimOptions options_;
+  std::unique_ptr<world_sim::World> world_;
+  std::vector<RobotIo> io_;
+  ros::Publisher clock_pub_, map_pub_, markers_pub_;
+  tf2_ros::TransformBroadcaster tf_;
+  std::uint64_t markers_every_ = 1;
+  std::uint64_t battery_every_ = 1;
+};
+
+}  // namespace multirobot_audio

@@ -1,0 +1,90 @@
+#include "conversions.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace multirobot_audio {
+namespace {
+
+TEST(Conversions, YawQuaternionRoundTrips) {
+  for (double yaw : {0.0, 0.5, -2.0, M_PI - 1e-9}) {
+    EXPECT_NEAR(FromQuaternionYaw(ToYawQuaternion(yaw)), yaw, 1e-9);
+  }
+}
+
+TEST(Conversions, OccupancyGridRoundTrips) {
+  grid::OccupancyMap map(3, 2, 0.25, {1.0, -1.0, 0.3});
+  map.set(0, 0, grid::Cell::kOccupied);
+  map.set(2, 1, grid::Cell::kUnknown);
+  const nav_msgs::OccupancyGrid msg = ToOccupancyGrid(map, "map", ros::Time(5.0));
+  EXPECT_EQ(msg.header.frame_id, "map");
+  EXPECT_EQ(msg.info.width, 3u);
+  EXPECT_EQ(msg.info.height, 2u);
+  ASSERT_EQ(msg.data.size(), 6u);
+  EXPECT_EQ(msg.data[0], 100);
+  EXPECT_EQ(msg.data[1], 0);
+  EXPECT_EQ(msg.data[5], -1);
+  const grid::OccupancyMap back = FromOccupancyGrid(msg);
+  EXPECT_EQ(back.cells(), map.cells());
+  EXPECT_NEAR(back.origin().yaw, 0.3, 1e-6);
+  EXPECT_NEAR(back.resolution(), 0.25, 1e-6);
+}
+
+TEST(Conversions, OccupancyGridOfTheWrongSizeIsRejected) {
+  nav_msgs::OccupancyGrid msg;
+  msg.info.width = 2;
+  msg.info.height = 2;
+  msg.info.resolution = 1.0f;
+  msg.info.origin.orientation.w = 1.0;
+  msg.data.assign(3, 0);
+  EXPECT_THROW(FromOccupancyGrid(msg), std::invalid_argument);
+}
+
+TEST(Conversions, LaserScanOfARing) {
+  world_sim::RobotModel model;
+  const std::vector<float> ranges(8, 1.0f);
+  const sensor_msgs::LaserScan s = ToLaserScan(ranges, model, "robot_0/base_link", ros::Time(2.0));
+  EXPECT_FLOAT_EQ(s.angle_min, 0.0f);
+  EXPECT_FLOAT_EQ(s.angle_increment, static_cast<float>(M_PI / 4));
+  EXPECT_FLOAT_EQ(s.angle_max, static_cast<float>(7 * M_PI / 4));
+  EXPECT_FLOAT_EQ(s.range_max, static_cast<float>(model.radius + model.ir_range));
+  EXPECT_EQ(s.ranges.size(), 8u);
+}
+
+TEST(Conversions, OdometryAndTransform) {
+  const nav_msgs::Odometry o = ToOdometry({1.0, 2.0, 0.5}, 0.2, -0.1, "odom", "base", ros::Time(3.0));
+  EXPECT_EQ(o.child_frame_id, "base");
+  EXPECT_DOUBLE_EQ(o.pose.pose.position.y, 2.0);
+  EXPECT_NEAR(FromQuaternionYaw(o.pose.pose.orientation), 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(o.twist.twist.angular.z, -0.1);
+  const auto t = ToTransform({1.0, 2.0, 0.5}, "map", "odom", ros::Time(3.0));
+  EXPECT_EQ(t.child_frame_id, "odom");
+  EXPECT_DOUBLE_EQ(t.transform.translation.x, 1.0);
+}
+
+TEST(Conversions, BatteryStatus) {
+  const world_sim::BatteryModel m;
+  EXPECT_EQ(ToBatteryState(0.5, false, m, "b", ros::Time(1.0)).power_supply_status,
+            sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_DISCHARGING);
+  EXPECT_EQ(ToBatteryState(0.5, true, m, "b", ros::Time(1.0)).power_supply_status,
+            sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_CHARGING);
+  const auto full = ToBatteryState(1.0, true, m, "b", ros::Time(1.0));
+  EXPECT_EQ(full.power_supply_status, sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_FULL);
+  EXPECT_FLOAT_EQ(full.voltage, static_cast<float>(m.full_voltage));
+}
+
+TEST(Conversions, FiducialArray) {
+  const auto msg = ToFiducialArray({{4u, 2.0, 0.5}}, "cam", ros::Time(1.0));
+  ASSERT_EQ(msg.fiducials.size(), 1u);
+  EXPECT_EQ(msg.fiducials[0].id, 4u);
+  EXPECT_FLOAT_EQ(msg.fiducials[0].bearing, 0.5f);
+}
+
+}  // namespace
+}  // namespace multirobot_audio
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
