@@ -25,6 +25,10 @@ packages=(
   python3-roslaunch python3-rosmaster python3-rosgraph python3-rosnode python3-rosparam
   python3-rosservice rosout rosbash python3-rostopic python3-rosbag librosbag-dev
   librostest-dev python3-rostest rviz
+  # Python halves of the messages, for rostopic, rosbag and other command-line tools
+  python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs
+  python3-visualization-msgs python3-rosgraph-msgs python3-tf2-msgs python3-tf2-ros
+  python3-diagnostic-msgs python3-actionlib-msgs python3-std-srvs
   # libraries the ROS-free components use
   libyaml-cpp-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
@@ -49,5 +53,9 @@ fi
 
 [ "${1:-}" = "--no-build" ] && exit 0
 
-cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release -DCATKIN_DEVEL_PREFIX="$here/build/devel" >/dev/null
+# The devel space lives beside build/, not in it: rosrun skips everything below a package's
+# build/ folder, so executables there cannot be rosrun. build/devel links to it, so that
+# `source build/devel/setup.bash` works as usual.
+cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release -DCATKIN_DEVEL_PREFIX="$here/devel" >/dev/null
+ln -sfn ../devel "$here/build/devel"
 cmake --build "$here/build" -j "$(nproc)"

@@ -200,7 +200,7 @@ visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
     name.pose.position.x = robot.pose.x;
     name.pose.position.y = robot.pose.y + 2.0 * r;
     name.pose.position.z = 0.3;
-    name.scale.z = 0.25;
+    name.scale.z = 0.4;
     name.text = robot.name;
     SetColour(name, 0.0f, 0.0f, 0.0f);
     out.markers.push_back(name);

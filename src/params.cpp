@@ -1,12 +1,19 @@
 #include "params.h"
 
 #include <cmath>
+#include <sstream>
 
 namespace multirobot_audio {
 namespace {
 
 std::string Name(const ros::NodeHandle& pnh, const std::string& name) {
   return pnh.resolveName(name);
+}
+
+std::string Range(double lo, double hi, double value) {
+  std::ostringstream s;
+  s << "expected a number in [" << lo << ", " << hi << "], got " << value;
+  return s.str();
 }
 
 }  // namespace
@@ -21,8 +28,7 @@ double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double f
     value = as_int;
   }
   if (!std::isfinite(value) || value < lo || value > hi) {
-    throw ParamError(Name(pnh, name) + ": expected a number in [" + std::to_string(lo) + ", " +
-                     std::to_string(hi) + "], got " + std::to_string(value));
+    throw ParamError(Name(pnh, name) + ": " + Range(lo, hi, value));
   }
   return value;
 }

@@ -1,5 +1,6 @@
 // wanderer: drives one robot around with obstacle avoidance (the placeholder team behaviour).
 // Run it in the robot's namespace: it reads `scan` and writes `cmd_vel`.
+#include <cstdio>
 #include <functional>
 
 #include <ros/ros.h>
@@ -19,7 +20,7 @@ int main(int argc, char** argv) {
                                        static_cast<std::uint32_t>(seed));
     ros::spin();
   } catch (const std::exception& e) {
-    ROS_FATAL("wanderer: %s", e.what());
+    std::fprintf(stderr, "wanderer: %s\n", e.what());
     return 1;
   }
   return 0;

@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
     multirobot_audio::WorldSimRos sim(ros::NodeHandle(), pnh, multirobot_audio::ReadWorldSimOptions(pnh));
     std::printf("%s\n", sim.Run().c_str());
   } catch (const std::exception& e) {
-    ROS_FATAL("world_sim: %s", e.what());
+    std::fprintf(stderr, "world_sim: %s\n", e.what());
     return 1;
   }
   return 0;

@@ -15,9 +15,9 @@ namespace world_sim {
 
 struct WorldOptions {
   double step = 0.02;           // s of simulated time per Step()
-  double scan_period = 0.1;     // s between IR scans
+  double scan_period = 0.1;     // s between IR scans (each period is rounded to whole steps)
   double camera_period = 0.2;   // s between fiducial images
-  double odom_period = 0.05;    // s between odometry updates
+  double odom_period = 0.04;    // s between odometry updates (25 Hz)
   double start_time = 1.0;      // s; never 0, which ROS reads as "no time yet"
 };
 
