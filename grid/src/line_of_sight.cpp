@@ -80,6 +80,8 @@ std::optional<double> CellWalk(const Eigen::Vector2d& a, const Eigen::Vector2d& 
   }
 }
 
+}  // namespace
+
 std::optional<double> FirstBlockedInCells(const OccupancyMap& map, const Eigen::Vector2d& a,
                                           const Eigen::Vector2d& b) {
   const Eigen::Vector2d d = b - a;
@@ -107,8 +109,6 @@ std::optional<double> FirstBlockedInCells(const OccupancyMap& map, const Eigen::
   }
   return CellWalk(a, b, [&map](int i, int j) { return map.Blocks(i, j); });
 }
-
-}  // namespace
 
 std::optional<double> FirstBlocked(const OccupancyMap& map, const Eigen::Vector2d& from,
                                    const Eigen::Vector2d& to) {

@@ -22,6 +22,11 @@ namespace grid {
 std::optional<double> FirstBlocked(const OccupancyMap& map, const Eigen::Vector2d& from,
                                    const Eigen::Vector2d& to);
 
+// The same in continuous cell coordinates (see OccupancyMap::WorldToCellCoords), for callers
+// that work on the grid directly.
+std::optional<double> FirstBlockedInCells(const OccupancyMap& map, const Eigen::Vector2d& from,
+                                          const Eigen::Vector2d& to);
+
 // True when nothing blocks the segment between the two world points.
 bool LineOfSight(const OccupancyMap& map, const Eigen::Vector2d& from, const Eigen::Vector2d& to);
 

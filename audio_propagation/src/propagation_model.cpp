@@ -1,0 +1,169 @@
+#include "audio_propagation/propagation_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+#include <string>
+
+#include "grid/line_of_sight.h"
+
+namespace audio_propagation {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("audio_propagation: " + what);
+}
+
+}  // namespace
+
+void ValidateOptions(const PropagationOptions& o) {
+  Require(std::isfinite(o.source_level_db), "source_level_db must be a finite number of dB");
+  Require(std::isfinite(o.threshold_db) && o.threshold_db <= o.source_level_db,
+          "threshold_db (" + std::to_string(o.threshold_db) +
+              ") must be finite and not above source_level_db (" + std::to_string(o.source_level_db) + ")");
+  Require(o.reference_distance > 0.0 && std::isfinite(o.reference_distance),
+          "reference_distance must be a positive number of metres");
+  Require(o.max_range >= 0.0 && std::isfinite(o.max_range),
+          "max_range must be >= 0 m (0 = no limit), got " + std::to_string(o.max_range));
+  Require(o.speed_of_sound > 0.0 && std::isfinite(o.speed_of_sound),
+          "speed_of_sound must be a positive number of m/s");
+  Require(o.threads >= 1 && o.threads <= 256, "threads must be from 1 to 256");
+}
+
+PropagationModel::PropagationModel(grid::OccupancyMap map, const PropagationOptions& options)
+    : map_(std::move(map)), options_(options) {
+  ValidateOptions(options_);
+  hearing_distance_ = options_.reference_distance *
+                      std::pow(10.0, (options_.source_level_db - options_.threshold_db) / 20.0);
+  if (options_.max_range > 0.0) hearing_distance_ = std::min(hearing_distance_, options_.max_range);
+  points_ = FindDiffractionPoints(map_, options_.rule);
+  graph_ = std::make_unique<VisibilityGraph>(map_, CornerVertices(map_, points_),
+                                             hearing_distance_ / map_.resolution(),
+                                             options_.threads);
+}
+
+double PropagationModel::LevelAt(double length) const {
+  const double d0 = options_.reference_distance;
+  return options_.source_level_db - 20.0 * std::log10(std::max(length, d0) / d0);
+}
+
+std::vector<PropagationModel::Visible> PropagationModel::VisibleNodes(const Eigen::Vector2d& p) const {
+  std::vector<Visible> out;
+  const double reach = hearing_distance_ / map_.resolution();
+  const double reach2 = reach * reach;
+  for (std::size_t k = 0; k < graph_->size(); ++k) {
+    const Eigen::Vector2d& q = graph_->position(k);
+    const double d2 = (q - p).squaredNorm();
+    if (d2 > reach2) continue;
+    if (!grid::FirstBlockedInCells(map_, p, q)) out.push_back({static_cast<std::int32_t>(k), std::sqrt(d2)});
+  }
+  return out;
+}
+
+SoundPath PropagationModel::MakePath(std::vector<Eigen::Vector2d> cells, double length_cells) const {
+  SoundPath path;
+  path.length = length_cells * map_.resolution();
+  if (path.length > hearing_distance_ + 1e-9) return path;  // too far to be heard at all
+  path.reachable = true;
+  path.bends = static_cast<int>(cells.size()) - 2;
+  for (Eigen::Vector2d& c : cells) c = map_.CellCoordsToWorld(c);
+  path.polyline = std::move(cells);
+  path.level_db = LevelAt(path.length);
+  path.audible = path.level_db >= options_.threshold_db;
+  const Eigen::Vector2d& at = path.polyline.back();
+  const Eigen::Vector2d& from = path.polyline[path.polyline.size() - 2];
+  path.arrival_angle = std::atan2(from.y() - at.y(), from.x() - at.x());
+  path.travel_time = path.length / options_.speed_of_sound;
+  return path;
+}
+
+std::vector<std::vector<SoundPath>> PropagationModel::Compute(
+    const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& sources) const {
+  const std::size_t n = positions.size();
+  std::vector<std::vector<SoundPath>> result(n, std::vector<SoundPath>(n));
+  std::vector<Eigen::Vector2d> cells(n);
+  for (std::size_t k = 0; k < n; ++k) cells[k] = map_.WorldToCellCoords(positions[k]);
+  const double reach = hearing_distance_ / map_.resolution();
+
+  // Which graph nodes each listener sees, computed only for listeners that need the graph.
+  std::vector<std::vector<Visible>> visible(n);
+  std::vector<bool> visible_known(n, false);
+  auto visible_of = [&](std::size_t k) -> const std::vector<Visible>& {
+    if (!visible_known[k]) {
+      visible[k] = VisibleNodes(cells[k]);
+      visible_known[k] = true;
+    }
+    return visible[k];
+  };
+
+  const std::size_t g = graph_->size();
+  std::vector<double> dist(g);
+  std::vector<std::int32_t> prev(g);
+  using Entry = std::pair<double, std::int32_t>;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (s >= sources.size() || !sources[s]) continue;
+    // Listeners in direct line of sight need no graph; the rest wait for Dijkstra.
+    std::vector<std::size_t> around;
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == s) continue;
+      const double direct = (cells[r] - cells[s]).norm();
+      if (direct > reach) continue;
+      if (!grid::FirstBlockedInCells(map_, cells[s], cells[r])) {
+        result[s][r] = MakePath({cells[s], cells[r]}, direct);
+      } else {
+        around.push_back(r);
+      }
+    }
+    if (around.empty()) continue;
+
+    // Dijkstra from the source, seeded with the nodes it sees and bounded by the hearing reach.
+    std::fill(dist.begin(), dist.end(), kInf);
+    std::fill(prev.begin(), prev.end(), -1);
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+    for (const Visible& v : visible_of(s)) {
+      dist[v.node] = v.distance;
+      heap.emplace(v.distance, v.node);
+    }
+    while (!heap.empty()) {
+      const auto [d, u] = heap.top();
+      heap.pop();
+      if (d > dist[u]) continue;
+      for (const VisibilityGraph::Edge* e = graph_->edges_begin(u); e != graph_->edges_end(u); ++e) {
+        const double nd = d + e->length;
+        if (nd < dist[e->to] && nd <= reach) {
+          dist[e->to] = nd;
+          prev[e->to] = u;
+          heap.emplace(nd, e->to);
+        }
+      }
+    }
+    for (std::size_t r : around) {
+      double best = kInf;
+      std::int32_t last = -1;
+      for (const Visible& v : visible_of(r)) {
+        const double d = dist[v.node] + v.distance;
+        if (d < best) {
+          best = d;
+          last = v.node;
+        }
+      }
+      if (last < 0 || best > reach) continue;
+      std::vector<Eigen::Vector2d> poly = {cells[r]};
+      for (std::int32_t k = last; k >= 0; k = prev[k]) poly.push_back(graph_->position(k));
+      poly.push_back(cells[s]);
+      std::reverse(poly.begin(), poly.end());
+      result[s][r] = MakePath(std::move(poly), best);
+    }
+  }
+  return result;
+}
+
+SoundPath PropagationModel::Path(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
+  return Compute({from, to}, {true, false})[0][1];
+}
+
+}  // namespace audio_propagation

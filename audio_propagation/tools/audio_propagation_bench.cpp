@@ -1,0 +1,81 @@
+// audio_propagation_bench: how fast the propagation model builds and steps.
+//
+//   audio_propagation_bench --map MAP.yaml [--robots 20] [--steps 50] [--seed 1]
+//                           [--rule masks|convex_corners]
+//
+// Builds the model (diffraction points + visibility graph), then for each step places the robots
+// at random free positions and computes the paths from every robot to every other, all robots
+// transmitting. Prints one JSON object.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <random>
+#include <vector>
+
+#include "audio_propagation/propagation_model.h"
+#include "grid/map_file.h"
+#include "tool_args.h"
+
+int main(int argc, char** argv) {
+  using namespace audio_propagation;
+  using Clock = std::chrono::steady_clock;
+  const tools::ToolArgs args(
+      "audio_propagation_bench",
+      "audio_propagation_bench --map MAP.yaml [--robots N] [--steps K] [--seed S] [--rule masks|convex_corners]",
+      argc, argv);
+  const std::string map_file = args.Required("--map");
+  const int robots = static_cast<int>(args.Int("--robots", 20, 2, 100000));
+  const int steps = static_cast<int>(args.Int("--steps", 50, 1, 1000000));
+  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  const std::string rule_name = args.String("--rule", "masks");
+  args.CheckAllUsed();
+  const auto rule = ParseDiffractionRule(rule_name);
+  if (!rule) args.Fail("--rule: expected masks or convex_corners, got " + rule_name);
+
+  try {
+    grid::OccupancyMap map = grid::LoadMapFile(map_file);
+    PropagationOptions options;
+    options.rule = *rule;
+    const auto t0 = Clock::now();
+    const PropagationModel model(std::move(map), options);
+    const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+
+    std::mt19937 rng(seed);
+    const grid::OccupancyMap& m = model.map();
+    std::uniform_real_distribution<double> ux(0.0, m.width()), uy(0.0, m.height());
+    auto random_free = [&] {
+      while (true) {
+        const Eigen::Vector2d p = m.CellCoordsToWorld({ux(rng), uy(rng)});
+        if (m.IsFreeAt(p)) return p;
+      }
+    };
+    std::vector<double> step_ms;
+    std::size_t heard = 0;
+    const std::vector<bool> all(robots, true);
+    for (int k = 0; k < steps; ++k) {
+      std::vector<Eigen::Vector2d> positions;
+      for (int r = 0; r < robots; ++r) positions.push_back(random_free());
+      const auto s0 = Clock::now();
+      const auto paths = model.Compute(positions, all);
+      step_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - s0).count());
+      for (const auto& row : paths)
+        for (const SoundPath& p : row) heard += p.audible;
+    }
+    std::sort(step_ms.begin(), step_ms.end());
+    const double median = step_ms[step_ms.size() / 2];
+    double total = 0.0;
+    for (double t : step_ms) total += t;
+    const double pairs = static_cast<double>(robots) * (robots - 1) * steps;
+    std::printf(
+        "{\"map\": \"%s\", \"rule\": \"%s\", \"robots\": %d, \"steps\": %d, "
+        "\"diffraction_points\": %zu, \"edges\": %zu, \"build_ms\": %.1f, \"step_ms\": %.3f, "
+        "\"pairs_per_s\": %.0f, \"heard_fraction\": %.3f}\n",
+        map_file.c_str(), DiffractionRuleName(*rule), robots, steps, model.graph().size(),
+        model.graph().edge_count(), build_ms, median, pairs / (total / 1000.0), heard / pairs);
+  } catch (const std::exception& e) {
+    std::cerr << "audio_propagation_bench: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

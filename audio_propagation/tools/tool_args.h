@@ -1,0 +1,66 @@
+#pragma once
+
+// Command-line parsing shared by the audio_propagation tools: --flag value pairs, with errors
+// that name the flag and exit 1.
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <string>
+
+namespace audio_propagation::tools {
+
+class ToolArgs {
+ public:
+  ToolArgs(const std::string& program, const std::string& usage, int argc, char** argv)
+      : program_(program), usage_(usage) {
+    for (int i = 1; i < argc; ++i) {
+      const std::string flag = argv[i];
+      if (flag == "-h" || flag == "--help") {
+        std::cout << "usage: " << usage_ << "\n";
+        std::exit(0);
+      }
+      if (flag.rfind("--", 0) != 0 || i + 1 >= argc) Fail(flag + ": expected --flag VALUE");
+      values_[flag] = argv[++i];
+    }
+  }
+
+  [[noreturn]] void Fail(const std::string& problem) const {
+    std::cerr << program_ << ": " << problem << "\nusage: " << usage_ << "\n";
+    std::exit(1);
+  }
+
+  std::string String(const std::string& flag, const std::string& fallback) const {
+    const auto it = values_.find(flag);
+    used_[flag] = true;
+    return it == values_.end() ? fallback : it->second;
+  }
+
+  std::string Required(const std::string& flag) const {
+    if (!values_.count(flag)) Fail(flag + " is required");
+    return String(flag, "");
+  }
+
+  long Int(const std::string& flag, long fallback, long lo, long hi) const {
+    const std::string v = String(flag, std::to_string(fallback));
+    char* end = nullptr;
+    const long x = std::strtol(v.c_str(), &end, 10);
+    if (*end || x < lo || x > hi) {
+      Fail(flag + ": expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + v);
+    }
+    return x;
+  }
+
+  // Rejects flags the tool does not know, once all have been read.
+  void CheckAllUsed() const {
+    for (const auto& [flag, value] : values_) {
+      if (!used_.count(flag)) Fail("unknown option " + flag);
+    }
+  }
+
+ private:
+  std::string program_, usage_;
+  std::map<std::string, std::string> values_;
+  mutable std::map<std::string, bool> used_;
+};
+
+}  // namespace audio_propagation::tools
