@@ -102,20 +102,20 @@ std::vector<Eigen::Vector2i> FindDiffractionPoints(const grid::OccupancyMap& map
   return points;
 }
 
-std::vector<Eigen::Vector2d> CornerVertices(const grid::OccupancyMap& map,
-                                            const std::vector<Eigen::Vector2i>& points) {
-  std::vector<Eigen::Vector2d> out;
+std::vector<Corner> CornerVertices(const grid::OccupancyMap& map,
+                                   const std::vector<Eigen::Vector2i>& points) {
+  std::vector<Corner> out;
   std::vector<bool> seen(static_cast<std::size_t>(map.width() + 1) * (map.height() + 1), false);
   for (const Eigen::Vector2i& c : points) {
     for (int vy = c.y(); vy <= c.y() + 1; ++vy) {
       for (int vx = c.x(); vx <= c.x() + 1; ++vx) {
         const std::size_t key = static_cast<std::size_t>(vy) * (map.width() + 1) + vx;
         if (seen[key]) continue;
-        const int blocked = map.Blocks(vx - 1, vy - 1) + map.Blocks(vx, vy - 1) +
-                            map.Blocks(vx - 1, vy) + map.Blocks(vx, vy);
-        if (blocked != 1) continue;
+        const bool sw = map.Blocks(vx - 1, vy - 1), se = map.Blocks(vx, vy - 1);
+        const bool nw = map.Blocks(vx - 1, vy), ne = map.Blocks(vx, vy);
+        if (sw + se + nw + ne != 1) continue;
         seen[key] = true;
-        out.emplace_back(vx, vy);
+        out.push_back({Eigen::Vector2d(vx, vy), (se || ne) ? 1 : -1, (nw || ne) ? 1 : -1});
       }
     }
   }

@@ -58,7 +58,7 @@ std::vector<PropagationModel::Visible> PropagationModel::VisibleNodes(const Eige
   for (std::size_t k = 0; k < graph_->size(); ++k) {
     const Eigen::Vector2d& q = graph_->position(k);
     const double d2 = (q - p).squaredNorm();
-    if (d2 > reach2) continue;
+    if (d2 > reach2 || !graph_->corner(k).Tangent(q - p)) continue;
     if (!grid::FirstBlockedInCells(map_, p, q)) out.push_back({static_cast<std::int32_t>(k), std::sqrt(d2)});
   }
   return out;
@@ -76,7 +76,9 @@ SoundPath PropagationModel::MakePath(std::vector<Eigen::Vector2d> cells, double 
   path.audible = path.level_db >= options_.threshold_db;
   const Eigen::Vector2d& at = path.polyline.back();
   const Eigen::Vector2d& from = path.polyline[path.polyline.size() - 2];
-  path.arrival_angle = std::atan2(from.y() - at.y(), from.x() - at.x());
+  // A listener at the source has no direction to hear it from.
+  path.arrival_angle = from == at ? std::numeric_limits<double>::quiet_NaN()
+                                  : std::atan2(from.y() - at.y(), from.x() - at.x());
   path.travel_time = path.length / options_.speed_of_sound;
   return path;
 }

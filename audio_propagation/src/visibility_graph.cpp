@@ -9,9 +9,10 @@
 namespace audio_propagation {
 
 VisibilityGraph::VisibilityGraph(const grid::OccupancyMap& map,
-                                 std::vector<Eigen::Vector2d> positions, double max_range_cells,
+                                 std::vector<Corner> corners, double max_range_cells,
                                  int threads)
-    : positions_(std::move(positions)) {
+    : corners_(std::move(corners)) {
+  for (const Corner& c : corners_) positions_.push_back(c.position);
   const std::size_t n = positions_.size();
   const double range2 = max_range_cells > 0.0 ? max_range_cells * max_range_cells : -1.0;
 
@@ -22,7 +23,9 @@ VisibilityGraph::VisibilityGraph(const grid::OccupancyMap& map,
   auto work = [&](int t) {
     for (std::size_t i = t; i < n; i += threads) {
       for (std::size_t j = i + 1; j < n; ++j) {
-        if (range2 > 0.0 && (positions_[i] - positions_[j]).squaredNorm() > range2) continue;
+        const Eigen::Vector2d d = positions_[j] - positions_[i];
+        if (range2 > 0.0 && d.squaredNorm() > range2) continue;
+        if (!corners_[i].Tangent(d) || !corners_[j].Tangent(d)) continue;
         if (!grid::FirstBlockedInCells(map, positions_[i], positions_[j])) {
           found[t].emplace_back(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j));
         }

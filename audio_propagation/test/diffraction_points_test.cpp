@@ -101,10 +101,22 @@ TEST(DiffractionPoints, BothRulesBendAtTheSameCorners) {
   });
   const auto masks = CornerVertices(map, FindDiffractionPoints(map, DiffractionRule::kMasks));
   const auto convex = CornerVertices(map, FindDiffractionPoints(map, DiffractionRule::kConvexCorners));
+  auto has = [](const std::vector<Corner>& list, const Eigen::Vector2d& p) {
+    return std::any_of(list.begin(), list.end(), [&](const Corner& c) { return c.position == p; });
+  };
   EXPECT_EQ(masks.size(), convex.size());
-  for (const auto& v : convex) EXPECT_NE(std::find(masks.begin(), masks.end(), v), masks.end());
-  // The outer corner of the L-shaped wall, at the top right of its top row, is a bend.
-  EXPECT_NE(std::find(convex.begin(), convex.end(), Eigen::Vector2d(5.0, 5.0)), convex.end());
+  for (const auto& c : convex) EXPECT_TRUE(has(masks, c.position)) << c.position.transpose();
+  // The outer corner of the L-shaped wall, at the top right of its top row, is a bend, with the
+  // wall below and to the left of it.
+  ASSERT_TRUE(has(convex, Eigen::Vector2d(5.0, 5.0)));
+  for (const auto& c : convex) {
+    if (c.position == Eigen::Vector2d(5.0, 5.0)) {
+      EXPECT_EQ(c.qx, -1);
+      EXPECT_EQ(c.qy, -1);
+      EXPECT_TRUE(c.Tangent({1.0, -1.0}));   // grazing the corner
+      EXPECT_FALSE(c.Tangent({-1.0, -1.0}));  // straight into the wall
+    }
+  }
 }
 
 TEST(DiffractionPoints, RuleNames) {

@@ -69,9 +69,9 @@ int main(int argc, char** argv) {
     const double pairs = static_cast<double>(robots) * (robots - 1) * steps;
     std::printf(
         "{\"map\": \"%s\", \"rule\": \"%s\", \"robots\": %d, \"steps\": %d, "
-        "\"diffraction_points\": %zu, \"edges\": %zu, \"build_ms\": %.1f, \"step_ms\": %.3f, "
+        "\"diffraction_points\": %zu, \"graph_nodes\": %zu, \"edges\": %zu, \"build_ms\": %.1f, \"step_ms\": %.3f, "
         "\"pairs_per_s\": %.0f, \"heard_fraction\": %.3f}\n",
-        map_file.c_str(), DiffractionRuleName(*rule), robots, steps, model.graph().size(),
+        map_file.c_str(), DiffractionRuleName(*rule), robots, steps, model.diffraction_points().size(), model.graph().size(),
         model.graph().edge_count(), build_ms, median, pairs / (total / 1000.0), heard / pairs);
   } catch (const std::exception& e) {
     std::cerr << "audio_propagation_bench: " << e.what() << "\n";

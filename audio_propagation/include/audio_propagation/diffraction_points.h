@@ -40,7 +40,16 @@ std::vector<Eigen::Vector2i> FindDiffractionPoints(const grid::OccupancyMap& map
 // around it blocks). Each vertex appears once, however many points touch it. Bending at the
 // corner itself, rather than at the centre of the cell beside it, makes path lengths exact:
 // shortest paths around the blocked cells bend only at such corners.
-std::vector<Eigen::Vector2d> CornerVertices(const grid::OccupancyMap& map,
-                                            const std::vector<Eigen::Vector2i>& points);
+struct Corner {
+  Eigen::Vector2d position;  // the grid vertex, in cell coordinates
+  int qx = 0, qy = 0;        // the blocking cell lies towards (qx, qy), each +1 or -1
+
+  // Whether a straight line along `d` through this corner only touches the wall here (is
+  // tangent to it). Shortest paths bend only at corners their segments are tangent to, so
+  // other lines need no line-of-sight test: the reduced visibility graph.
+  bool Tangent(const Eigen::Vector2d& d) const { return d.x() * d.y() * qx * qy <= 0.0; }
+};
+std::vector<Corner> CornerVertices(const grid::OccupancyMap& map,
+                                   const std::vector<Eigen::Vector2i>& points);
 
 }  // namespace audio_propagation

@@ -34,7 +34,7 @@ struct SoundPath {
   std::vector<Eigen::Vector2d> polyline;  // world points from source to listener
   int bends = 0;                    // diffraction points on the way
   double level_db = 0.0;            // L_source - 20 log10(max(d, d0) / d0)
-  double arrival_angle = 0.0;       // world-frame direction the sound comes from, at the listener
+  double arrival_angle = 0.0;       // world-frame direction the sound comes from (NaN at length 0)
   double travel_time = 0.0;         // s
 };
 
