@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +43,8 @@ PropagationModel::PropagationModel(grid::OccupancyMap map, const PropagationOpti
   graph_ = std::make_unique<VisibilityGraph>(map_, CornerVertices(map_, points_),
                                              hearing_distance_ / map_.resolution(),
                                              options_.threads);
+  distances_ = std::make_unique<CornerDistances>(*graph_, hearing_distance_ / map_.resolution(),
+                                                 options_.threads);
 }
 
 double PropagationModel::LevelAt(double length) const {
@@ -102,62 +103,34 @@ std::vector<std::vector<SoundPath>> PropagationModel::Compute(
     return visible[k];
   };
 
-  const std::size_t g = graph_->size();
-  std::vector<double> dist(g);
-  std::vector<std::int32_t> prev(g);
-  using Entry = std::pair<double, std::int32_t>;
   for (std::size_t s = 0; s < n; ++s) {
     if (s >= sources.size() || !sources[s]) continue;
-    // Listeners in direct line of sight need no graph; the rest wait for Dijkstra.
-    std::vector<std::size_t> around;
     for (std::size_t r = 0; r < n; ++r) {
       if (r == s) continue;
       const double direct = (cells[r] - cells[s]).norm();
       if (direct > reach) continue;
       if (!grid::FirstBlockedInCells(map_, cells[s], cells[r])) {
         result[s][r] = MakePath({cells[s], cells[r]}, direct);
-      } else {
-        around.push_back(r);
+        continue;
       }
-    }
-    if (around.empty()) continue;
-
-    // Dijkstra from the source, seeded with the nodes it sees and bounded by the hearing reach.
-    std::fill(dist.begin(), dist.end(), kInf);
-    std::fill(prev.begin(), prev.end(), -1);
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
-    for (const Visible& v : visible_of(s)) {
-      dist[v.node] = v.distance;
-      heap.emplace(v.distance, v.node);
-    }
-    while (!heap.empty()) {
-      const auto [d, u] = heap.top();
-      heap.pop();
-      if (d > dist[u]) continue;
-      for (const VisibilityGraph::Edge* e = graph_->edges_begin(u); e != graph_->edges_end(u); ++e) {
-        const double nd = d + e->length;
-        if (nd < dist[e->to] && nd <= reach) {
-          dist[e->to] = nd;
-          prev[e->to] = u;
-          heap.emplace(nd, e->to);
-        }
-      }
-    }
-    for (std::size_t r : around) {
+      // Around walls: source -> a corner it sees -> ... -> a corner the listener sees -> listener.
       double best = kInf;
-      std::int32_t last = -1;
-      for (const Visible& v : visible_of(r)) {
-        const double d = dist[v.node] + v.distance;
-        if (d < best) {
-          best = d;
-          last = v.node;
+      std::int32_t first = -1, last = -1;
+      for (const Visible& a : visible_of(s)) {
+        if (a.distance >= best) continue;
+        for (const Visible& b : visible_of(r)) {
+          const double d = a.distance + distances_->distance(a.node, b.node) + b.distance;
+          if (d < best) {
+            best = d;
+            first = a.node;
+            last = b.node;
+          }
         }
       }
-      if (last < 0 || best > reach) continue;
-      std::vector<Eigen::Vector2d> poly = {cells[r]};
-      for (std::int32_t k = last; k >= 0; k = prev[k]) poly.push_back(graph_->position(k));
-      poly.push_back(cells[s]);
-      std::reverse(poly.begin(), poly.end());
+      if (first < 0 || best > reach) continue;
+      std::vector<Eigen::Vector2d> poly = {cells[s]};
+      distances_->AppendPath(*graph_, first, last, poly);
+      poly.push_back(cells[r]);
       result[s][r] = MakePath(std::move(poly), best);
     }
   }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "audio_propagation/corner_distances.h"
 #include "audio_propagation/diffraction_points.h"
 #include "audio_propagation/visibility_graph.h"
 #include "grid/occupancy_map.h"
@@ -47,8 +48,9 @@ class PropagationModel {
   PropagationModel(grid::OccupancyMap map, const PropagationOptions& options);
 
   // Paths from each position flagged in `sources` to every other position: result[s][r], with
-  // an unreachable SoundPath where r == s or s is not a source. One Dijkstra run per source
-  // serves all its listeners; a direct line of sight short-cuts the graph.
+  // an unreachable SoundPath where r == s or s is not a source. A direct line of sight
+  // short-cuts the graph; otherwise the path joins the corners the source sees to the corners
+  // the listener sees through the precomputed corner distances.
   std::vector<std::vector<SoundPath>> Compute(const std::vector<Eigen::Vector2d>& positions,
                                               const std::vector<bool>& sources) const;
 
@@ -78,6 +80,7 @@ class PropagationModel {
   PropagationOptions options_;
   std::vector<Eigen::Vector2i> points_;
   std::unique_ptr<VisibilityGraph> graph_;
+  std::unique_ptr<CornerDistances> distances_;
   double hearing_distance_ = 0.0;  // m
 };
 
