@@ -1,0 +1,77 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace nava_modem {
+
+// Timing and thresholds of the Nava CSMA-CA link layer (thesis section 5.2.4). All timing runs
+// in ticks of 1/16 of a bit time, so a faster bit rate makes everything faster alike.
+struct MacOptions {
+  double bit_rate = 300.0;            // bits per second
+  int packet_bits = 110;              // 40 bits of break + 7 bytes of 8N1
+  double calibration_time = 4.0;      // s of silence listened to before the first send
+  std::optional<double> fixed_threshold_db;  // skip calibration and use this carrier threshold
+  double threshold_margin_db = 6.0;   // calibrated threshold: loudest silence + this margin
+  double backoff_min_bits = 2.0;      // random wait on a free medium before sending, in bits
+  double backoff_max_bits = 30.0;
+  double deaf_time = 0.2;             // s of own echo ignored after sending (< a packet)
+  double carrier_release_bits = 1.0;  // bits without carrier that end a reception
+  std::size_t queue_capacity = 16;    // packets waiting to be sent
+};
+
+enum class MacState { kCalibrating, kWaiting, kSending, kDeaf, kReceiving };
+const char* MacStateName(MacState s);
+
+// Throws std::invalid_argument naming the option when it is impossible.
+void ValidateMacOptions(const MacOptions& options);
+
+// The Nava state machine: Calibrating -> Waiting; Waiting -> Receiving on carrier, or ->
+// Sending after a random back-off on a free medium when a packet is queued; Sending -> Deaf
+// -> Waiting; Receiving -> Waiting when the carrier has gone. The caller owns time: it calls
+// Tick() once per tick with the level heard, and transmits the packet Tick() hands back (the
+// MAC then stays in Sending for one packet time). Deterministic for a seed.
+class CsmaMac {
+ public:
+  using Packet = std::vector<std::uint8_t>;
+
+  CsmaMac(const MacOptions& options, std::uint32_t seed);
+
+  // Queues a packet; false (and counted) when the queue is full.
+  bool Enqueue(Packet packet);
+
+  // Advances one tick having heard `level_db`; returns the packet to start sending now, if any.
+  std::optional<Packet> Tick(double level_db);
+
+  MacState state() const { return state_; }
+  double threshold_db() const { return threshold_db_; }
+  bool carrier() const { return carrier_; }
+  double tick_seconds() const { return tick_seconds_; }
+  int packet_ticks() const { return packet_ticks_; }
+  std::uint64_t ticks() const { return ticks_; }
+  std::size_t queued() const { return queue_.size(); }
+  std::uint64_t sent() const { return sent_; }
+  std::uint64_t dropped() const { return dropped_; }
+  std::uint64_t receptions() const { return receptions_; }
+
+ private:
+  void EnterWaiting();
+  int Ticks(double seconds) const;
+
+  MacOptions options_;
+  std::mt19937 rng_;
+  double tick_seconds_;
+  int packet_ticks_, deaf_ticks_, release_ticks_, calibration_ticks_;
+  MacState state_ = MacState::kCalibrating;
+  double threshold_db_ = 0.0;
+  double loudest_silence_db_ = -1e300;
+  bool carrier_ = false;
+  int remaining_ = 0;  // ticks left in the current timed phase (calibration, back-off, send, deaf, release)
+  std::deque<Packet> queue_;
+  std::uint64_t ticks_ = 0, sent_ = 0, dropped_ = 0, receptions_ = 0;
+};
+
+}  // namespace nava_modem

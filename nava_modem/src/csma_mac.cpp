@@ -1,0 +1,137 @@
+#include "nava_modem/csma_mac.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace nava_modem {
+namespace {
+
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("nava_modem MAC: " + what);
+}
+
+}  // namespace
+
+const char* MacStateName(MacState s) {
+  switch (s) {
+    case MacState::kCalibrating:
+      return "calibrating";
+    case MacState::kWaiting:
+      return "waiting";
+    case MacState::kSending:
+      return "sending";
+    case MacState::kDeaf:
+      return "deaf";
+    case MacState::kReceiving:
+      return "receiving";
+  }
+  return "?";
+}
+
+void ValidateMacOptions(const MacOptions& o) {
+  Require(o.bit_rate > 0.0 && std::isfinite(o.bit_rate), "bit_rate must be a positive number of bits/s");
+  Require(o.packet_bits > 0, "packet_bits must be positive");
+  Require(o.calibration_time >= 0.0, "calibration_time must be >= 0 s");
+  Require(!o.fixed_threshold_db || std::isfinite(*o.fixed_threshold_db), "fixed threshold must be finite");
+  Require(o.backoff_min_bits >= 0.0 && o.backoff_max_bits >= o.backoff_min_bits,
+          "back-off must satisfy 0 <= backoff_min_bits <= backoff_max_bits");
+  const double packet_time = o.packet_bits / o.bit_rate;
+  Require(o.deaf_time >= 0.0 && o.deaf_time < packet_time,
+          "deaf_time (" + std::to_string(o.deaf_time) + " s) must be >= 0 and shorter than a packet (" +
+              std::to_string(packet_time) + " s), or a carrier could be missed");
+  Require(o.carrier_release_bits > 0.0, "carrier_release_bits must be positive");
+  Require(o.queue_capacity > 0, "queue_capacity must be at least 1");
+}
+
+CsmaMac::CsmaMac(const MacOptions& options, std::uint32_t seed) : options_(options), rng_(seed) {
+  ValidateMacOptions(options_);
+  tick_seconds_ = 1.0 / (16.0 * options_.bit_rate);
+  packet_ticks_ = options_.packet_bits * 16;
+  deaf_ticks_ = Ticks(options_.deaf_time);
+  release_ticks_ = std::max(1, static_cast<int>(std::lround(options_.carrier_release_bits * 16)));
+  calibration_ticks_ = Ticks(options_.calibration_time);
+  if (options_.fixed_threshold_db) {
+    threshold_db_ = *options_.fixed_threshold_db;
+    EnterWaiting();
+  } else {
+    remaining_ = calibration_ticks_;
+  }
+}
+
+int CsmaMac::Ticks(double seconds) const {
+  return static_cast<int>(std::lround(seconds / tick_seconds_));
+}
+
+bool CsmaMac::Enqueue(Packet packet) {
+  if (queue_.size() >= options_.queue_capacity) {
+    ++dropped_;
+    return false;
+  }
+  queue_.push_back(std::move(packet));
+  return true;
+}
+
+void CsmaMac::EnterWaiting() {
+  state_ = MacState::kWaiting;
+  // A fresh random back-off every time the medium is free again: that is what spreads out
+  // robots that all waited for the same sender to finish.
+  std::uniform_int_distribution<int> backoff(static_cast<int>(std::lround(options_.backoff_min_bits * 16)),
+                                             static_cast<int>(std::lround(options_.backoff_max_bits * 16)));
+  remaining_ = backoff(rng_);
+}
+
+std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db) {
+  ++ticks_;
+  switch (state_) {
+    case MacState::kCalibrating:
+      carrier_ = false;
+      loudest_silence_db_ = std::max(loudest_silence_db_, level_db);
+      if (--remaining_ <= 0) {
+        threshold_db_ = loudest_silence_db_ + options_.threshold_margin_db;
+        EnterWaiting();
+      }
+      return std::nullopt;
+    case MacState::kWaiting:
+      carrier_ = level_db > threshold_db_;
+      if (carrier_) {
+        state_ = MacState::kReceiving;
+        remaining_ = release_ticks_;
+        ++receptions_;
+        return std::nullopt;
+      }
+      if (queue_.empty()) return std::nullopt;
+      if (--remaining_ > 0) return std::nullopt;
+      {
+        Packet p = std::move(queue_.front());
+        queue_.pop_front();
+        state_ = MacState::kSending;
+        remaining_ = packet_ticks_;
+        ++sent_;
+        return p;
+      }
+    case MacState::kSending:
+      carrier_ = false;  // our own signal is not someone else's carrier
+      if (--remaining_ <= 0) {
+        state_ = MacState::kDeaf;
+        remaining_ = deaf_ticks_;
+        if (remaining_ == 0) EnterWaiting();
+      }
+      return std::nullopt;
+    case MacState::kDeaf:
+      carrier_ = false;
+      if (--remaining_ <= 0) EnterWaiting();
+      return std::nullopt;
+    case MacState::kReceiving:
+      carrier_ = level_db > threshold_db_;
+      if (carrier_) {
+        remaining_ = release_ticks_;
+      } else if (--remaining_ <= 0) {
+        EnterWaiting();
+      }
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace nava_modem

@@ -1,0 +1,136 @@
+#include "nava_modem/csma_mac.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace nava_modem {
+namespace {
+
+constexpr double kSilence = -60.0, kLoud = -10.0;
+
+MacOptions Fixed() {
+  MacOptions o;
+  o.fixed_threshold_db = -30.0;
+  return o;
+}
+
+// Ticks until the MAC hands back a packet; -1 if it does not within `limit`.
+int TicksUntilSend(CsmaMac& mac, double level, int limit = 100000) {
+  for (int k = 1; k <= limit; ++k) {
+    if (mac.Tick(level)) return k;
+  }
+  return -1;
+}
+
+TEST(CsmaMac, CalibratesTheThresholdFromSilence) {
+  MacOptions o;
+  o.calibration_time = 1.0;
+  o.threshold_margin_db = 6.0;
+  CsmaMac mac(o, 1);
+  EXPECT_EQ(mac.state(), MacState::kCalibrating);
+  const int ticks = static_cast<int>(1.0 / mac.tick_seconds());
+  for (int k = 0; k < ticks - 1; ++k) mac.Tick(k == 100 ? -40.0 : kSilence);
+  EXPECT_EQ(mac.state(), MacState::kCalibrating);
+  mac.Tick(kSilence);
+  EXPECT_EQ(mac.state(), MacState::kWaiting);
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), -34.0);
+}
+
+TEST(CsmaMac, FixedThresholdSkipsCalibration) {
+  CsmaMac mac(Fixed(), 1);
+  EXPECT_EQ(mac.state(), MacState::kWaiting);
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), -30.0);
+}
+
+TEST(CsmaMac, BacksOffOnAFreeMediumThenSendsForOnePacketTimeThenGoesDeaf) {
+  MacOptions o = Fixed();
+  CsmaMac mac(o, 7);
+  EXPECT_DOUBLE_EQ(mac.tick_seconds(), 1.0 / 4800.0);
+  EXPECT_EQ(mac.packet_ticks(), 1760);  // 110 bits: 367 ms at 300 bps
+  ASSERT_TRUE(mac.Enqueue({1, 2, 3, 4}));
+  const int wait = TicksUntilSend(mac, kSilence);
+  EXPECT_GE(wait, static_cast<int>(o.backoff_min_bits * 16));
+  EXPECT_LE(wait, static_cast<int>(o.backoff_max_bits * 16));
+  EXPECT_EQ(mac.state(), MacState::kSending);
+  EXPECT_EQ(mac.sent(), 1u);
+  for (int k = 0; k < mac.packet_ticks() - 1; ++k) mac.Tick(kLoud);  // its own sound
+  EXPECT_EQ(mac.state(), MacState::kSending);
+  mac.Tick(kLoud);
+  EXPECT_EQ(mac.state(), MacState::kDeaf);
+  // Deaf: the echo is ignored for deaf_time, then it listens again.
+  const int deaf = static_cast<int>(o.deaf_time / mac.tick_seconds());
+  for (int k = 0; k < deaf - 1; ++k) mac.Tick(kLoud);
+  EXPECT_EQ(mac.state(), MacState::kDeaf);
+  EXPECT_EQ(mac.receptions(), 0u);
+  mac.Tick(kLoud);
+  EXPECT_EQ(mac.state(), MacState::kWaiting);
+  mac.Tick(kLoud);
+  EXPECT_EQ(mac.state(), MacState::kReceiving);
+}
+
+TEST(CsmaMac, CarrierDefersSendingUntilTheMediumIsFree) {
+  CsmaMac mac(Fixed(), 3);
+  mac.Enqueue({9, 9, 9, 9});
+  mac.Tick(kLoud);
+  EXPECT_EQ(mac.state(), MacState::kReceiving);
+  EXPECT_TRUE(mac.carrier());
+  for (int k = 0; k < 5000; ++k) ASSERT_FALSE(mac.Tick(kLoud).has_value());
+  // Carrier gone: one bit of release, then a fresh back-off, then the send.
+  const int wait = TicksUntilSend(mac, kSilence);
+  EXPECT_GE(wait, 16 + static_cast<int>(MacOptions{}.backoff_min_bits * 16));
+  EXPECT_EQ(mac.receptions(), 1u);
+}
+
+TEST(CsmaMac, QueueOverflowIsCountedNotSilent) {
+  MacOptions o = Fixed();
+  o.queue_capacity = 2;
+  CsmaMac mac(o, 1);
+  EXPECT_TRUE(mac.Enqueue({1}));
+  EXPECT_TRUE(mac.Enqueue({2}));
+  EXPECT_FALSE(mac.Enqueue({3}));
+  EXPECT_EQ(mac.dropped(), 1u);
+  EXPECT_EQ(mac.queued(), 2u);
+  const auto first = [&] {
+    for (;;)
+      if (auto p = mac.Tick(kSilence)) return *p;
+  }();
+  EXPECT_EQ(first, CsmaMac::Packet({1}));
+}
+
+TEST(CsmaMac, RandomBackOffSpreadsRobotsWaitingForTheSameSender) {
+  // Ten robots hear the same carrier end; their sends must not all start together.
+  std::vector<int> starts;
+  for (std::uint32_t seed = 0; seed < 10; ++seed) {
+    CsmaMac mac(Fixed(), seed);
+    mac.Enqueue({1, 2, 3, 4});
+    for (int k = 0; k < 100; ++k) mac.Tick(kLoud);
+    starts.push_back(TicksUntilSend(mac, kSilence));
+  }
+  std::sort(starts.begin(), starts.end());
+  EXPECT_GT(starts.back() - starts.front(), 16 * 5) << "back-offs too alike";
+  // And the same seed gives the same back-off.
+  CsmaMac a(Fixed(), 42), b(Fixed(), 42);
+  a.Enqueue({1});
+  b.Enqueue({1});
+  EXPECT_EQ(TicksUntilSend(a, kSilence), TicksUntilSend(b, kSilence));
+}
+
+TEST(CsmaMac, ImpossibleOptionsAreRejected) {
+  MacOptions o;
+  o.deaf_time = 0.5;  // longer than a 367 ms packet
+  EXPECT_THROW(ValidateMacOptions(o), std::invalid_argument);
+  o = {};
+  o.bit_rate = 0.0;
+  EXPECT_THROW(ValidateMacOptions(o), std::invalid_argument);
+  o = {};
+  o.backoff_max_bits = 1.0;  // below the minimum
+  EXPECT_THROW(ValidateMacOptions(o), std::invalid_argument);
+  o = {};
+  o.queue_capacity = 0;
+  EXPECT_THROW(CsmaMac(o, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace nava_modem
