@@ -1,0 +1,103 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <random>
+#include <vector>
+
+#include "audio_propagation/propagation_model.h"
+#include "grid/pose2d.h"
+#include "nava_modem/csma_mac.h"
+#include "world_sim/world_config.h"
+
+namespace audio_propagation {
+
+struct ChannelOptions {
+  // Each robot's link layer. Unless set, the carrier threshold is the model's hearing threshold
+  // (a simulated robot needs no calibration).
+  nava_modem::MacOptions mac;
+  double capture_margin_db = 10.0;  // a packet this much louder than every overlap survives it
+  double direction_noise = 0.0;     // rad (standard deviation) added by omni microphones
+  double noise_floor_db = 0.0;      // level reported when nothing is heard
+  std::uint32_t seed = 1;
+};
+
+// Something a robot heard, at the end of its reception.
+struct Reception {
+  enum class Kind { kPacket, kNoise };
+  std::size_t receiver = 0;
+  std::size_t sender = 0;           // who sent it (for logs and plots; a robot cannot know)
+  double time = 0.0;                // s, end of the reception
+  Kind kind = Kind::kPacket;
+  bool collision = false;           // noise because transmissions overlapped
+  std::vector<std::uint8_t> data;   // empty for noise
+  double level_db = 0.0;
+  double direction = 0.0;           // rad in the receiver's frame, from its microphone (may be NaN)
+  double path_length = 0.0;         // m
+};
+
+// A transmission as it starts, with the path it takes to every robot that will hear it.
+struct Transmission {
+  std::size_t sender = 0;
+  double start = 0.0, duration = 0.0;  // s
+  std::vector<std::uint8_t> data;
+  std::vector<SoundPath> paths;        // per robot; not reachable for the sender and the deaf
+};
+
+// The simulated audio medium shared by a team: every robot runs the real link's CSMA-CA MAC;
+// a packet lasts `packet_bits` bit times, reaches each robot after its travel time along the
+// shortest path, raises that robot's carrier while it lasts, and arrives as a packet, or as
+// noise when another audible transmission overlapped it at that robot and was not weaker by the
+// capture margin. A robot does not hear itself, nor anything while it is sending.
+// Deterministic for a seed. Time advances in ticks of 1/16 bit.
+class AudioChannel {
+ public:
+  AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,
+               const ChannelOptions& options);
+
+  std::size_t size() const { return macs_.size(); }
+  void SetPose(std::size_t robot, const grid::Pose2D& pose) { poses_.at(robot) = pose; }
+  // Queues a packet to send; false (and counted by the MAC) when its queue is full.
+  bool Send(std::size_t robot, std::vector<std::uint8_t> data);
+
+  struct Events {
+    std::vector<Transmission> started;
+    std::vector<Reception> received;
+  };
+  // Runs the medium up to `time` (s); what started and what was received meanwhile.
+  Events AdvanceTo(double time);
+
+  double time() const { return ticks_ * tick_; }
+  double tick_seconds() const { return tick_; }
+  double Level(std::size_t robot) const { return levels_.at(robot); }
+  bool Carrier(std::size_t robot) const { return macs_.at(robot).carrier(); }
+  const nava_modem::CsmaMac& mac(std::size_t robot) const { return macs_.at(robot); }
+  std::uint64_t missed_while_sending() const { return missed_while_sending_; }
+
+ private:
+  struct Arrival {
+    std::size_t sender;
+    std::int64_t start, end;  // ticks
+    double level_db;
+    std::vector<std::uint8_t> data;
+    SoundPath path;
+    bool done = false;  // finished, kept a while to judge overlaps with later arrivals
+  };
+  void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
+  void Finish(std::size_t receiver, const Arrival& a, Events& events);
+
+  const PropagationModel& model_;
+  std::vector<world_sim::Microphone> microphones_;
+  ChannelOptions options_;
+  std::vector<nava_modem::CsmaMac> macs_;
+  std::vector<grid::Pose2D> poses_;
+  std::vector<double> levels_;
+  std::vector<std::deque<Arrival>> arrivals_;  // per receiver: pending and recently finished
+  std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> sending_;  // per robot, recent
+  std::mt19937 rng_;
+  double tick_;
+  std::int64_t ticks_ = 0;
+  std::uint64_t missed_while_sending_ = 0;
+};
+
+}  // namespace audio_propagation

@@ -1,0 +1,122 @@
+#include "audio_propagation/audio_channel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "audio_propagation/microphone.h"
+
+namespace audio_propagation {
+
+AudioChannel::AudioChannel(const PropagationModel& model,
+                           std::vector<world_sim::Microphone> microphones,
+                           const ChannelOptions& options)
+    : model_(model), microphones_(std::move(microphones)), options_(options), rng_(options.seed) {
+  if (!(options_.capture_margin_db >= 0.0)) {
+    throw std::invalid_argument("audio channel: capture_margin_db must be >= 0 dB");
+  }
+  if (!(options_.direction_noise >= 0.0)) {
+    throw std::invalid_argument("audio channel: direction_noise must be >= 0 rad");
+  }
+  nava_modem::MacOptions mac = options_.mac;
+  if (!mac.fixed_threshold_db) mac.fixed_threshold_db = model_.options().threshold_db;
+  const std::size_t n = microphones_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    // Robots draw their own back-offs, so adding a robot does not change the others'.
+    macs_.emplace_back(mac, options_.seed * 1000003u + static_cast<std::uint32_t>(k));
+  }
+  tick_ = n > 0 ? macs_[0].tick_seconds() : 1.0 / (16.0 * mac.bit_rate);
+  poses_.resize(n);
+  levels_.assign(n, options_.noise_floor_db);
+  arrivals_.resize(n);
+  sending_.resize(n);
+}
+
+bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
+  return macs_.at(robot).Enqueue(std::move(data));
+}
+
+void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events) {
+  const std::size_t n = macs_.size();
+  const std::int64_t duration = macs_[sender].packet_ticks();
+  std::vector<Eigen::Vector2d> at(n);
+  for (std::size_t k = 0; k < n; ++k) at[k] = poses_[k].position();
+  std::vector<bool> sources(n, false);
+  sources[sender] = true;
+  std::vector<SoundPath> paths = model_.Compute(at, sources)[sender];
+  sending_[sender].emplace_back(ticks_, ticks_ + duration);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (r == sender || !paths[r].audible) continue;
+    const std::int64_t start = ticks_ + std::llround(paths[r].travel_time / tick_);
+    arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db, data, paths[r]});
+  }
+  events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths)});
+}
+
+void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events) {
+  for (const auto& [from, to] : sending_[receiver]) {
+    if (from < a.end && a.start < to) {
+      ++missed_while_sending_;  // half duplex: its own speaker drowns everything
+      return;
+    }
+  }
+  double loudest_other = -std::numeric_limits<double>::infinity();
+  for (const Arrival& other : arrivals_[receiver]) {
+    if (&other == &a || !(other.start < a.end && a.start < other.end)) continue;
+    loudest_other = std::max(loudest_other, other.level_db);
+  }
+  Reception rx;
+  rx.receiver = receiver;
+  rx.sender = a.sender;
+  rx.time = a.end * tick_;
+  rx.level_db = a.level_db;
+  rx.path_length = a.path.length;
+  rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
+                                options_.direction_noise, rng_);
+  if (a.level_db >= loudest_other + options_.capture_margin_db) {
+    rx.kind = Reception::Kind::kPacket;
+    rx.data = a.data;
+  } else {
+    rx.kind = Reception::Kind::kNoise;
+    rx.collision = true;
+  }
+  events.received.push_back(std::move(rx));
+}
+
+AudioChannel::Events AudioChannel::AdvanceTo(double time) {
+  Events events;
+  const std::int64_t target = static_cast<std::int64_t>(std::floor(time / tick_ + 1e-9));
+  const std::size_t n = macs_.size();
+  while (ticks_ < target) {
+    ++ticks_;
+    for (std::size_t r = 0; r < n; ++r) {
+      double power = 0.0;  // linear sum of what is arriving now
+      for (const Arrival& a : arrivals_[r]) {
+        if (a.start <= ticks_ && ticks_ < a.end) power += std::pow(10.0, a.level_db / 10.0);
+      }
+      levels_[r] = power > 0.0 ? std::max(options_.noise_floor_db, 10.0 * std::log10(power))
+                               : options_.noise_floor_db;
+      if (auto packet = macs_[r].Tick(levels_[r])) StartTransmission(r, std::move(*packet), events);
+    }
+    for (std::size_t r = 0; r < n; ++r) {
+      for (Arrival& a : arrivals_[r]) {
+        if (!a.done && a.end <= ticks_) {
+          Finish(r, a, events);
+          a.done = true;
+        }
+      }
+      // Forget what can no longer overlap anything still to come.
+      const std::int64_t horizon = ticks_ - 4 * macs_[r].packet_ticks();
+      while (!arrivals_[r].empty() && arrivals_[r].front().done && arrivals_[r].front().end < horizon) {
+        arrivals_[r].pop_front();
+      }
+      auto& sent = sending_[r];
+      sent.erase(std::remove_if(sent.begin(), sent.end(), [&](const auto& s) { return s.second < horizon; }),
+                 sent.end());
+    }
+  }
+  return events;
+}
+
+}  // namespace audio_propagation
