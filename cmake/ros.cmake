@@ -18,10 +18,11 @@ add_library(multirobot_audio_ros STATIC
   src/params.cpp
   src/world_sim_ros.cpp
   src/wanderer_ros.cpp
+  src/audio_propagation_ros.cpp
 )
 target_include_directories(multirobot_audio_ros PUBLIC ${PROJECT_SOURCE_DIR}/src)
 target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(multirobot_audio_ros PUBLIC world_sim grid ${catkin_LIBRARIES})
+target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation world_sim grid ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
@@ -33,6 +34,7 @@ function(multirobot_audio_node target name source)
 endfunction()
 multirobot_audio_node(world_sim_node world_sim src/world_sim_node.cpp)
 multirobot_audio_node(wanderer_node wanderer src/wanderer_node.cpp)
+multirobot_audio_node(audio_propagation_node audio_propagation src/audio_propagation_node.cpp)
 
 install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 
@@ -51,8 +53,12 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})
   add_dependencies(record_rostest world_sim_node)
 
+  add_rostest_gtest(audio_propagation_rostest test/audio_propagation.test test/audio_propagation_rostest.cpp)
+  target_link_libraries(audio_propagation_rostest ${catkin_LIBRARIES})
+  add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
+
   foreach(launch_file sim_team.launch)
-    roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node)
+    roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
   endforeach()
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)

@@ -1,0 +1,244 @@
+#include "audio_propagation_ros.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <multirobot_audio/AudioReception.h>
+#include <multirobot_audio/CarrierSense.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "conversions.h"
+#include "params.h"
+#include "world_sim/world_file.h"
+
+namespace multirobot_audio {
+namespace {
+
+constexpr double kUnknown = -1e6;  // where a robot with no pose yet is put: off every map
+
+}  // namespace
+
+AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) {
+  AudioPropagationOptions o;
+  o.world_file = RequiredStringParam(pnh, "world");
+  o.map_file = StringParam(pnh, "map", "");
+  if (pnh.hasParam("robots") && !pnh.getParam("robots", o.robots)) {
+    throw ParamError(pnh.resolveName("robots") + ": expected a list of robot names");
+  }
+  o.update_rate = NumberParam(pnh, "update_rate", o.update_rate, 1.0, 10000.0);
+  o.packet_bytes = IntParam(pnh, "packet_bytes", o.packet_bytes, 1, 1024);
+  auto& m = o.model;
+  m.source_level_db = NumberParam(pnh, "source_level_db", m.source_level_db, -1000.0, 1000.0);
+  m.threshold_db = NumberParam(pnh, "threshold_db", m.threshold_db, -1000.0, 1000.0);
+  if (m.threshold_db > m.source_level_db) {
+    throw ParamError(pnh.resolveName("threshold_db") + ": expected at most ~source_level_db (" +
+                     std::to_string(m.source_level_db) + "), got " + std::to_string(m.threshold_db));
+  }
+  m.max_range = NumberParam(pnh, "max_range", m.max_range, 0.0, 1e6);
+  m.speed_of_sound = NumberParam(pnh, "speed_of_sound", m.speed_of_sound, 1.0, 1e5);
+  const std::string rule = StringParam(pnh, "rule", "masks");
+  const auto parsed = audio_propagation::ParseDiffractionRule(rule);
+  if (!parsed) throw ParamError(pnh.resolveName("rule") + ": expected masks or convex_corners, got '" + rule + "'");
+  m.rule = *parsed;
+  auto& c = o.channel;
+  c.capture_margin_db = NumberParam(pnh, "capture_margin_db", c.capture_margin_db, 0.0, 1000.0);
+  c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise, 0.0, 10.0);
+  c.mac.bit_rate = NumberParam(pnh, "bit_rate", c.mac.bit_rate, 1.0, 100000.0);
+  c.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
+  try {
+    nava_modem::ValidateMacOptions(c.mac);
+    audio_propagation::ValidateOptions(m);
+  } catch (const std::invalid_argument& e) {
+    throw ParamError(e.what());
+  }
+  return o;
+}
+
+AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh,
+                                         const AudioPropagationOptions& options)
+    : nh_(nh), pnh_(pnh), options_(options), tf_listener_(tf_buffer_) {
+  world_sim::LoadedWorld world = world_sim::LoadWorldFile(options_.world_file, options_.map_file);
+  if (options_.robots.empty()) {
+    for (const auto& r : world.config.robots) options_.robots.push_back(r.name);
+  }
+  for (const std::string& name : options_.robots) {
+    const auto it = std::find_if(world.config.robots.begin(), world.config.robots.end(),
+                                 [&](const world_sim::RobotSpec& r) { return r.name == name; });
+    if (it == world.config.robots.end()) {
+      throw ParamError(pnh_.resolveName("robots") + ": robot '" + name + "' is not in " + options_.world_file);
+    }
+    microphones_.push_back(it->microphone);
+  }
+  const ros::WallTime t0 = ros::WallTime::now();
+  model_ = std::make_unique<audio_propagation::PropagationModel>(std::move(world.map), options_.model);
+  channel_ = std::make_unique<audio_propagation::AudioChannel>(*model_, microphones_, options_.channel);
+  ROS_INFO("audio_propagation: %zu robots, %zu diffraction points (%s), %zu corners, %zu edges, built in %.0f ms",
+           options_.robots.size(), model_->diffraction_points().size(),
+           audio_propagation::DiffractionRuleName(options_.model.rule), model_->graph().size(),
+           model_->graph().edge_count(), (ros::WallTime::now() - t0).toSec() * 1000.0);
+
+  const std::size_t n = options_.robots.size();
+  last_carrier_.assign(n, false);
+  have_pose_.assign(n, false);
+  for (std::size_t k = 0; k < n; ++k) {
+    ros::NodeHandle rnh(nh_, options_.robots[k]);
+    tx_subs_.push_back(rnh.subscribe<multirobot_audio::AudioPacket>(
+        "audio/tx", 10, [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { OnTx(k, m); }));
+    rx_pubs_.push_back(rnh.advertise<multirobot_audio::AudioReception>("audio/rx", 50));
+    carrier_pubs_.push_back(rnh.advertise<multirobot_audio::CarrierSense>("audio/carrier", 10));
+    channel_->SetPose(k, {kUnknown, kUnknown, 0.0});
+  }
+  paths_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("paths", 10);
+  points_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("diffraction_points", 1, true);
+  PublishDiffractionPoints();
+  timer_ = nh_.createTimer(ros::Duration(1.0 / options_.update_rate), &AudioPropagationRos::OnTimer, this);
+}
+
+AudioPropagationRos::~AudioPropagationRos() {
+  ROS_INFO("audio_propagation: sent %lu, heard %lu packets and %lu noise; rejected %lu packets, "
+           "%lu queue drops, %lu pose look-ups failed",
+           static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
+           static_cast<unsigned long>(noise_heard_), static_cast<unsigned long>(rejected_packets_),
+           static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_));
+}
+
+void AudioPropagationRos::OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg) {
+  if (static_cast<int>(msg->data.size()) != options_.packet_bytes) {
+    ++rejected_packets_;
+    ROS_WARN_THROTTLE(5.0, "audio_propagation: %s/audio/tx: packet of %zu bytes rejected, expected %d (%lu rejected so far)",
+                      options_.robots[robot].c_str(), msg->data.size(), options_.packet_bytes,
+                      static_cast<unsigned long>(rejected_packets_));
+    return;
+  }
+  if (!channel_->Send(robot, msg->data)) {
+    ++queue_drops_;
+    ROS_WARN_THROTTLE(5.0, "audio_propagation: %s: transmit queue full, packet dropped (%lu dropped so far)",
+                      options_.robots[robot].c_str(), static_cast<unsigned long>(queue_drops_));
+  }
+}
+
+void AudioPropagationRos::UpdatePoses() {
+  for (std::size_t k = 0; k < options_.robots.size(); ++k) {
+    const std::string frame = options_.robots[k] + "/base_link";
+    try {
+      const auto t = tf_buffer_.lookupTransform("map", frame, ros::Time(0));
+      const grid::Pose2D pose{t.transform.translation.x, t.transform.translation.y,
+                              FromQuaternionYaw(t.transform.rotation)};
+      if (!model_->map().IsFreeAt(pose.position())) {
+        ROS_WARN_THROTTLE(5.0, "audio_propagation: %s is inside a wall or off the map at (%.2f, %.2f): it neither hears nor is heard",
+                          options_.robots[k].c_str(), pose.x, pose.y);
+      }
+      channel_->SetPose(k, pose);
+      have_pose_[k] = true;
+    } catch (const tf2::TransformException& e) {
+      ++missing_poses_;
+      if (!have_pose_[k]) {
+        ROS_WARN_THROTTLE(5.0, "audio_propagation: no pose for %s yet (%s)", options_.robots[k].c_str(), e.what());
+      }
+    }
+  }
+}
+
+void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
+  const ros::Time now = event.current_real;
+  if (start_.isZero()) start_ = now;
+  UpdatePoses();
+  const auto events = channel_->AdvanceTo((now - start_).toSec());
+
+  visualization_msgs::MarkerArray paths;
+  for (const auto& tx : events.started) {
+    ++sent_;
+    for (std::size_t r = 0; r < tx.paths.size(); ++r) {
+      const auto& p = tx.paths[r];
+      if (!p.audible) continue;
+      visualization_msgs::Marker m;
+      m.header.frame_id = "map";
+      m.header.stamp = now;
+      m.ns = options_.robots[tx.sender];
+      m.id = marker_id_++;
+      m.type = visualization_msgs::Marker::LINE_STRIP;
+      m.action = visualization_msgs::Marker::ADD;
+      m.pose.orientation.w = 1.0;
+      m.scale.x = 0.04;
+      m.lifetime = ros::Duration(tx.duration);
+      // Loud is red, barely audible is blue.
+      const double span = options_.model.source_level_db - options_.model.threshold_db;
+      const float loud = static_cast<float>(std::clamp((p.level_db - options_.model.threshold_db) / span, 0.0, 1.0));
+      m.color.r = loud;
+      m.color.b = 1.0f - loud;
+      m.color.g = 0.2f;
+      m.color.a = 0.9f;
+      for (const auto& q : p.polyline) {
+        geometry_msgs::Point pt;
+        pt.x = q.x();
+        pt.y = q.y();
+        pt.z = 0.15;
+        m.points.push_back(pt);
+      }
+      paths.markers.push_back(m);
+    }
+  }
+  if (!paths.markers.empty()) paths_pub_.publish(paths);
+
+  for (const auto& rx : events.received) {
+    multirobot_audio::AudioReception msg;
+    msg.header.stamp = start_ + ros::Duration(rx.time);
+    msg.header.frame_id = options_.robots[rx.receiver] + "/base_link";
+    if (rx.kind == audio_propagation::Reception::Kind::kPacket) {
+      msg.kind = multirobot_audio::AudioReception::PACKET;
+      msg.noise = multirobot_audio::AudioReception::NONE;
+      msg.data = rx.data;
+      ++packets_heard_;
+    } else {
+      msg.kind = multirobot_audio::AudioReception::NOISE;
+      msg.noise = multirobot_audio::AudioReception::COLLISION;
+      ++noise_heard_;
+    }
+    msg.level_db = static_cast<float>(rx.level_db);
+    msg.direction = static_cast<float>(rx.direction);
+    msg.quality = 1.0f;
+    msg.path_length = static_cast<float>(rx.path_length);
+    rx_pubs_[rx.receiver].publish(msg);
+  }
+
+  // Carrier: on every change, and every tenth update so late subscribers learn the state.
+  ++updates_;
+  for (std::size_t k = 0; k < options_.robots.size(); ++k) {
+    const bool carrier = channel_->Carrier(k);
+    if (carrier == last_carrier_[k] && updates_ % 10 != 0) continue;
+    last_carrier_[k] = carrier;
+    multirobot_audio::CarrierSense msg;
+    msg.header.stamp = now;
+    msg.header.frame_id = options_.robots[k] + "/base_link";
+    msg.carrier = carrier;
+    msg.level_db = static_cast<float>(channel_->Level(k));
+    carrier_pubs_[k].publish(msg);
+  }
+}
+
+void AudioPropagationRos::PublishDiffractionPoints() {
+  visualization_msgs::MarkerArray out;
+  visualization_msgs::Marker m;
+  m.header.frame_id = "map";
+  m.ns = "corners";
+  m.id = 0;
+  m.type = visualization_msgs::Marker::POINTS;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = 0.08;
+  m.color.g = 0.8f;
+  m.color.r = 0.2f;
+  m.color.a = 1.0f;
+  for (std::size_t k = 0; k < model_->graph().size(); ++k) {
+    const Eigen::Vector2d w = model_->map().CellCoordsToWorld(model_->graph().position(k));
+    geometry_msgs::Point p;
+    p.x = w.x();
+    p.y = w.y();
+    p.z = 0.05;
+    m.points.push_back(p);
+  }
+  out.markers.push_back(m);
+  points_pub_.publish(out);
+}
+
+}  // namespace multirobot_audio

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <multirobot_audio/AudioPacket.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "audio_propagation/audio_channel.h"
+#include "audio_propagation/propagation_model.h"
+
+namespace multirobot_audio {
+
+// Options of the audio_propagation node, filled from its private parameters.
+struct AudioPropagationOptions {
+  std::string world_file;        // ~world: robots, microphones and map (required)
+  std::string map_file;          // ~map: replaces the world file's map when set
+  std::vector<std::string> robots;  // ~robots: which robots to serve (default: all in the world)
+  double update_rate = 100.0;    // ~update_rate: Hz (simulated) of pose reads and channel steps
+  int packet_bytes = 4;          // ~packet_bytes: the payload every packet must have (Nava: 4)
+  audio_propagation::PropagationOptions model;  // ~source_level_db, ~threshold_db, ~max_range, ~speed_of_sound, ~rule
+  audio_propagation::ChannelOptions channel;    // ~capture_margin_db, ~bit_rate, ~direction_noise, ~seed
+};
+
+AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh);
+
+// Serves every simulated robot's audio link from the propagation model: audio/tx in, audio/rx
+// and audio/carrier out, with the sound paths drawn for rviz.
+class AudioPropagationRos {
+ public:
+  AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh, const AudioPropagationOptions& options);
+  ~AudioPropagationRos();
+
+ private:
+  void OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg);
+  void OnTimer(const ros::TimerEvent& event);
+  void UpdatePoses();
+  void PublishDiffractionPoints();
+
+  ros::NodeHandle nh_, pnh_;
+  AudioPropagationOptions options_;
+  std::vector<world_sim::Microphone> microphones_;
+  std::unique_ptr<audio_propagation::PropagationModel> model_;
+  std::unique_ptr<audio_propagation::AudioChannel> channel_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  std::vector<ros::Subscriber> tx_subs_;
+  std::vector<ros::Publisher> rx_pubs_, carrier_pubs_;
+  std::vector<bool> last_carrier_, have_pose_;
+  ros::Publisher paths_pub_, points_pub_;
+  ros::Timer timer_;
+  ros::Time start_;
+  std::uint64_t updates_ = 0;
+  int marker_id_ = 0;
+  // Reported at shutdown and in throttled warnings.
+  std::uint64_t rejected_packets_ = 0, queue_drops_ = 0, missing_poses_ = 0, sent_ = 0,
+                packets_heard_ = 0, noise_heard_ = 0;
+};
+
+}  // namespace multirobot_audio

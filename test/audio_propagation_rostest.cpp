@@ -1,0 +1,96 @@
+// rostest for the audio_propagation node (test/audio_propagation.test).
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <multirobot_audio/AudioPacket.h>
+#include <multirobot_audio/AudioReception.h>
+#include <multirobot_audio/CarrierSense.h>
+#include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
+
+namespace {
+
+using multirobot_audio::AudioReception;
+
+template <typename Pred>
+bool WaitFor(Pred done, double wall_seconds) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(wall_seconds);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    if (done()) return true;
+    ros::WallDuration(0.01).sleep();
+  }
+  return done();
+}
+
+TEST(AudioPropagationNode, APacketReachesTheRobotsThatCanHearIt) {
+  ros::NodeHandle nh;
+  std::map<int, std::vector<AudioReception>> heard;
+  std::vector<ros::Subscriber> subs;
+  bool carrier_at_1 = false;
+  for (int k = 0; k < 4; ++k) {
+    subs.push_back(nh.subscribe<AudioReception>("/robot_" + std::to_string(k) + "/audio/rx", 10,
+                                                [&heard, k](const AudioReception::ConstPtr& m) { heard[k].push_back(*m); }));
+  }
+  auto carrier = nh.subscribe<multirobot_audio::CarrierSense>(
+      "/robot_1/audio/carrier", 100, [&](const multirobot_audio::CarrierSense::ConstPtr& m) { carrier_at_1 |= m->carrier; });
+  std::size_t path_markers = 0;
+  auto paths = nh.subscribe<visualization_msgs::MarkerArray>(
+      "/audio_propagation/paths", 10, [&](const visualization_msgs::MarkerArray::ConstPtr& m) { path_markers += m->markers.size(); });
+  auto tx = nh.advertise<multirobot_audio::AudioPacket>("/robot_0/audio/tx", 10);
+  ASSERT_TRUE(WaitFor([&] { return tx.getNumSubscribers() > 0 && paths.getNumPublishers() > 0; }, 60.0));
+  ros::WallDuration(1.0).sleep();  // let the node read every robot's pose
+
+  multirobot_audio::AudioPacket packet;
+  packet.data = {1, 2, 3, 4};
+  tx.publish(packet);
+  ASSERT_TRUE(WaitFor([&] { return heard[1].size() >= 1 && heard[2].size() >= 1; }, 30.0));
+  WaitFor([] { return false; }, 1.0);  // anything else that would arrive
+
+  ASSERT_EQ(heard[1].size(), 1u);
+  const AudioReception& near = heard[1][0];
+  EXPECT_EQ(near.kind, AudioReception::PACKET);
+  EXPECT_EQ(near.data, std::vector<std::uint8_t>({1, 2, 3, 4}));
+  EXPECT_NEAR(near.path_length, 2.0, 1e-4);
+  EXPECT_NEAR(near.level_db, 70.0 - 20.0 * std::log10(2.0), 1e-3);
+  EXPECT_NEAR(near.direction, -M_PI / 2, 1e-3);  // robot_0 is straight to its right
+  EXPECT_EQ(near.header.frame_id, "robot_1/base_link");
+
+  ASSERT_EQ(heard[2].size(), 1u);
+  const AudioReception& behind = heard[2][0];
+  EXPECT_EQ(behind.kind, AudioReception::PACKET);
+  const double around = std::hypot(1.5, 1.5) + 0.15 + std::hypot(1.05, 0.5);
+  EXPECT_NEAR(behind.path_length, around, 1e-3);
+  EXPECT_NEAR(behind.level_db, 70.0 - 20.0 * std::log10(around), 1e-3);
+  EXPECT_NEAR(behind.direction, std::atan2(0.5, -1.05), 1e-3);  // from the wall's corner
+
+  EXPECT_TRUE(heard[3].empty()) << "robot_3 is beyond hearing range";
+  EXPECT_TRUE(heard[0].empty()) << "a robot does not hear itself";
+  EXPECT_TRUE(carrier_at_1);
+  EXPECT_EQ(path_markers, 2u);  // one per heard path
+}
+
+TEST(AudioPropagationNode, PacketsOfTheWrongSizeAreRejected) {
+  ros::NodeHandle nh;
+  std::size_t heard = 0;
+  auto sub = nh.subscribe<AudioReception>("/robot_1/audio/rx", 10, [&](const AudioReception::ConstPtr&) { ++heard; });
+  auto tx = nh.advertise<multirobot_audio::AudioPacket>("/robot_0/audio/tx", 10);
+  ASSERT_TRUE(WaitFor([&] { return tx.getNumSubscribers() > 0; }, 30.0));
+  multirobot_audio::AudioPacket empty, big;
+  big.data.assign(40, 7);
+  tx.publish(empty);
+  tx.publish(big);
+  WaitFor([] { return false; }, 2.0);
+  EXPECT_EQ(heard, 0u);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "audio_propagation_rostest");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
