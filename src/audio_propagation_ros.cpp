@@ -16,6 +16,14 @@ namespace {
 
 constexpr double kUnknown = -1e6;  // where a robot with no pose yet is put: off every map
 
+geometry_msgs::Point ToPoint(const Eigen::Vector2d& p, double z) {
+  geometry_msgs::Point out;
+  out.x = p.x();
+  out.y = p.y();
+  out.z = z;
+  return out;
+}
+
 }  // namespace
 
 AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) {
@@ -168,13 +176,7 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
       m.color.b = 1.0f - loud;
       m.color.g = 0.2f;
       m.color.a = 0.9f;
-      for (const auto& q : p.polyline) {
-        geometry_msgs::Point pt;
-        pt.x = q.x();
-        pt.y = q.y();
-        pt.z = 0.15;
-        m.points.push_back(pt);
-      }
+      for (const auto& q : p.polyline) m.points.push_back(ToPoint(q, 0.15));
       paths.markers.push_back(m);
     }
   }
@@ -230,12 +232,7 @@ void AudioPropagationRos::PublishDiffractionPoints() {
   m.color.r = 0.2f;
   m.color.a = 1.0f;
   for (std::size_t k = 0; k < model_->graph().size(); ++k) {
-    const Eigen::Vector2d w = model_->map().CellCoordsToWorld(model_->graph().position(k));
-    geometry_msgs::Point p;
-    p.x = w.x();
-    p.y = w.y();
-    p.z = 0.05;
-    m.points.push_back(p);
+    m.points.push_back(ToPoint(model_->map().CellCoordsToWorld(model_->graph().position(k)), 0.05));
   }
   out.markers.push_back(m);
   points_pub_.publish(out);

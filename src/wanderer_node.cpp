@@ -16,8 +16,9 @@ int main(int argc, char** argv) {
     const int seed = multirobot_audio::IntParam(
         pnh, "seed", static_cast<int>(std::hash<std::string>{}(nh.getNamespace()) & 0x7fffffff), 0,
         2147483647);
+    const double announce = multirobot_audio::NumberParam(pnh, "announce_period", 0.0, 0.0, 1e6);
     multirobot_audio::WandererRos node(nh, multirobot_audio::ReadWanderOptions(pnh),
-                                       static_cast<std::uint32_t>(seed));
+                                       static_cast<std::uint32_t>(seed), announce);
     ros::spin();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "wanderer: %s\n", e.what());

@@ -1,6 +1,7 @@
 #include "wanderer_ros.h"
 
 #include <geometry_msgs/Twist.h>
+#include <multirobot_audio/AudioPacket.h>
 
 #include "params.h"
 
@@ -17,10 +18,20 @@ world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
 }
 
 WandererRos::WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options,
-                         std::uint32_t seed)
-    : nh_(nh), wanderer_(options, seed) {
+                         std::uint32_t seed, double announce_period)
+    : nh_(nh), wanderer_(options, seed), seed_(seed) {
   cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 10);
   scan_sub_ = nh_.subscribe("scan", 10, &WandererRos::OnScan, this);
+  if (announce_period > 0.0) {
+    audio_pub_ = nh_.advertise<multirobot_audio::AudioPacket>("audio/tx", 10);
+    announce_timer_ = nh_.createTimer(ros::Duration(announce_period), [this](const ros::TimerEvent&) {
+      multirobot_audio::AudioPacket packet;
+      packet.header.stamp = ros::Time::now();
+      packet.data = {'W', static_cast<std::uint8_t>(seed_ >> 16), static_cast<std::uint8_t>(seed_ >> 8),
+                     static_cast<std::uint8_t>(seed_)};
+      audio_pub_.publish(packet);
+    });
+  }
 }
 
 void WandererRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& scan) {

@@ -17,7 +17,10 @@ world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh);
 // so it works the same on world_sim and on a robot whose driver publishes scan.
 class WandererRos {
  public:
-  WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options, std::uint32_t seed);
+  // With `announce_period` > 0 s it also sends a packet on audio/tx that often (simulated
+  // time): 'W' and the three low bytes of `seed`, so listeners can tell robots apart.
+  WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options, std::uint32_t seed,
+              double announce_period = 0.0);
 
  private:
   void OnScan(const sensor_msgs::LaserScan::ConstPtr& scan);
@@ -25,7 +28,9 @@ class WandererRos {
   ros::NodeHandle nh_;
   world_sim::Wanderer wanderer_;
   ros::Subscriber scan_sub_;
-  ros::Publisher cmd_pub_;
+  ros::Publisher cmd_pub_, audio_pub_;
+  ros::Timer announce_timer_;
+  std::uint32_t seed_;
   ros::Time last_scan_;
 };
 

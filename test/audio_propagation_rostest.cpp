@@ -10,20 +10,13 @@
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "wait_for.h"
+
 namespace {
 
 using multirobot_audio::AudioReception;
 
-template <typename Pred>
-bool WaitFor(Pred done, double wall_seconds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(wall_seconds);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    ros::spinOnce();
-    if (done()) return true;
-    ros::WallDuration(0.01).sleep();
-  }
-  return done();
-}
+using multirobot_audio::testing::WaitFor;
 
 TEST(AudioPropagationNode, APacketReachesTheRobotsThatCanHearIt) {
   ros::NodeHandle nh;

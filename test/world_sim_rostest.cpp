@@ -11,19 +11,11 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "wait_for.h"
+
 namespace {
 
-// Waits (wall time) until `done` holds, spinning callbacks; false on timeout.
-template <typename Pred>
-bool WaitFor(Pred done, double wall_seconds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(wall_seconds);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    ros::spinOnce();
-    if (done()) return true;
-    ros::WallDuration(0.005).sleep();
-  }
-  return done();
-}
+using multirobot_audio::testing::WaitFor;
 
 TEST(WorldSimNode, PublishesALatchedMap) {
   ros::NodeHandle nh;
