@@ -56,6 +56,7 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_rostest_gtest(audio_propagation_rostest test/audio_propagation.test test/audio_propagation_rostest.cpp)
   target_link_libraries(audio_propagation_rostest ${catkin_LIBRARIES})
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
+  add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
 
   foreach(launch_file sim_team.launch)
     roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)

@@ -5,10 +5,13 @@
 
 #include <multirobot_audio/AudioReception.h>
 #include <multirobot_audio/CarrierSense.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/topic.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
 #include "params.h"
+#include "grid/map_file.h"
 #include "world_sim/world_file.h"
 
 namespace multirobot_audio {
@@ -28,10 +31,17 @@ geometry_msgs::Point ToPoint(const Eigen::Vector2d& p, double z) {
 
 AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) {
   AudioPropagationOptions o;
-  o.world_file = RequiredStringParam(pnh, "world");
+  o.world_file = StringParam(pnh, "world", "");
   o.map_file = StringParam(pnh, "map", "");
+  o.map_timeout = NumberParam(pnh, "map_timeout", o.map_timeout, 0.0, 1e6);
   if (pnh.hasParam("robots") && !pnh.getParam("robots", o.robots)) {
     throw ParamError(pnh.resolveName("robots") + ": expected a list of robot names");
+  }
+  if (o.world_file.empty() && o.robots.empty()) {
+    throw ParamError(pnh.resolveName("robots") + ": required (a list of robot names) when ~world is not set");
+  }
+  if (pnh.hasParam("microphones") && !pnh.getParam("microphones", o.microphones)) {
+    throw ParamError(pnh.resolveName("microphones") + ": expected a list of omni, bidirectional or none");
   }
   o.update_rate = NumberParam(pnh, "update_rate", o.update_rate, 1.0, 10000.0);
   o.packet_bytes = IntParam(pnh, "packet_bytes", o.packet_bytes, 1, 1024);
@@ -65,20 +75,48 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
 AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh,
                                          const AudioPropagationOptions& options)
     : nh_(nh), pnh_(pnh), options_(options), tf_listener_(tf_buffer_) {
-  world_sim::LoadedWorld world = world_sim::LoadWorldFile(options_.world_file, options_.map_file);
+  grid::OccupancyMap map;
+  std::vector<world_sim::RobotSpec> specs;
+  if (!options_.world_file.empty()) {
+    world_sim::LoadedWorld world = world_sim::LoadWorldFile(options_.world_file, options_.map_file);
+    map = std::move(world.map);
+    specs = world.config.robots;
+  } else if (!options_.map_file.empty()) {
+    map = grid::LoadMapFile(options_.map_file);
+  } else {
+    ROS_INFO("audio_propagation: waiting up to %.0f s for /map", options_.map_timeout);
+    const auto msg = ros::topic::waitForMessage<nav_msgs::OccupancyGrid>("/map", nh_, ros::Duration(options_.map_timeout));
+    if (!msg) throw ParamError("no ~world, no ~map, and nothing on /map within ~map_timeout");
+    map = FromOccupancyGrid(*msg);
+  }
   if (options_.robots.empty()) {
-    for (const auto& r : world.config.robots) options_.robots.push_back(r.name);
+    for (const auto& r : specs) options_.robots.push_back(r.name);
   }
   for (const std::string& name : options_.robots) {
-    const auto it = std::find_if(world.config.robots.begin(), world.config.robots.end(),
+    const auto it = std::find_if(specs.begin(), specs.end(),
                                  [&](const world_sim::RobotSpec& r) { return r.name == name; });
-    if (it == world.config.robots.end()) {
+    if (it == specs.end() && !options_.world_file.empty()) {
       throw ParamError(pnh_.resolveName("robots") + ": robot '" + name + "' is not in " + options_.world_file);
     }
-    microphones_.push_back(it->microphone);
+    microphones_.push_back(it == specs.end() ? world_sim::Microphone::kOmni : it->microphone);
+  }
+  if (!options_.microphones.empty()) {
+    if (options_.microphones.size() != options_.robots.size()) {
+      throw ParamError(pnh_.resolveName("microphones") + ": expected one entry per robot (" +
+                       std::to_string(options_.robots.size()) + "), got " +
+                       std::to_string(options_.microphones.size()));
+    }
+    for (std::size_t k = 0; k < microphones_.size(); ++k) {
+      const auto mic = world_sim::ParseMicrophone(options_.microphones[k]);
+      if (!mic) {
+        throw ParamError(pnh_.resolveName("microphones") + "[" + std::to_string(k) +
+                         "]: expected omni, bidirectional or none, got '" + options_.microphones[k] + "'");
+      }
+      microphones_[k] = *mic;
+    }
   }
   const ros::WallTime t0 = ros::WallTime::now();
-  model_ = std::make_unique<audio_propagation::PropagationModel>(std::move(world.map), options_.model);
+  model_ = std::make_unique<audio_propagation::PropagationModel>(std::move(map), options_.model);
   channel_ = std::make_unique<audio_propagation::AudioChannel>(*model_, microphones_, options_.channel);
   ROS_INFO("audio_propagation: %zu robots, %zu diffraction points (%s), %zu corners, %zu edges, built in %.0f ms",
            options_.robots.size(), model_->diffraction_points().size(),

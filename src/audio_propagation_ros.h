@@ -16,9 +16,11 @@ namespace multirobot_audio {
 
 // Options of the audio_propagation node, filled from its private parameters.
 struct AudioPropagationOptions {
-  std::string world_file;        // ~world: robots, microphones and map (required)
-  std::string map_file;          // ~map: replaces the world file's map when set
+  std::string world_file;        // ~world: robots, microphones and map
+  std::string map_file;          // ~map: replaces the world file's map; without either, /map
+  double map_timeout = 30.0;     // ~map_timeout: wall seconds to wait for /map
   std::vector<std::string> robots;  // ~robots: which robots to serve (default: all in the world)
+  std::vector<std::string> microphones;  // ~microphones: per robot, overriding the world file
   double update_rate = 100.0;    // ~update_rate: Hz (simulated) of pose reads and channel steps
   int packet_bytes = 4;          // ~packet_bytes: the payload every packet must have (Nava: 4)
   audio_propagation::PropagationOptions model;  // ~source_level_db, ~threshold_db, ~max_range, ~speed_of_sound, ~rule
