@@ -45,7 +45,7 @@ if(MULTIROBOT_AUDIO_TESTS)
   catkin_add_gtest(conversions_test test/conversions_test.cpp)
   target_link_libraries(conversions_test multirobot_audio_ros)
 
-  add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp)
+  add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp test/rostest_main.cpp)
   target_link_libraries(world_sim_rostest multirobot_audio_ros)
   add_dependencies(world_sim_rostest world_sim_node)
 
@@ -53,7 +53,8 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})
   add_dependencies(record_rostest world_sim_node)
 
-  add_rostest_gtest(audio_propagation_rostest test/audio_propagation.test test/audio_propagation_rostest.cpp)
+  add_rostest_gtest(audio_propagation_rostest test/audio_propagation.test test/audio_propagation_rostest.cpp
+                  test/rostest_main.cpp)
   target_link_libraries(audio_propagation_rostest ${catkin_LIBRARIES})
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)

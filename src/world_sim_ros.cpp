@@ -16,14 +16,6 @@
 #include "world_sim/world_file.h"
 
 namespace multirobot_audio {
-namespace {
-
-std::uint64_t StepsPer(double rate, double step) {
-  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(1.0 / (rate * step))));
-}
-
-}  // namespace
-
 WorldSimOptions ReadWorldSimOptions(const ros::NodeHandle& pnh) {
   WorldSimOptions o;
   o.world_file = RequiredStringParam(pnh, "world");
@@ -49,8 +41,8 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
   if (options_.seed >= 0) loaded.config.seed = static_cast<std::uint32_t>(options_.seed);
   world_ = std::make_unique<world_sim::World>(std::move(loaded.map), std::move(loaded.config),
                                               options_.world);
-  markers_every_ = StepsPer(options_.markers_rate, options_.world.step);
-  battery_every_ = StepsPer(1.0, options_.world.step);
+  markers_every_ = world_sim::StepsPerPeriod(1.0 / options_.markers_rate, options_.world.step);
+  battery_every_ = world_sim::StepsPerPeriod(1.0, options_.world.step);
 
   // Everything else in the team runs on our clock.
   nh_.setParam("/use_sim_time", true);

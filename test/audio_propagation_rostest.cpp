@@ -80,10 +80,3 @@ TEST(AudioPropagationNode, PacketsOfTheWrongSizeAreRejected) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "audio_propagation_rostest");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}

@@ -93,10 +93,3 @@ TEST(WorldSimNode, RobotDrivenAtAWallStopsBeforeItAndScansIt) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "world_sim_rostest");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}

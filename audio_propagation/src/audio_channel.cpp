@@ -49,7 +49,8 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
   for (std::size_t r = 0; r < n; ++r) {
     if (r == sender || !paths[r].audible) continue;
     const std::int64_t start = ticks_ + std::llround(paths[r].travel_time / tick_);
-    arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db, data, paths[r]});
+    arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db,
+                            std::pow(10.0, paths[r].level_db / 10.0), data, paths[r]});
   }
   events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths)});
 }
@@ -93,7 +94,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
     for (std::size_t r = 0; r < n; ++r) {
       double power = 0.0;  // linear sum of what is arriving now
       for (const Arrival& a : arrivals_[r]) {
-        if (a.start <= ticks_ && ticks_ < a.end) power += std::pow(10.0, a.level_db / 10.0);
+        if (a.start <= ticks_ && ticks_ < a.end) power += a.power;
       }
       levels_[r] = power > 0.0 ? std::max(options_.noise_floor_db, 10.0 * std::log10(power))
                                : options_.noise_floor_db;

@@ -18,10 +18,14 @@ std::uint64_t StepsPer(double period, double step, const char* name) {
     throw std::invalid_argument(std::string("world_sim: ") + name + " must be >= step (" +
                                 std::to_string(step) + " s), got " + std::to_string(period));
   }
-  return static_cast<std::uint64_t>(std::llround(period / step));
+  return StepsPerPeriod(period, step);
 }
 
 }  // namespace
+
+std::uint64_t StepsPerPeriod(double period, double step) {
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(period / step)));
+}
 
 World::World(grid::OccupancyMap map, WorldConfig config, const WorldOptions& options)
     : map_(std::move(map)), config_(std::move(config)), options_(options) {

@@ -79,6 +79,7 @@ class AudioChannel {
     std::size_t sender;
     std::int64_t start, end;  // ticks
     double level_db;
+    double power;  // 10^(level_db / 10), summed every tick the arrival lasts
     std::vector<std::uint8_t> data;
     SoundPath path;
     bool done = false;  // finished, kept a while to judge overlaps with later arrivals

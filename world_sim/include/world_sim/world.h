@@ -21,6 +21,10 @@ struct WorldOptions {
   double start_time = 1.0;      // s; never 0, which ROS reads as "no time yet"
 };
 
+// How many whole steps make up `period` (at least one): sensor and publishing periods are
+// rounded to whole steps.
+std::uint64_t StepsPerPeriod(double period, double step);
+
 // One robot as the world sees it. Readings carry the step count they were taken at, so a
 // publisher can tell new readings from old.
 struct RobotState {
