@@ -63,6 +63,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise, 0.0, 10.0);
   c.mac.bit_rate = NumberParam(pnh, "bit_rate", c.mac.bit_rate, 1.0, 100000.0);
   c.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
+  c.cache_size = static_cast<std::size_t>(IntParam(pnh, "cache_size", 1000, 0, 10000000));
   try {
     nava_modem::ValidateMacOptions(c.mac);
     audio_propagation::ValidateOptions(m);
@@ -142,10 +143,12 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
 
 AudioPropagationRos::~AudioPropagationRos() {
   ROS_INFO("audio_propagation: sent %lu, heard %lu packets and %lu noise; rejected %lu packets, "
-           "%lu queue drops, %lu pose look-ups failed",
+           "%lu queue drops, %lu pose look-ups failed; path cache %lu hits, %lu misses",
            static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
            static_cast<unsigned long>(noise_heard_), static_cast<unsigned long>(rejected_packets_),
-           static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_));
+           static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_),
+           static_cast<unsigned long>(channel_ ? channel_->cache().hits() : 0),
+           static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0));
 }
 
 void AudioPropagationRos::OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg) {

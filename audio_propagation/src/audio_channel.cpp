@@ -12,7 +12,11 @@ namespace audio_propagation {
 AudioChannel::AudioChannel(const PropagationModel& model,
                            std::vector<world_sim::Microphone> microphones,
                            const ChannelOptions& options)
-    : model_(model), microphones_(std::move(microphones)), options_(options), rng_(options.seed) {
+    : model_(model),
+      microphones_(std::move(microphones)),
+      options_(options),
+      cache_(options.cache_size),
+      rng_(options.seed) {
   if (!(options_.capture_margin_db >= 0.0)) {
     throw std::invalid_argument("audio channel: capture_margin_db must be >= 0 dB");
   }
@@ -37,14 +41,42 @@ bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
   return macs_.at(robot).Enqueue(std::move(data));
 }
 
+std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
+  const std::size_t n = macs_.size();
+  std::vector<Eigen::Vector2d> at(n);
+  for (std::size_t k = 0; k < n; ++k) at[k] = poses_[k].position();
+  std::vector<SoundPath> paths(n);
+  if (cache_.capacity() == 0) {
+    std::vector<bool> sources(n, false);
+    sources[sender] = true;
+    return model_.Compute(at, sources)[sender];
+  }
+  std::vector<Eigen::Vector2i> cells(n);
+  for (std::size_t k = 0; k < n; ++k) cells[k] = model_.map().WorldToCell(at[k]);
+  bool all_found = true;
+  for (std::size_t r = 0; r < n; ++r) {
+    if (r == sender) continue;
+    std::optional<SoundPath> found = cache_.Find(cells[sender], cells[r]);
+    if (found) {
+      paths[r] = std::move(*found);
+    } else {
+      all_found = false;
+    }
+  }
+  if (all_found) return paths;
+  std::vector<bool> sources(n, false);
+  sources[sender] = true;
+  std::vector<SoundPath> computed = model_.Compute(at, sources)[sender];
+  for (std::size_t r = 0; r < n; ++r) {
+    if (r != sender) cache_.Insert(cells[sender], cells[r], computed[r]);
+  }
+  return computed;
+}
+
 void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events) {
   const std::size_t n = macs_.size();
   const std::int64_t duration = macs_[sender].packet_ticks();
-  std::vector<Eigen::Vector2d> at(n);
-  for (std::size_t k = 0; k < n; ++k) at[k] = poses_[k].position();
-  std::vector<bool> sources(n, false);
-  sources[sender] = true;
-  std::vector<SoundPath> paths = model_.Compute(at, sources)[sender];
+  std::vector<SoundPath> paths = PathsFrom(sender);
   sending_[sender].emplace_back(ticks_, ticks_ + duration);
   for (std::size_t r = 0; r < n; ++r) {
     if (r == sender || !paths[r].audible) continue;

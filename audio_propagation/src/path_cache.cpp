@@ -2,6 +2,11 @@
 
 namespace audio_propagation {
 
+bool PathCache::Keyable(const Eigen::Vector2i& s, const Eigen::Vector2i& r) {
+  auto ok = [](int v) { return v >= 0 && v <= 0xFFFF; };
+  return ok(s.x()) && ok(s.y()) && ok(r.x()) && ok(r.y());
+}
+
 PathCache::Key PathCache::MakeKey(const Eigen::Vector2i& s, const Eigen::Vector2i& r) {
   // 16 bits per coordinate: maps up to 65536 cells a side.
   auto u = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint16_t>(v)); };
@@ -10,7 +15,8 @@ PathCache::Key PathCache::MakeKey(const Eigen::Vector2i& s, const Eigen::Vector2
 
 std::optional<SoundPath> PathCache::Find(const Eigen::Vector2i& source_cell,
                                          const Eigen::Vector2i& listener_cell) {
-  const auto it = index_.find(MakeKey(source_cell, listener_cell));
+  const auto it = Keyable(source_cell, listener_cell) ? index_.find(MakeKey(source_cell, listener_cell))
+                                                      : index_.end();
   if (it == index_.end()) {
     ++misses_;
     return std::nullopt;
@@ -22,7 +28,7 @@ std::optional<SoundPath> PathCache::Find(const Eigen::Vector2i& source_cell,
 
 void PathCache::Insert(const Eigen::Vector2i& source_cell, const Eigen::Vector2i& listener_cell,
                        SoundPath path) {
-  if (capacity_ == 0) return;
+  if (capacity_ == 0 || !Keyable(source_cell, listener_cell)) return;
   const Key key = MakeKey(source_cell, listener_cell);
   const auto it = index_.find(key);
   if (it != index_.end()) {

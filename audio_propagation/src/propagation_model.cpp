@@ -45,6 +45,7 @@ PropagationModel::PropagationModel(grid::OccupancyMap map, const PropagationOpti
                                              options_.threads);
   distances_ = std::make_unique<CornerDistances>(*graph_, hearing_distance_ / map_.resolution(),
                                                  options_.threads);
+  shadows_ = std::make_unique<CornerShadows>(map_, graph_->positions(), options_.threads);
 }
 
 double PropagationModel::LevelAt(double length) const {
@@ -59,7 +60,7 @@ std::vector<PropagationModel::Visible> PropagationModel::VisibleNodes(const Eige
   for (std::size_t k = 0; k < graph_->size(); ++k) {
     const Eigen::Vector2d& q = graph_->position(k);
     const double d2 = (q - p).squaredNorm();
-    if (d2 > reach2 || !graph_->corner(k).Tangent(q - p)) continue;
+    if (d2 > reach2 || !graph_->corner(k).Tangent(q - p) || shadows_->Hidden(k, p)) continue;
     if (!grid::FirstBlockedInCells(map_, p, q)) out.push_back({static_cast<std::int32_t>(k), std::sqrt(d2)});
   }
   return out;

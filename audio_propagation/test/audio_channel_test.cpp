@@ -147,6 +147,30 @@ TEST(AudioChannel, CarrierSenseKeepsNeighboursApart) {
   EXPECT_GE(clean, 16);
 }
 
+TEST(AudioChannel, ReusesCachedPathsWhileRobotsStayInTheirCells) {
+  ChannelOptions options;
+  options.cache_size = 16;
+  Team team({2.0, 12.0, 20.0}, options);
+  ASSERT_TRUE(team.channel->Send(0, {1, 2, 3, 4}));
+  team.Run(1.0);
+  EXPECT_EQ(team.channel->cache().size(), 2u);  // robot 0 to robots 1 and 2
+  EXPECT_EQ(team.channel->cache().hits(), 0u);
+  // A few centimetres on, in the same 0.5 m cells: the paths come from the cache.
+  team.channel->SetPose(1, {12.1, 2.5, 0.0});
+  ASSERT_TRUE(team.channel->Send(0, {5, 6, 7, 8}));
+  const auto events = team.Run(1.0);
+  EXPECT_EQ(team.channel->cache().hits(), 2u);
+  ASSERT_EQ(events.received.size(), 2u);
+  EXPECT_NEAR(events.received[0].path_length, 10.0, 1e-9);  // as computed for the first packet
+  // Into another cell: computed again.
+  team.channel->SetPose(1, {14.2, 2.5, 0.0});
+  ASSERT_TRUE(team.channel->Send(0, {9, 9, 9, 9}));
+  const auto moved = team.Run(1.0);
+  ASSERT_EQ(moved.received.size(), 2u);
+  EXPECT_NEAR(moved.received[0].path_length, 12.2, 1e-9);
+  EXPECT_EQ(team.channel->cache().size(), 3u);
+}
+
 TEST(AudioChannel, SameSeedSameEvents) {
   auto run = [] {
     ChannelOptions o;

@@ -42,6 +42,16 @@ TEST(PathCache, ZeroCapacityKeepsNothing) {
   EXPECT_FALSE(cache.Find({1, 1}, {2, 2}).has_value());
 }
 
+TEST(PathCache, CellsOffTheKeyRangeAreNeverCached) {
+  PathCache cache(4);
+  // A robot with no pose yet is put far off the map; it must not alias a real cell.
+  cache.Insert({-20000000, -20000000}, {2, 2}, OfLength(1.0));
+  cache.Insert({2, 2}, {70000, 1}, OfLength(1.0));
+  EXPECT_EQ(cache.size(), 0u);
+  EXPECT_FALSE(cache.Find({-20000000, -20000000}, {2, 2}).has_value());
+  EXPECT_EQ(cache.misses(), 1u);
+}
+
 TEST(PathCache, ReinsertReplaces) {
   PathCache cache(2);
   cache.Insert({1, 1}, {2, 2}, OfLength(1.0));

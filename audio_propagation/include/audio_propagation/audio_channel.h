@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "audio_propagation/path_cache.h"
 #include "audio_propagation/propagation_model.h"
 #include "grid/pose2d.h"
 #include "nava_modem/csma_mac.h"
@@ -19,6 +20,9 @@ struct ChannelOptions {
   double capture_margin_db = 10.0;  // a packet this much louder than every overlap survives it
   double direction_noise = 0.0;     // rad (standard deviation) added by omni microphones
   double noise_floor_db = 0.0;      // level reported when nothing is heard
+  // Paths kept for reuse, keyed on the cells of sender and listener (0 = compute every path
+  // exactly). A reused path was computed for other points of the same two cells.
+  std::size_t cache_size = 0;
   std::uint32_t seed = 1;
 };
 
@@ -73,6 +77,7 @@ class AudioChannel {
   bool Carrier(std::size_t robot) const { return macs_.at(robot).carrier(); }
   const nava_modem::CsmaMac& mac(std::size_t robot) const { return macs_.at(robot); }
   std::uint64_t missed_while_sending() const { return missed_while_sending_; }
+  const PathCache& cache() const { return cache_; }
 
  private:
   struct Arrival {
@@ -86,6 +91,8 @@ class AudioChannel {
   };
   void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
   void Finish(std::size_t receiver, const Arrival& a, Events& events);
+  // The path from the sender to every robot, from the cache where it can.
+  std::vector<SoundPath> PathsFrom(std::size_t sender);
 
   const PropagationModel& model_;
   std::vector<world_sim::Microphone> microphones_;
@@ -95,6 +102,7 @@ class AudioChannel {
   std::vector<double> levels_;
   std::vector<std::deque<Arrival>> arrivals_;  // per receiver: pending and recently finished
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> sending_;  // per robot, recent
+  PathCache cache_;
   std::mt19937 rng_;
   double tick_;
   std::int64_t ticks_ = 0;

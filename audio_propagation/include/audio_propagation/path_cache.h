@@ -14,6 +14,7 @@ namespace audio_propagation {
 // listener, so robots that stand still (or nearly) do not pay for the same path every step.
 // (Stage's cache was unbounded.) A cached path is the one computed for some position in the
 // same pair of cells, so it is exact to within a cell. Counts hits, misses and evictions.
+// Cells outside 0..65535 (a robot off the map, or with no pose yet) are never cached.
 class PathCache {
  public:
   explicit PathCache(std::size_t capacity) : capacity_(capacity) {}
@@ -29,6 +30,7 @@ class PathCache {
 
  private:
   using Key = std::uint64_t;
+  static bool Keyable(const Eigen::Vector2i& s, const Eigen::Vector2i& r);
   static Key MakeKey(const Eigen::Vector2i& s, const Eigen::Vector2i& r);
 
   std::size_t capacity_;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "audio_propagation/corner_distances.h"
+#include "audio_propagation/corner_shadows.h"
 #include "audio_propagation/diffraction_points.h"
 #include "audio_propagation/visibility_graph.h"
 #include "grid/occupancy_map.h"
@@ -65,6 +66,7 @@ class PropagationModel {
   const grid::OccupancyMap& map() const { return map_; }
   const PropagationOptions& options() const { return options_; }
   const VisibilityGraph& graph() const { return *graph_; }
+  const CornerShadows& shadows() const { return *shadows_; }
   const std::vector<Eigen::Vector2i>& diffraction_points() const { return points_; }
 
  private:
@@ -81,6 +83,7 @@ class PropagationModel {
   std::vector<Eigen::Vector2i> points_;
   std::unique_ptr<VisibilityGraph> graph_;
   std::unique_ptr<CornerDistances> distances_;
+  std::unique_ptr<CornerShadows> shadows_;
   double hearing_distance_ = 0.0;  // m
 };
 
