@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <multirobot_audio/AudioReception.h>
 #include <multirobot_audio/CarrierSense.h>
@@ -142,13 +143,15 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
 }
 
 AudioPropagationRos::~AudioPropagationRos() {
-  ROS_INFO("audio_propagation: sent %lu, heard %lu packets and %lu noise; rejected %lu packets, "
-           "%lu queue drops, %lu pose look-ups failed; path cache %lu hits, %lu misses",
-           static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
-           static_cast<unsigned long>(noise_heard_), static_cast<unsigned long>(rejected_packets_),
-           static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_),
-           static_cast<unsigned long>(channel_ ? channel_->cache().hits() : 0),
-           static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0));
+  // Printed directly: the node's logging is already shut down when it is destroyed.
+  std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; rejected %lu "
+              "packets, %lu queue drops, %lu pose look-ups failed; path cache %lu hits, %lu misses\n",
+              static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
+              static_cast<unsigned long>(noise_heard_), static_cast<unsigned long>(rejected_packets_),
+              static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_),
+              static_cast<unsigned long>(channel_ ? channel_->cache().hits() : 0),
+              static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0));
+  std::fflush(stdout);
 }
 
 void AudioPropagationRos::OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg) {
