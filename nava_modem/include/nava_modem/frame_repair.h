@@ -1,0 +1,30 @@
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "nava_modem/frame.h"
+
+namespace nava_modem {
+
+constexpr int kFrameDataBits = kFrameBytes * 8;  // the bits the CRC and header check: 56
+
+// Soft decisions on a frame's 56 data bits in air order (byte by byte, LSB first): the sign is
+// the bit (> 0 is 1), the magnitude how sure the demodulator is.
+using SoftFrame = std::array<float, kFrameDataBits>;
+
+struct RepairedFrame {
+  Frame frame;
+  int fixed_bits = 0;  // bits flipped to make header and CRC right
+};
+
+// The frame the soft decisions spell, when its header is 0x55 and its CRC matches; otherwise
+// the likeliest frame that does after flipping one of the 16 least sure bits or two of the 8
+// least sure (likeliest: the smallest total certainty flipped), if `max_fixed_bits` allows.
+// The 8 header bits and 16 CRC bits make a wrong repair of noise about a 1 in 300000 event.
+std::optional<RepairedFrame> RepairFrame(const SoftFrame& soft, CrcVariant crc, int max_fixed_bits);
+
+// The hard decisions as bytes.
+Frame HardFrame(const SoftFrame& soft);
+
+}  // namespace nava_modem

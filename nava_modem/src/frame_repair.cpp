@@ -1,0 +1,62 @@
+#include "nava_modem/frame_repair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace nava_modem {
+namespace {
+
+constexpr int kSingleCandidates = 16;
+constexpr int kPairCandidates = 8;
+
+bool Valid(const Frame& f, CrcVariant crc) { return f[0] == kHeader && CrcMatches(f, crc); }
+
+void Flip(Frame& f, int bit) { f[bit / 8] ^= static_cast<std::uint8_t>(1u << (bit % 8)); }
+
+}  // namespace
+
+Frame HardFrame(const SoftFrame& soft) {
+  Frame f{};
+  for (int b = 0; b < kFrameDataBits; ++b) {
+    if (soft[b] > 0.0f) f[b / 8] |= static_cast<std::uint8_t>(1u << (b % 8));
+  }
+  return f;
+}
+
+std::optional<RepairedFrame> RepairFrame(const SoftFrame& soft, CrcVariant crc, int max_fixed_bits) {
+  const Frame hard = HardFrame(soft);
+  if (Valid(hard, crc)) return RepairedFrame{hard, 0};
+  if (max_fixed_bits < 1) return std::nullopt;
+
+  std::array<int, kFrameDataBits> order;
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(soft[a]) < std::abs(soft[b]); });
+
+  std::optional<RepairedFrame> best;
+  float best_cost = 0.0f;
+  auto consider = [&](const Frame& f, int fixed, float cost) {
+    if (Valid(f, crc) && (!best || cost < best_cost)) {
+      best = RepairedFrame{f, fixed};
+      best_cost = cost;
+    }
+  };
+  for (int a = 0; a < kSingleCandidates; ++a) {
+    Frame f = hard;
+    Flip(f, order[a]);
+    consider(f, 1, std::abs(soft[order[a]]));
+  }
+  if (max_fixed_bits >= 2) {
+    for (int a = 0; a < kPairCandidates; ++a) {
+      for (int b = a + 1; b < kPairCandidates; ++b) {
+        Frame f = hard;
+        Flip(f, order[a]);
+        Flip(f, order[b]);
+        consider(f, 2, std::abs(soft[order[a]]) + std::abs(soft[order[b]]));
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace nava_modem
