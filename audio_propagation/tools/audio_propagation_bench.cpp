@@ -15,12 +15,12 @@
 
 #include "audio_propagation/propagation_model.h"
 #include "grid/map_file.h"
-#include "tool_args.h"
+#include "tool_args/tool_args.h"
 
 int main(int argc, char** argv) {
   using namespace audio_propagation;
   using Clock = std::chrono::steady_clock;
-  const tools::ToolArgs args(
+  const multirobot_audio::tools::ToolArgs args(
       "audio_propagation_bench",
       "audio_propagation_bench --map MAP.yaml [--robots N] [--steps K] [--seed S] [--rule masks|convex_corners]",
       argc, argv);

@@ -15,11 +15,11 @@
 
 #include "audio_propagation/propagation_model.h"
 #include "grid/map_file.h"
-#include "tool_args.h"
+#include "tool_args/tool_args.h"
 
 int main(int argc, char** argv) {
   using namespace audio_propagation;
-  const tools::ToolArgs args("audio_propagation_query",
+  const multirobot_audio::tools::ToolArgs args("audio_propagation_query",
                              "audio_propagation_query --map MAP.yaml [--rule masks|convex_corners] < queries",
                              argc, argv);
   const std::string map_file = args.Required("--map");

@@ -27,6 +27,8 @@ constexpr int kEndBit = kBreakMarkBits + kFrameBits;
 // (a resampler's wander).
 constexpr double kPhaseGain = 0.1;
 constexpr double kPeriodGain = 0.002;
+// Bit clocks tried per packet (see DecodeFrame).
+constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
 constexpr double kLoopMinSoft = 0.3;
 
@@ -61,13 +63,20 @@ const char* NoiseName(RxEvent::Noise noise) {
 }
 
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
-    : modem_(modem), options_(options), filters_(modem), per_bit_(SamplesPerBit(modem)) {
+    : modem_(modem), options_(options), filters_(modem),
+      per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate) {
   ValidateModemOptions(modem_);
   w_ = static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_));
   const std::size_t size = RingSize(per_bit_);
   d_.assign(size, 0.0f);
   e_.assign(size, 0.0f);
   mask_ = size - 1;
+  SetCarrierThreshold(options_.carrier_threshold_db);
+}
+
+void FskReceiver::SetCarrierThreshold(std::optional<double> db) {
+  options_.carrier_threshold_db = db;
+  if (db) carrier_threshold_power_ = std::pow(10.0, *db / 10.0);
 }
 
 double FskReceiver::level_db() const { return 10.0 * std::log10(E(n_ - 1) + kTiny); }
@@ -82,20 +91,21 @@ void FskReceiver::SetMuted(bool muted) {
 }
 
 void FskReceiver::Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) {
-  for (std::size_t k = 0; k < count; ++k) Step(samples[k], events);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (filters_.Push(samples[k])) Step(events);
+  }
 }
 
 void FskReceiver::Flush(std::vector<RxEvent>& events) {
-  const std::size_t tail = static_cast<std::size_t>(std::ceil((kEndBit + 4) * per_bit_ * (1.0 + options_.max_rate_error))) +
-                           static_cast<std::size_t>(2 * w_);
+  const std::size_t tail = filters_.step() * (static_cast<std::size_t>(std::ceil((kEndBit + 4) * per_bit_ * (1.0 + options_.max_rate_error))) +
+                                               static_cast<std::size_t>(2 * w_));
   const std::vector<float> silence(tail, 0.0f);
   Process(silence.data(), silence.size(), events);
 }
 
-void FskReceiver::Step(float sample, std::vector<RxEvent>& events) {
-  filters_.Push(sample);
-  const double m = filters_.mark(), s = filters_.space();
-  const double d = m * m - s * s, e = m * m + s * s;
+void FskReceiver::Step(std::vector<RxEvent>& events) {
+  const double m2 = filters_.mark_power(), s2 = filters_.space_power();
+  const double d = m2 - s2, e = m2 + s2;
   const std::int64_t n = n_;
   d_[n & mask_] = static_cast<float>(d);
   e_[n & mask_] = static_cast<float>(e);
@@ -152,7 +162,7 @@ void FskReceiver::Step(float sample, std::vector<RxEvent>& events) {
         if (busy_) busy_had_frame_ = true;
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step.
-        blank_until_ = static_cast<std::int64_t>(events.back().end * modem_.sample_rate) + 2 * w_;
+        blank_until_ = static_cast<std::int64_t>(events.back().end / seconds_per_step_) + 2 * w_;
         state_ = State::kSearching;
       }
       break;
@@ -161,7 +171,7 @@ void FskReceiver::Step(float sample, std::vector<RxEvent>& events) {
 
 void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
   if (!options_.carrier_threshold_db) return;
-  const bool loud = 10.0 * std::log10(e + kTiny) >= *options_.carrier_threshold_db;
+  const bool loud = e >= carrier_threshold_power_;
   const std::int64_t n = n_ - 1;
   if (loud) {
     if (!busy_) {
@@ -206,27 +216,49 @@ double FskReceiver::FitMetric(double first_mark, double period) const {
   return sum;
 }
 
+FskReceiver::ClockFit FskReceiver::BestFit(double start0, double period0, double phase_span, double phase_step,
+                                           double rate_span, double rate_step) const {
+  ClockFit best{start0, period0, -1e300};
+  for (double r = -rate_span; r <= rate_span + 1e-12; r += rate_step) {
+    const double period = period0 * (1.0 + r);
+    for (double p = -phase_span; p <= phase_span + 1e-9; p += phase_step) {
+      const double metric = FitMetric(start0 + p, period);
+      if (metric > best.metric) best = {start0 + p, period, metric};
+    }
+  }
+  return best;
+}
+
 RxEvent FskReceiver::DecodeFrame(double break_step) {
   // The bit clock that best explains the packet's known bits and the strength of its unknown
-  // ones: a coarse grid over phase and rate, then a finer one around the best.
-  double best_start = break_step, best_period = per_bit_, best = -1e300;
-  auto search = [&](double start0, double period0, double phase_span, double phase_step,
-                    double rate_span, double rate_step) {
-    for (double r = -rate_span; r <= rate_span + 1e-12; r += rate_step) {
-      const double period = period0 * (1.0 + r);
-      for (double p = -phase_span; p <= phase_span + 1e-9; p += phase_step) {
-        const double metric = FitMetric(start0 + p, period);
-        if (metric > best) {
-          best = metric;
-          best_start = start0 + p;
-          best_period = period;
-        }
-      }
-    }
-  };
-  search(break_step, per_bit_, per_bit_ / 2.0, per_bit_ / 16.0, options_.max_rate_error, 0.0025);
-  search(best_start, best_period, per_bit_ / 16.0, per_bit_ / 64.0, 0.0025, 0.0005);
+  // ones, over a grid of phases for each rate. In deep noise the best fit can be a wrong one,
+  // so the best few rates that are local optima are each refined on a finer grid and read in
+  // turn; the first whose frame checks is the packet.
+  const double rate_step = 0.0025;
+  const int rates = static_cast<int>(std::lround(options_.max_rate_error / rate_step));
+  std::vector<ClockFit> per_rate;
+  for (int k = -rates; k <= rates; ++k) {
+    per_rate.push_back(BestFit(break_step, per_bit_ * (1.0 + k * rate_step), per_bit_ / 2.0, per_bit_ / 16.0, 0.0, 1.0));
+  }
+  std::vector<ClockFit> candidates;
+  for (std::size_t k = 0; k < per_rate.size(); ++k) {
+    const bool left = k == 0 || per_rate[k].metric >= per_rate[k - 1].metric;
+    const bool right = k + 1 == per_rate.size() || per_rate[k].metric >= per_rate[k + 1].metric;
+    if (left && right) candidates.push_back(per_rate[k]);
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const ClockFit& a, const ClockFit& b) { return a.metric > b.metric; });
+  if (candidates.size() > kClockHypotheses) candidates.resize(kClockHypotheses);
+  RxEvent first;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const ClockFit fine = BestFit(candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, rate_step, 0.0005);
+    RxEvent ev = ReadFrame(fine.start, fine.period);
+    if (ev.kind == RxEvent::Kind::kPacket) return ev;
+    if (k == 0) first = ev;
+  }
+  return first;
+}
 
+RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   BitClock clock(best_start, best_period, filters_.window(), kPhaseGain, kPeriodGain);
   SoftFrame soft{};
   std::uint8_t hard[kFrameBits];

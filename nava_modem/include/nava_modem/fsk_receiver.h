@@ -56,37 +56,48 @@ class FskReceiver {
   void Flush(std::vector<RxEvent>& events);
   // While muted (the link is sending, or deaf to its own echo) nothing is detected.
   void SetMuted(bool muted);
-  void SetCarrierThreshold(std::optional<double> db) { options_.carrier_threshold_db = db; }
+  void SetCarrierThreshold(std::optional<double> db);
 
   // In-band level of the last bit, dB of full scale.
   double level_db() const;
-  std::uint64_t samples() const { return n_; }
+  double time() const { return Seconds(static_cast<double>(n_)); }  // s of audio processed
 
  private:
   enum class State { kSearching, kPeaking, kCollecting };
   // Before the first sample, the air was silent.
   double D(std::int64_t n) const { return n < 0 ? 0.0 : d_[static_cast<std::size_t>(n) & mask_]; }
   double E(std::int64_t n) const { return n < 0 ? 0.0 : e_[static_cast<std::size_t>(n) & mask_]; }
-  void Step(float sample, std::vector<RxEvent>& events);
+  void Step(std::vector<RxEvent>& events);  // one filter output
   void TrackCarrier(double e, std::vector<RxEvent>& events);
+  struct ClockFit {
+    double start, period, metric;
+  };
+  // The best of a grid of clocks around (start0, period0): phases +-phase_span, rates +-rate_span.
+  ClockFit BestFit(double start0, double period0, double phase_span, double phase_step, double rate_span,
+                   double rate_step) const;
   RxEvent DecodeFrame(double break_step);
+  // Reads the frame with the bit clock starting there (the first MARK bit of the break).
+  RxEvent ReadFrame(double first_mark, double period);
   double FitMetric(double first_mark, double period) const;
-  double Seconds(double sample) const { return sample / modem_.sample_rate; }
+  double Seconds(double step) const { return step * seconds_per_step_; }
 
   ModemOptions modem_;
   ReceiverOptions options_;
   ToneFilters filters_;
-  double per_bit_;    // samples per bit
-  std::int64_t w_;    // samples in each half of the break detector
-  std::vector<float> d_, e_;  // MARK^2 - SPACE^2 and MARK^2 + SPACE^2, per sample, a ring
+  // Time inside the receiver runs in the filters' steps (a few samples each).
+  double per_bit_;    // steps per bit
+  double seconds_per_step_;
+  std::int64_t w_;    // steps in each half of the break detector
+  std::vector<float> d_, e_;  // MARK^2 - SPACE^2 and MARK^2 + SPACE^2, per step, a ring
   std::size_t mask_;
-  std::int64_t n_ = 0;  // samples processed
+  std::int64_t n_ = 0;  // steps processed
   double after_ = 0.0, before_ = 0.0, after_power_ = 0.0, before_power_ = 0.0;  // break detector sums
   State state_ = State::kSearching;
   double peak_ = 0.0;
   std::int64_t peak_at_ = 0, decode_at_ = 0, blank_until_ = 0;
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
   bool muted_ = false;
+  double carrier_threshold_power_ = 0.0;  // the carrier threshold as a power
   // Busy air, for ZERO_BYTE reports.
   bool busy_ = false, busy_had_frame_ = false;
   std::int64_t busy_start_ = 0, quiet_run_ = 0;

@@ -1,13 +1,15 @@
 #pragma once
 
-// Command-line parsing shared by the audio_propagation tools: --flag value pairs, with errors
-// that name the flag and exit 1.
+// Command-line parsing shared by the command-line tools: --flag value pairs and positional
+// arguments, with errors that name the flag and exit 1.
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <map>
 #include <string>
+#include <vector>
 
-namespace audio_propagation::tools {
+namespace multirobot_audio::tools {
 
 class ToolArgs {
  public:
@@ -19,7 +21,11 @@ class ToolArgs {
         std::cout << "usage: " << usage_ << "\n";
         std::exit(0);
       }
-      if (flag.rfind("--", 0) != 0 || i + 1 >= argc) Fail(flag + ": expected --flag VALUE");
+      if (flag.rfind("--", 0) != 0 || flag == "--") {
+        positional_.push_back(flag);
+        continue;
+      }
+      if (i + 1 >= argc) Fail(flag + ": expected --flag VALUE");
       values_[flag] = argv[++i];
     }
   }
@@ -50,17 +56,37 @@ class ToolArgs {
     return x;
   }
 
+  double Double(const std::string& flag, double fallback, double lo, double hi) const {
+    const std::string v = String(flag, "");
+    if (v.empty()) return fallback;
+    char* end = nullptr;
+    const double x = std::strtod(v.c_str(), &end);
+    if (*end || !std::isfinite(x) || x < lo || x > hi) {
+      Fail(flag + ": expected a number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + v);
+    }
+    return x;
+  }
+
+  // Arguments that are not --flag VALUE pairs, in order.
+  const std::vector<std::string>& positional() const {
+    positional_read_ = true;
+    return positional_;
+  }
+
   // Rejects flags the tool does not know, once all have been read.
   void CheckAllUsed() const {
     for (const auto& [flag, value] : values_) {
       if (!used_.count(flag)) Fail("unknown option " + flag);
     }
+    if (!positional_read_ && !positional_.empty()) Fail("unexpected argument " + positional_.front());
   }
 
  private:
   std::string program_, usage_;
   std::map<std::string, std::string> values_;
+  std::vector<std::string> positional_;
+  mutable bool positional_read_ = false;
   mutable std::map<std::string, bool> used_;
 };
 
-}  // namespace audio_propagation::tools
+}  // namespace multirobot_audio::tools

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace nava_modem {
+
+// Mono audio as floats in [-1, 1].
+struct Audio {
+  std::vector<float> samples;
+  double sample_rate = 0.0;
+};
+
+// Reads any audio file libsndfile knows (WAV, FLAC, ...); several channels are mixed to one.
+// Throws std::runtime_error naming the file when it cannot be read or is not audio.
+Audio ReadAudioFile(const std::string& path);
+
+// Writes 16-bit PCM WAV, clipping to full scale. Throws std::runtime_error naming the file.
+void WriteWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate);
+
+}  // namespace nava_modem

@@ -1,0 +1,60 @@
+#pragma once
+
+// The options every nava_modem tool takes, like the node's parameters:
+// --mark HZ --space HZ --baud BPS --rate HZ --amplitude A --crc ccitt-false|xmodem
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "nava_modem/modem_options.h"
+#include "tool_args/tool_args.h"
+
+namespace nava_modem::tools {
+
+inline const char* kModemUsage =
+    "[--mark 2300] [--space 3700] [--baud 300] [--rate 48000] [--amplitude 0.5] [--crc ccitt-false|xmodem]";
+
+inline ModemOptions ModemArgs(const multirobot_audio::tools::ToolArgs& args) {
+  ModemOptions o;
+  o.mark_hz = args.Double("--mark", o.mark_hz, 1.0, 1e6);
+  o.space_hz = args.Double("--space", o.space_hz, 1.0, 1e6);
+  o.baud = args.Double("--baud", o.baud, 1.0, 1e6);
+  o.sample_rate = args.Double("--rate", o.sample_rate, 1.0, 1e7);
+  o.amplitude = args.Double("--amplitude", o.amplitude, 1e-6, 1.0);
+  const std::string crc = args.String("--crc", "ccitt-false");
+  const auto variant = ParseCrcVariant(crc);
+  if (!variant) args.Fail("--crc: expected ccitt-false or xmodem, got " + crc);
+  o.crc = *variant;
+  try {
+    ValidateModemOptions(o);
+  } catch (const std::exception& e) {
+    args.Fail(e.what());
+  }
+  return o;
+}
+
+// "0a0b0c0d" -> {0x0a, 0x0b, 0x0c, 0x0d}; empty when it is not 8 hex digits.
+inline std::vector<std::uint8_t> ParseHexPacket(const std::string& hex) {
+  if (hex.size() != 8) return {};
+  std::vector<std::uint8_t> out;
+  for (int k = 0; k < 4; ++k) {
+    const std::string pair = hex.substr(2 * k, 2);
+    char* end = nullptr;
+    const long v = std::strtol(pair.c_str(), &end, 16);
+    if (*end || pair.find_first_of("+- xX") != std::string::npos) return {};
+    out.push_back(static_cast<std::uint8_t>(v));
+  }
+  return out;
+}
+
+inline std::string HexBytes(const std::vector<std::uint8_t>& data) {
+  static const char* digits = "0123456789abcdef";
+  std::string out;
+  for (std::uint8_t b : data) {
+    out += digits[b >> 4];
+    out += digits[b & 15];
+  }
+  return out;
+}
+
+}  // namespace nava_modem::tools
