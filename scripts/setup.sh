@@ -31,7 +31,11 @@ packages=(
   python3-diagnostic-msgs python3-actionlib-msgs python3-std-srvs
   # libraries the ROS-free components use
   libyaml-cpp-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
-  libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
+  # the audio link: sound files, ALSA, diagnostics; PulseAudio and ALSA's pulse plugin as the
+  # air for tests on machines without a sound card; minimodem to check we talk to others
+  libsndfile1-dev libasound2-dev libdiagnostic-updater-dev
+  pulseaudio pulseaudio-utils libasound2-plugins alsa-utils minimodem
   # headless rviz and screenshots
   xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
 )
