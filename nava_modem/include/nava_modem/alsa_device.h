@@ -1,0 +1,39 @@
+#pragma once
+
+#include <string>
+
+#include "nava_modem/audio_device.h"
+
+typedef struct _snd_pcm snd_pcm_t;
+
+namespace nava_modem {
+
+struct AlsaOptions {
+  std::string device = "default";  // an ALSA PCM name: default, pulse, plughw:1,0, ...
+  double sample_rate = 48000.0;
+  double latency = 0.05;  // s of buffering asked of each stream; the own echo comes this late
+};
+
+// One capture and one playback stream on an ALSA device, kept open for the link's lifetime.
+// Under- and overruns are recovered from and counted. Throws std::runtime_error naming the
+// device and what failed when a stream cannot be opened or refuses the rate.
+class AlsaDevice : public AudioDevice {
+ public:
+  explicit AlsaDevice(const AlsaOptions& options);
+  ~AlsaDevice() override;
+  AlsaDevice(const AlsaDevice&) = delete;
+  AlsaDevice& operator=(const AlsaDevice&) = delete;
+
+  double sample_rate() const override { return options_.sample_rate; }
+  bool Read(float* out, std::size_t count) override;
+  void Write(const float* in, std::size_t count) override;
+  std::uint64_t xruns() const override { return xruns_; }
+
+ private:
+  AlsaOptions options_;
+  snd_pcm_t* capture_ = nullptr;
+  snd_pcm_t* playback_ = nullptr;
+  std::uint64_t xruns_ = 0;
+};
+
+}  // namespace nava_modem

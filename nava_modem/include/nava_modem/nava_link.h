@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "nava_modem/audio_device.h"
+#include "nava_modem/csma_mac.h"
+#include "nava_modem/fsk_modulator.h"
+#include "nava_modem/fsk_receiver.h"
+
+namespace nava_modem {
+
+struct LinkOptions {
+  ModemOptions modem;
+  MacOptions mac;  // its bit rate is the modem's
+  ReceiverOptions receiver;
+  std::uint32_t seed = 1;
+};
+
+// A whole Nava link on an audio device (thesis section 5.2.4): every tick (1/16 bit) it reads
+// a tick of audio, runs the receiver on it (deaf while sending and for the echo time after),
+// tells the CSMA-CA MAC the level heard, and writes a tick of the packet being sent, or of
+// silence. Single-threaded: the caller runs Tick() in a loop.
+class NavaLink {
+ public:
+  NavaLink(const LinkOptions& options, AudioDevice& device);  // throws on impossible options
+
+  // Queues 4 data bytes to send; false (counted by the MAC) when the queue is full.
+  bool Send(std::vector<std::uint8_t> data);
+
+  // One tick of audio in and out; what was heard is appended to `events`. False at the end of
+  // the device's input.
+  bool Tick(std::vector<RxEvent>& events);
+
+  const CsmaMac& mac() const { return mac_; }
+  double level_db() const { return receiver_.level_db(); }
+  bool carrier() const { return mac_.carrier(); }
+  double time() const { return ticks_ * mac_.tick_seconds(); }  // s of audio run
+  std::uint64_t packets_sent() const { return mac_.sent(); }
+  std::uint64_t xruns() const { return device_.xruns(); }
+
+ private:
+  LinkOptions options_;
+  AudioDevice& device_;
+  FskModulator modulator_;
+  FskReceiver receiver_;
+  CsmaMac mac_;
+  double samples_per_tick_;
+  std::uint64_t ticks_ = 0;
+  std::int64_t samples_done_ = 0;
+  std::vector<float> in_, burst_;
+  std::size_t burst_at_ = 0;
+};
+
+}  // namespace nava_modem

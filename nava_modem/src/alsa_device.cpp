@@ -1,0 +1,89 @@
+#include "nava_modem/alsa_device.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <alsa/asoundlib.h>
+
+namespace nava_modem {
+namespace {
+
+snd_pcm_t* Open(const AlsaOptions& o, snd_pcm_stream_t stream) {
+  const char* what = stream == SND_PCM_STREAM_CAPTURE ? "capture" : "playback";
+  snd_pcm_t* pcm = nullptr;
+  int err = snd_pcm_open(&pcm, o.device.c_str(), stream, 0);
+  if (err < 0) {
+    throw std::runtime_error("ALSA device '" + o.device + "': cannot open for " + what + ": " + snd_strerror(err));
+  }
+  // No resampling by ALSA: a device that cannot run at the rate must say so.
+  err = snd_pcm_set_params(pcm, SND_PCM_FORMAT_FLOAT_LE, SND_PCM_ACCESS_RW_INTERLEAVED, 1,
+                           static_cast<unsigned>(std::lround(o.sample_rate)), 0,
+                           static_cast<unsigned>(std::lround(o.latency * 1e6)));
+  if (err < 0) {
+    snd_pcm_close(pcm);
+    throw std::runtime_error("ALSA device '" + o.device + "': refuses " + what + " of mono float samples at " +
+                             std::to_string(std::lround(o.sample_rate)) + " Hz: " + snd_strerror(err));
+  }
+  return pcm;
+}
+
+}  // namespace
+
+AlsaDevice::AlsaDevice(const AlsaOptions& options) : options_(options) {
+  if (!(options_.latency > 0.0 && options_.latency <= 2.0)) {
+    throw std::invalid_argument("ALSA latency " + std::to_string(options_.latency) + " s: expected above 0 and at most 2");
+  }
+  capture_ = Open(options_, SND_PCM_STREAM_CAPTURE);
+  try {
+    playback_ = Open(options_, SND_PCM_STREAM_PLAYBACK);
+  } catch (...) {
+    snd_pcm_close(capture_);
+    throw;
+  }
+  snd_pcm_start(capture_);
+}
+
+AlsaDevice::~AlsaDevice() {
+  if (playback_) {
+    snd_pcm_drain(playback_);
+    snd_pcm_close(playback_);
+  }
+  if (capture_) snd_pcm_close(capture_);
+}
+
+bool AlsaDevice::Read(float* out, std::size_t count) {
+  while (count > 0) {
+    const snd_pcm_sframes_t got = snd_pcm_readi(capture_, out, count);
+    if (got > 0) {
+      out += got;
+      count -= static_cast<std::size_t>(got);
+      continue;
+    }
+    if (got == -EAGAIN) continue;
+    ++xruns_;  // an overrun (-EPIPE) or a suspend: recover and go on
+    if (snd_pcm_recover(capture_, static_cast<int>(got), 1) < 0) {
+      throw std::runtime_error("ALSA device '" + options_.device + "': capture failed: " + snd_strerror(static_cast<int>(got)));
+    }
+    snd_pcm_start(capture_);
+  }
+  return true;
+}
+
+void AlsaDevice::Write(const float* in, std::size_t count) {
+  while (count > 0) {
+    const snd_pcm_sframes_t put = snd_pcm_writei(playback_, in, count);
+    if (put > 0) {
+      in += put;
+      count -= static_cast<std::size_t>(put);
+      continue;
+    }
+    if (put == -EAGAIN) continue;
+    ++xruns_;  // an underrun: the link fell behind; recover and go on
+    if (snd_pcm_recover(playback_, static_cast<int>(put), 1) < 0) {
+      throw std::runtime_error("ALSA device '" + options_.device + "': playback failed: " + snd_strerror(static_cast<int>(put)));
+    }
+  }
+}
+
+}  // namespace nava_modem

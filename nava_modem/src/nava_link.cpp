@@ -1,0 +1,68 @@
+#include "nava_modem/nava_link.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace nava_modem {
+namespace {
+
+LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
+  if (std::abs(device.sample_rate() - o.modem.sample_rate) > 0.5) {
+    throw std::invalid_argument("the audio device runs at " + std::to_string(device.sample_rate()) +
+                                " Hz, the modem at " + std::to_string(o.modem.sample_rate) + " Hz");
+  }
+  o.mac.bit_rate = o.modem.baud;
+  o.mac.packet_bits = kPacketBits;
+  return o;
+}
+
+}  // namespace
+
+NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
+    : options_(Checked(options, device)),
+      device_(device),
+      modulator_(options_.modem),
+      receiver_(options_.modem, options_.receiver),
+      mac_(options_.mac, options_.seed),
+      samples_per_tick_(SamplesPerBit(options_.modem) / 16.0) {}
+
+bool NavaLink::Send(std::vector<std::uint8_t> data) {
+  if (data.size() != static_cast<std::size_t>(kDataBytes)) {
+    throw std::invalid_argument("a Nava packet carries 4 data bytes, got " + std::to_string(data.size()));
+  }
+  return mac_.Enqueue(std::move(data));
+}
+
+bool NavaLink::Tick(std::vector<RxEvent>& events) {
+  // Ticks are a whole number of samples on average: tick k ends at sample round((k+1) * s).
+  const std::int64_t end = std::llround((ticks_ + 1) * samples_per_tick_);
+  const std::size_t count = static_cast<std::size_t>(end - samples_done_);
+  in_.resize(count);
+  if (!device_.Read(in_.data(), count)) return false;
+  samples_done_ = end;
+  ++ticks_;
+
+  const MacState before = mac_.state();
+  receiver_.SetMuted(before == MacState::kSending || before == MacState::kDeaf);
+  receiver_.Process(in_.data(), count, events);
+  // The thesis's receiver threshold is the MAC's: busy air with no packet is ZERO_BYTE noise.
+  if (before != MacState::kCalibrating) receiver_.SetCarrierThreshold(mac_.threshold_db());
+
+  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_.level_db())) {
+    burst_ = modulator_.ModulatePacket(*packet);
+    burst_at_ = 0;
+  }
+  // Playback runs in step with capture: this tick's share of the burst, or silence.
+  std::vector<float>& out = in_;
+  std::fill(out.begin(), out.end(), 0.0f);
+  if (burst_at_ < burst_.size()) {
+    const std::size_t n = std::min(count, burst_.size() - burst_at_);
+    std::copy(burst_.begin() + burst_at_, burst_.begin() + burst_at_ + n, out.begin());
+    burst_at_ += n;
+  }
+  device_.Write(out.data(), count);
+  return true;
+}
+
+}  // namespace nava_modem

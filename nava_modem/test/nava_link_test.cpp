@@ -1,0 +1,100 @@
+// The whole link on files: what it hears from a WAV, and what it plays into one.
+#include "nava_modem/nava_link.h"
+
+#include <unistd.h>
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "nava_modem/wav_device.h"
+#include "nava_modem/wav_file.h"
+
+namespace nava_modem {
+namespace {
+
+std::string TempWav(const std::string& name) { return "/tmp/nava_link_" + std::to_string(getpid()) + "_" + name; }
+
+LinkOptions Quick() {
+  LinkOptions o;
+  o.mac.calibration_time = 1.0;
+  return o;
+}
+
+TEST(NavaLink, HearsAPacketAfterCalibratingAndReportsItOnce) {
+  LinkOptions o = Quick();
+  const FskModulator mod(o.modem);
+  std::mt19937 rng(2);
+  std::normal_distribution<float> g(0.0f, 0.003f);
+  std::vector<float> audio(static_cast<std::size_t>(1.5 * o.modem.sample_rate));  // quiet room
+  const std::vector<float> burst = mod.ModulatePacket({7, 7, 7, 7});
+  audio.insert(audio.end(), burst.begin(), burst.end());
+  audio.resize(audio.size() + static_cast<std::size_t>(1.0 * o.modem.sample_rate));
+  for (float& x : audio) x += g(rng);
+  const std::string in = TempWav("in.wav");
+  WriteWavFile(in, audio, o.modem.sample_rate);
+  WavDevice device(in, "");
+  NavaLink link(o, device);
+  std::vector<RxEvent> events;
+  bool carrier_seen = false;
+  while (link.Tick(events)) carrier_seen = carrier_seen || link.carrier();
+  std::remove(in.c_str());
+  EXPECT_TRUE(carrier_seen);
+  EXPECT_EQ(link.mac().state(), MacState::kWaiting);
+  EXPECT_GT(link.mac().threshold_db(), -60.0);  // calibrated on the quiet room
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, RxEvent::Kind::kPacket);
+  EXPECT_EQ(events[0].data, std::vector<std::uint8_t>({7, 7, 7, 7}));
+  EXPECT_NEAR(events[0].start, 1.5, 0.01);
+}
+
+TEST(NavaLink, PlaysWhatItSendsAndIsDeafToItsOwnEcho) {
+  LinkOptions o = Quick();
+  o.mac.fixed_threshold_db = -40.0;
+  // Its own packet comes back 50 ms later, as a speaker next to the microphone would.
+  const std::string silent = TempWav("silent.wav");
+  WriteWavFile(silent, std::vector<float>(static_cast<std::size_t>(3.0 * o.modem.sample_rate)), o.modem.sample_rate);
+  WavDevice dry(silent, "");
+  NavaLink link(o, dry);
+  ASSERT_TRUE(link.Send({1, 2, 3, 4}));
+  EXPECT_THROW(link.Send({1, 2, 3}), std::invalid_argument);
+  std::vector<RxEvent> events;
+  while (link.Tick(events)) {
+  }
+  EXPECT_EQ(link.packets_sent(), 1u);
+  EXPECT_TRUE(events.empty());
+  // What it played decodes as its packet.
+  FskReceiver rx(o.modem, {});
+  std::vector<RxEvent> heard;
+  rx.Process(dry.played().data(), dry.played().size(), heard);
+  rx.Flush(heard);
+  ASSERT_EQ(heard.size(), 1u);
+  EXPECT_EQ(heard[0].data, std::vector<std::uint8_t>({1, 2, 3, 4}));
+  // Played again into a link that is sending at the same moment: its echo is not heard.
+  std::vector<float> echo(static_cast<std::size_t>(0.05 * o.modem.sample_rate), 0.0f);
+  echo.insert(echo.end(), dry.played().begin(), dry.played().end());
+  const std::string echo_file = TempWav("echo.wav");
+  WriteWavFile(echo_file, echo, o.modem.sample_rate);
+  WavDevice wet(echo_file, "");
+  NavaLink again(o, wet);
+  ASSERT_TRUE(again.Send({1, 2, 3, 4}));
+  events.clear();
+  while (again.Tick(events)) {
+  }
+  std::remove(silent.c_str());
+  std::remove(echo_file.c_str());
+  EXPECT_TRUE(events.empty()) << "heard its own echo";
+}
+
+TEST(NavaLink, RejectsADeviceAtAnotherRate) {
+  LinkOptions o = Quick();
+  const std::string file = TempWav("rate.wav");
+  WriteWavFile(file, std::vector<float>(1000), 16000.0);
+  WavDevice device(file, "");
+  std::remove(file.c_str());
+  EXPECT_THROW(NavaLink(o, device), std::invalid_argument);
+  EXPECT_THROW(WavDevice("/nonexistent/x.wav", ""), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace nava_modem
