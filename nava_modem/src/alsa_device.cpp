@@ -52,38 +52,35 @@ AlsaDevice::~AlsaDevice() {
   if (capture_) snd_pcm_close(capture_);
 }
 
-bool AlsaDevice::Read(float* out, std::size_t count) {
+// Moves `count` frames with `io` (snd_pcm_readi or snd_pcm_writei on `pcm`), recovering from
+// over- and underruns, which are counted.
+template <typename Buffer, typename Io>
+void AlsaDevice::Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what) {
   while (count > 0) {
-    const snd_pcm_sframes_t got = snd_pcm_readi(capture_, out, count);
-    if (got > 0) {
-      out += got;
-      count -= static_cast<std::size_t>(got);
+    const snd_pcm_sframes_t done = io(pcm, data, count);
+    if (done > 0) {
+      data += done;
+      count -= static_cast<std::size_t>(done);
       continue;
     }
-    if (got == -EAGAIN) continue;
-    ++xruns_;  // an overrun (-EPIPE) or a suspend: recover and go on
-    if (snd_pcm_recover(capture_, static_cast<int>(got), 1) < 0) {
-      throw std::runtime_error("ALSA device '" + options_.device + "': capture failed: " + snd_strerror(static_cast<int>(got)));
+    if (done == -EAGAIN) continue;
+    ++xruns_;  // an overrun, an underrun or a suspend: recover and go on
+    if (snd_pcm_recover(pcm, static_cast<int>(done), 1) < 0) {
+      throw std::runtime_error("ALSA device '" + options_.device + "': " + what + " failed: " +
+                               snd_strerror(static_cast<int>(done)));
     }
-    snd_pcm_start(capture_);
+    if (pcm == capture_) snd_pcm_start(pcm);
   }
+}
+
+bool AlsaDevice::Read(float* out, std::size_t count) {
+  Transfer(capture_, out, count, [](snd_pcm_t* p, float* d, std::size_t n) { return snd_pcm_readi(p, d, n); }, "capture");
   return true;
 }
 
 void AlsaDevice::Write(const float* in, std::size_t count) {
-  while (count > 0) {
-    const snd_pcm_sframes_t put = snd_pcm_writei(playback_, in, count);
-    if (put > 0) {
-      in += put;
-      count -= static_cast<std::size_t>(put);
-      continue;
-    }
-    if (put == -EAGAIN) continue;
-    ++xruns_;  // an underrun: the link fell behind; recover and go on
-    if (snd_pcm_recover(playback_, static_cast<int>(put), 1) < 0) {
-      throw std::runtime_error("ALSA device '" + options_.device + "': playback failed: " + snd_strerror(static_cast<int>(put)));
-    }
-  }
+  Transfer(playback_, in, count, [](snd_pcm_t* p, const float* d, std::size_t n) { return snd_pcm_writei(p, d, n); },
+           "playback");
 }
 
 }  // namespace nava_modem

@@ -30,6 +30,9 @@ class AlsaDevice : public AudioDevice {
   std::uint64_t xruns() const override { return xruns_; }
 
  private:
+  template <typename Buffer, typename Io>
+  void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what);
+
   AlsaOptions options_;
   snd_pcm_t* capture_ = nullptr;
   snd_pcm_t* playback_ = nullptr;
