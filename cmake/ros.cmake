@@ -10,7 +10,7 @@ add_message_files(DIRECTORY msg FILES
 generate_messages(DEPENDENCIES std_msgs)
 
 catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sensor_msgs nav_msgs
-               visualization_msgs rosgraph_msgs tf2_msgs)
+               visualization_msgs rosgraph_msgs tf2_msgs diagnostic_msgs)
 
 # Bridges between the components and ROS: conversions and the node classes.
 add_library(multirobot_audio_ros STATIC
@@ -19,10 +19,11 @@ add_library(multirobot_audio_ros STATIC
   src/world_sim_ros.cpp
   src/wanderer_ros.cpp
   src/audio_propagation_ros.cpp
+  src/nava_modem_ros.cpp
 )
 target_include_directories(multirobot_audio_ros PUBLIC ${PROJECT_SOURCE_DIR}/src)
 target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation world_sim grid ${catkin_LIBRARIES})
+target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem world_sim grid ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
@@ -35,6 +36,7 @@ endfunction()
 multirobot_audio_node(world_sim_node world_sim src/world_sim_node.cpp)
 multirobot_audio_node(wanderer_node wanderer src/wanderer_node.cpp)
 multirobot_audio_node(audio_propagation_node audio_propagation src/audio_propagation_node.cpp)
+multirobot_audio_node(nava_modem_node nava_modem src/nava_modem_node.cpp)
 
 install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 
@@ -59,10 +61,21 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
 
+  # Over the air: built like a rostest node, but run by test/nava_air.sh, which starts the
+  # PulseAudio server the test needs and stops it.
+  add_executable(nava_air_rostest test/nava_air_rostest.cpp)
+  target_include_directories(nava_air_rostest PRIVATE ${PROJECT_SOURCE_DIR}/test)
+  target_link_libraries(nava_air_rostest multirobot_audio_ros GTest::gtest)
+  set_target_properties(nava_air_rostest PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib/${PROJECT_NAME})
+  add_dependencies(nava_air_rostest ${PROJECT_NAME}_generate_messages_cpp)
+  add_dependencies(tests nava_air_rostest nava_modem_node)
+  add_test(NAME nava_air_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh)
+
   foreach(launch_file sim_team.launch)
     roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
   endforeach()
   roslaunch_add_file_check(launch/include/wanderers.launch count:=2 DEPENDENCIES wanderer_node)
+  roslaunch_add_file_check(launch/nava_robot.launch DEPENDENCIES nava_modem_node)
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
   endforeach()

@@ -7,6 +7,10 @@
 namespace nava_modem {
 namespace {
 
+// Audio moves to and from the device in blocks this long: short against the back-off and the
+// deaf time, long enough that the system calls do not dominate.
+constexpr double kBlockSeconds = 0.005;
+
 LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
   if (std::abs(device.sample_rate() - o.modem.sample_rate) > 0.5) {
     throw std::invalid_argument("the audio device runs at " + std::to_string(device.sample_rate()) +
@@ -25,7 +29,8 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
       modulator_(options_.modem),
       receiver_(options_.modem, options_.receiver),
       mac_(options_.mac, options_.seed),
-      samples_per_tick_(SamplesPerBit(options_.modem) / 16.0) {}
+      samples_per_tick_(SamplesPerBit(options_.modem) / 16.0),
+      block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))) {}
 
 bool NavaLink::Send(std::vector<std::uint8_t> data) {
   if (data.size() != static_cast<std::size_t>(kDataBytes)) {
@@ -39,7 +44,7 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
   const std::int64_t end = std::llround((ticks_ + 1) * samples_per_tick_);
   const std::size_t count = static_cast<std::size_t>(end - samples_done_);
   in_.resize(count);
-  if (!device_.Read(in_.data(), count)) return false;
+  if (!Take(in_.data(), count)) return false;
   samples_done_ = end;
   ++ticks_;
 
@@ -61,8 +66,33 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     std::copy(burst_.begin() + burst_at_, burst_.begin() + burst_at_ + n, out.begin());
     burst_at_ += n;
   }
-  device_.Write(out.data(), count);
+  Put(out.data(), count);
   return true;
+}
+
+bool NavaLink::Take(float* out, std::size_t count) {
+  while (captured_.size() - captured_at_ < count) {
+    // Whole blocks from the device: a system call per tick would cost more than the modem.
+    captured_.erase(captured_.begin(), captured_.begin() + static_cast<std::ptrdiff_t>(captured_at_));
+    captured_at_ = 0;
+    const std::size_t have = captured_.size();
+    captured_.resize(have + block_);
+    if (!device_.Read(captured_.data() + have, block_)) {
+      captured_.resize(have);
+      return false;
+    }
+  }
+  std::copy(captured_.begin() + captured_at_, captured_.begin() + captured_at_ + count, out);
+  captured_at_ += count;
+  return true;
+}
+
+void NavaLink::Put(const float* in, std::size_t count) {
+  playing_.insert(playing_.end(), in, in + count);
+  if (playing_.size() >= block_) {
+    device_.Write(playing_.data(), playing_.size());
+    playing_.clear();
+  }
 }
 
 }  // namespace nava_modem

@@ -48,6 +48,12 @@ class NavaLink {
   double samples_per_tick_;
   std::uint64_t ticks_ = 0;
   std::int64_t samples_done_ = 0;
+  bool Take(float* out, std::size_t count);  // captured samples, read from the device by blocks
+  void Put(const float* in, std::size_t count);  // samples to play, written by blocks
+
+  std::size_t block_;
+  std::vector<float> captured_, playing_;
+  std::size_t captured_at_ = 0;
   std::vector<float> in_, burst_;
   std::size_t burst_at_ = 0;
 };

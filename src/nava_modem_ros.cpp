@@ -1,0 +1,201 @@
+#include "nava_modem_ros.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <multirobot_audio/AudioReception.h>
+#include <multirobot_audio/CarrierSense.h>
+
+#include "params.h"
+
+namespace multirobot_audio {
+
+NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
+  NavaModemOptions o;
+  o.alsa.device = StringParam(pnh, "device", o.alsa.device);
+  o.alsa.sample_rate = NumberParam(pnh, "sample_rate", o.alsa.sample_rate, 4000.0, 384000.0);
+  o.alsa.latency = NumberParam(pnh, "latency", o.alsa.latency, 0.001, 2.0);
+  o.frame_id = StringParam(pnh, "frame_id", o.frame_id);
+  o.carrier_rate = NumberParam(pnh, "carrier_rate", o.carrier_rate, 0.1, 1000.0);
+
+  nava_modem::ModemOptions& m = o.link.modem;
+  m.sample_rate = o.alsa.sample_rate;
+  m.mark_hz = NumberParam(pnh, "mark", m.mark_hz, 1.0, 1e6);
+  m.space_hz = NumberParam(pnh, "space", m.space_hz, 1.0, 1e6);
+  m.baud = NumberParam(pnh, "baud", m.baud, 1.0, 1e6);
+  m.amplitude = NumberParam(pnh, "amplitude", m.amplitude, 1e-6, 1.0);
+  const std::string crc = StringParam(pnh, "crc", "ccitt-false");
+  const auto variant = nava_modem::ParseCrcVariant(crc);
+  if (!variant) throw ParamError(pnh.resolveName("crc") + ": expected ccitt-false or xmodem, got '" + crc + "'");
+  m.crc = *variant;
+
+  nava_modem::MacOptions& mac = o.link.mac;
+  mac.calibration_time = NumberParam(pnh, "calibration_time", mac.calibration_time, 0.0, 3600.0);
+  if (pnh.hasParam("threshold_db")) mac.fixed_threshold_db = NumberParam(pnh, "threshold_db", 0.0, -200.0, 20.0);
+  mac.threshold_margin_db = NumberParam(pnh, "threshold_margin_db", mac.threshold_margin_db, 0.0, 100.0);
+  mac.backoff_min_bits = NumberParam(pnh, "backoff_min_bits", mac.backoff_min_bits, 0.0, 1e6);
+  mac.backoff_max_bits = NumberParam(pnh, "backoff_max_bits", mac.backoff_max_bits, 0.0, 1e6);
+  mac.deaf_time = NumberParam(pnh, "deaf_time", mac.deaf_time, 0.0, 60.0);
+  mac.queue_capacity = static_cast<std::size_t>(IntParam(pnh, "queue_size", static_cast<int>(mac.queue_capacity), 1, 100000));
+  mac.bit_rate = m.baud;
+  mac.packet_bits = nava_modem::kPacketBits;
+
+  nava_modem::ReceiverOptions& rx = o.link.receiver;
+  rx.max_fixed_bits = IntParam(pnh, "max_fixed_bits", rx.max_fixed_bits, 0, 2);
+  rx.detect_threshold = NumberParam(pnh, "detect_threshold", rx.detect_threshold, 0.05, 1.0);
+  o.link.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
+  try {
+    nava_modem::ValidateModemOptions(m);
+    nava_modem::ValidateMacOptions(mac);
+  } catch (const std::invalid_argument& e) {
+    throw ParamError(e.what());
+  }
+  return o;
+}
+
+NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaModemOptions& options)
+    : nh_(nh), pnh_(pnh), options_(options), updater_(nh, pnh) {
+  device_ = std::make_unique<nava_modem::AlsaDevice>(options_.alsa);
+  link_ = std::make_unique<nava_modem::NavaLink>(options_.link, *device_);
+  ROS_INFO("nava_modem: ALSA device '%s' at %.0f Hz; MARK %.0f Hz, SPACE %.0f Hz, %.0f bits/s; %s",
+           options_.alsa.device.c_str(), options_.alsa.sample_rate, options_.link.modem.mark_hz,
+           options_.link.modem.space_hz, options_.link.modem.baud,
+           options_.link.mac.fixed_threshold_db ? "fixed carrier threshold" : "calibrating on silence");
+  tx_sub_ = nh_.subscribe("audio/tx", 20, &NavaModemRos::OnTx, this);
+  rx_pub_ = nh_.advertise<multirobot_audio::AudioReception>("audio/rx", 50);
+  carrier_pub_ = nh_.advertise<multirobot_audio::CarrierSense>("audio/carrier", 20);
+  updater_.setHardwareID("alsa:" + options_.alsa.device);
+  updater_.add("audio link", this, &NavaModemRos::Diagnose);
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+  audio_thread_ = std::thread(&NavaModemRos::AudioLoop, this);
+}
+
+NavaModemRos::~NavaModemRos() {
+  running_ = false;
+  if (audio_thread_.joinable()) audio_thread_.join();
+  const Counts& c = counts_;
+  // Printed directly: the node's logging is already shut down when it is destroyed.
+  std::printf("nava_modem summary: sent %lu, heard %lu packets (%lu repaired) and noise %lu zero_byte, %lu one_byte, "
+              "%lu bad_crc; rejected %lu, queue drops %lu, xruns %lu\n",
+              static_cast<unsigned long>(c.sent), static_cast<unsigned long>(c.packets),
+              static_cast<unsigned long>(c.repaired), static_cast<unsigned long>(c.zero_byte),
+              static_cast<unsigned long>(c.one_byte), static_cast<unsigned long>(c.bad_crc),
+              static_cast<unsigned long>(c.rejected), static_cast<unsigned long>(c.queue_drops),
+              static_cast<unsigned long>(c.xruns));
+  std::fflush(stdout);
+}
+
+void NavaModemRos::OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (msg->data.size() != static_cast<std::size_t>(nava_modem::kDataBytes)) {
+    ++counts_.rejected;
+    ROS_WARN_THROTTLE(5.0, "nava_modem: audio/tx: packet of %zu bytes rejected, expected %d (%lu rejected so far)",
+                      msg->data.size(), nava_modem::kDataBytes, static_cast<unsigned long>(counts_.rejected));
+    return;
+  }
+  inbox_.push_back(msg->data);
+}
+
+void NavaModemRos::AudioLoop() {
+  std::vector<nava_modem::RxEvent> events;
+  bool last_carrier = false;
+  double last_carrier_sent = -1e9;
+  const double carrier_period = 1.0 / options_.carrier_rate;
+  try {
+    while (running_ && ros::ok()) {
+      std::deque<std::vector<std::uint8_t>> to_send;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        to_send.swap(inbox_);
+      }
+      for (auto& data : to_send) {
+        if (!link_->Send(std::move(data))) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          counts_.queue_drops = link_->mac().dropped();
+          ROS_WARN_THROTTLE(5.0, "nava_modem: transmit queue full, packet dropped (%lu dropped so far)",
+                            static_cast<unsigned long>(counts_.queue_drops));
+        }
+      }
+      events.clear();
+      if (!link_->Tick(events)) break;
+      for (const nava_modem::RxEvent& e : events) Publish(e, link_->time() - e.end);
+      const bool carrier = link_->carrier();
+      if (carrier != last_carrier || link_->time() - last_carrier_sent >= carrier_period) {
+        multirobot_audio::CarrierSense msg;
+        msg.header.stamp = ros::Time::now();
+        msg.header.frame_id = options_.frame_id;
+        msg.carrier = carrier;
+        msg.level_db = static_cast<float>(link_->level_db());
+        carrier_pub_.publish(msg);
+        last_carrier = carrier;
+        last_carrier_sent = link_->time();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      counts_.state = nava_modem::MacStateName(link_->mac().state());
+      counts_.threshold_db = link_->mac().threshold_db();
+      counts_.level_db = link_->level_db();
+      counts_.sent = link_->packets_sent();
+      counts_.xruns = link_->xruns();
+      counts_.queue_drops = link_->mac().dropped();
+      for (const nava_modem::RxEvent& e : events) {
+        counts_.packets += e.kind == nava_modem::RxEvent::Kind::kPacket;
+        counts_.repaired += e.kind == nava_modem::RxEvent::Kind::kPacket && e.fixed_bits > 0;
+        counts_.zero_byte += e.noise == nava_modem::RxEvent::Noise::kZeroByte;
+        counts_.one_byte += e.noise == nava_modem::RxEvent::Noise::kOneByte;
+        counts_.bad_crc += e.noise == nava_modem::RxEvent::Noise::kBadCrc;
+      }
+    }
+  } catch (const std::exception& e) {
+    ROS_FATAL("nava_modem: %s", e.what());
+    std::fprintf(stderr, "nava_modem: %s\n", e.what());
+    ros::requestShutdown();
+  }
+}
+
+void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
+  multirobot_audio::AudioReception msg;
+  msg.header.stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
+  msg.header.frame_id = options_.frame_id;
+  if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
+    msg.kind = multirobot_audio::AudioReception::PACKET;
+    msg.noise = multirobot_audio::AudioReception::NONE;
+    msg.data = e.data;
+  } else {
+    msg.kind = multirobot_audio::AudioReception::NOISE;
+    switch (e.noise) {
+      case nava_modem::RxEvent::Noise::kZeroByte: msg.noise = multirobot_audio::AudioReception::ZERO_BYTE; break;
+      case nava_modem::RxEvent::Noise::kOneByte: msg.noise = multirobot_audio::AudioReception::ONE_BYTE; break;
+      default: msg.noise = multirobot_audio::AudioReception::BAD_CRC; break;
+    }
+  }
+  msg.level_db = static_cast<float>(e.level_db);
+  msg.quality = static_cast<float>(e.quality);
+  msg.direction = std::numeric_limits<float>::quiet_NaN();
+  msg.path_length = std::numeric_limits<float>::quiet_NaN();
+  rx_pub_.publish(msg);
+}
+
+void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const Counts& c = counts_;
+  if (c.xruns > 0 || c.queue_drops > 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "running; audio xruns or dropped packets");
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
+  }
+  status.add("state", c.state);
+  status.add("carrier threshold (dB)", c.threshold_db);
+  status.add("level (dB)", c.level_db);
+  status.add("packets out", c.sent);
+  status.add("packets in", c.packets);
+  status.add("packets repaired", c.repaired);
+  status.add("noise zero_byte", c.zero_byte);
+  status.add("noise one_byte", c.one_byte);
+  status.add("noise bad_crc", c.bad_crc);
+  status.add("xruns", c.xruns);
+  status.add("queue drops", c.queue_drops);
+  status.add("rejected (wrong size)", c.rejected);
+}
+
+}  // namespace multirobot_audio

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <multirobot_audio/AudioPacket.h>
+#include <ros/ros.h>
+
+#include "nava_modem/alsa_device.h"
+#include "nava_modem/nava_link.h"
+
+namespace multirobot_audio {
+
+// Options of the nava_modem node, filled from its private parameters.
+struct NavaModemOptions {
+  nava_modem::AlsaOptions alsa;   // ~device, ~sample_rate, ~latency
+  nava_modem::LinkOptions link;   // modem, MAC and receiver settings (see README)
+  std::string frame_id = "base_link";  // ~frame_id: stamped on what is published
+  double carrier_rate = 10.0;     // ~carrier_rate: Hz of audio/carrier besides every change
+};
+
+NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh);
+
+// A robot's audio link on its sound card: audio/tx in, audio/rx and audio/carrier out (the
+// interface audio_propagation serves in simulation), diagnostics on /diagnostics. The link runs
+// in a thread of its own, paced by the sound card.
+class NavaModemRos {
+ public:
+  NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaModemOptions& options);
+  ~NavaModemRos();
+
+ private:
+  struct Counts {
+    std::string state;
+    double threshold_db = 0.0, level_db = 0.0;
+    std::uint64_t sent = 0, packets = 0, zero_byte = 0, one_byte = 0, bad_crc = 0, repaired = 0;
+    std::uint64_t xruns = 0, queue_drops = 0, rejected = 0;
+  };
+  void OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
+  void AudioLoop();
+  void Publish(const nava_modem::RxEvent& event, double ago);
+  void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  ros::NodeHandle nh_, pnh_;
+  NavaModemOptions options_;
+  std::unique_ptr<nava_modem::AlsaDevice> device_;
+  std::unique_ptr<nava_modem::NavaLink> link_;
+  ros::Subscriber tx_sub_;
+  ros::Publisher rx_pub_, carrier_pub_;
+  diagnostic_updater::Updater updater_;
+  ros::WallTimer diagnostics_timer_;
+  std::mutex mutex_;  // guards inbox_ and counts_
+  std::deque<std::vector<std::uint8_t>> inbox_;
+  Counts counts_;
+  std::atomic<bool> running_{true};
+  std::thread audio_thread_;
+};
+
+}  // namespace multirobot_audio
