@@ -7,7 +7,7 @@
 namespace nava_modem {
 namespace {
 
-[[noreturn]] void Fail(const std::string& what) { throw std::invalid_argument("nava_modem: " + what); }
+[[noreturn]] void Fail(const std::string& what) { throw std::invalid_argument(what); }
 
 }  // namespace
 
