@@ -45,32 +45,29 @@ std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
   const std::size_t n = macs_.size();
   std::vector<Eigen::Vector2d> at(n);
   for (std::size_t k = 0; k < n; ++k) at[k] = poses_[k].position();
-  std::vector<SoundPath> paths(n);
-  if (cache_.capacity() == 0) {
+  auto compute = [&] {
     std::vector<bool> sources(n, false);
     sources[sender] = true;
     return model_.Compute(at, sources)[sender];
-  }
+  };
+  if (cache_.capacity() == 0) return compute();
+
   std::vector<Eigen::Vector2i> cells(n);
   for (std::size_t k = 0; k < n; ++k) cells[k] = model_.map().WorldToCell(at[k]);
+  std::vector<SoundPath> paths(n);
   bool all_found = true;
-  for (std::size_t r = 0; r < n; ++r) {
+  for (std::size_t r = 0; r < n && all_found; ++r) {
     if (r == sender) continue;
     std::optional<SoundPath> found = cache_.Find(cells[sender], cells[r]);
-    if (found) {
-      paths[r] = std::move(*found);
-    } else {
-      all_found = false;
-    }
+    all_found = found.has_value();
+    if (found) paths[r] = std::move(*found);
   }
   if (all_found) return paths;
-  std::vector<bool> sources(n, false);
-  sources[sender] = true;
-  std::vector<SoundPath> computed = model_.Compute(at, sources)[sender];
+  paths = compute();
   for (std::size_t r = 0; r < n; ++r) {
-    if (r != sender) cache_.Insert(cells[sender], cells[r], computed[r]);
+    if (r != sender) cache_.Insert(cells[sender], cells[r], paths[r]);
   }
-  return computed;
+  return paths;
 }
 
 void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events) {

@@ -32,6 +32,12 @@ constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
 constexpr double kLoopMinSoft = 0.3;
 
+// The MARK and SPACE filter outputs summed (the thesis's quality figure), from the difference d
+// and the sum e of their squares.
+double FilterSum(double d, double e) {
+  return std::sqrt(std::max(0.0, (e + d) / 2.0)) + std::sqrt(std::max(0.0, (e - d) / 2.0));
+}
+
 // The value a bit is known to have, or -1 where the packet's content decides.
 int KnownBit(int k) {
   if (k < 0) return 0;            // the break's SPACE half
@@ -187,7 +193,7 @@ void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
   }
   if (!busy_) return;
   busy_power_ += e;
-  busy_quality_ += std::sqrt(std::max(0.0, (e + D(n)) / 2.0)) + std::sqrt(std::max(0.0, (e - D(n)) / 2.0));
+  busy_quality_ += FilterSum(D(n), e);
   ++busy_samples_;
   // Busy air ends after a bit of quiet; a frame being decoded is waited for.
   if (quiet_run_ > per_bit_ && state_ == State::kSearching) {
@@ -273,7 +279,7 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
     hard[j] = v > 0.0;
     if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(v);
     power += e;
-    quality += std::sqrt(std::max(0.0, (e + d) / 2.0)) + std::sqrt(std::max(0.0, (e - d) / 2.0));
+    quality += FilterSum(d, e);
     // Follow the transition into this bit, if it is clear on both sides.
     if (hard[j] != previous && std::abs(v) > kLoopMinSoft && std::abs(previous_soft) > kLoopMinSoft) {
       const double expected = clock.ExpectedCrossing(k);

@@ -51,8 +51,12 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
   const MacState before = mac_.state();
   receiver_.SetMuted(before == MacState::kSending || before == MacState::kDeaf);
   receiver_.Process(in_.data(), count, events);
-  // The thesis's receiver threshold is the MAC's: busy air with no packet is ZERO_BYTE noise.
-  if (before != MacState::kCalibrating) receiver_.SetCarrierThreshold(mac_.threshold_db());
+  // The thesis's receiver threshold is the MAC's, known once calibration ends: from then on,
+  // busy air with no packet is ZERO_BYTE noise.
+  if (!threshold_shared_ && before != MacState::kCalibrating) {
+    receiver_.SetCarrierThreshold(mac_.threshold_db());
+    threshold_shared_ = true;
+  }
 
   if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_.level_db())) {
     burst_ = modulator_.ModulatePacket(*packet);

@@ -56,6 +56,7 @@ class NavaLink {
   std::size_t captured_at_ = 0;
   std::vector<float> in_, burst_;
   std::size_t burst_at_ = 0;
+  bool threshold_shared_ = false;  // the receiver has the MAC's carrier threshold
 };
 
 }  // namespace nava_modem
