@@ -189,5 +189,23 @@ TEST(AudioChannel, SameSeedSameEvents) {
   }
 }
 
+TEST(AudioChannel, SkipsSilenceWithoutLosingTime) {
+  Team team({2.0, 12.0});
+  team.Run(100.0);  // nothing to say: skipped, but every MAC still counts the ticks
+  const double tick = team.channel->tick_seconds();
+  EXPECT_NEAR(team.channel->mac(0).ticks() * tick, 100.0, 2.0 * tick);
+  EXPECT_NEAR(team.channel->mac(1).ticks() * tick, 100.0, 2.0 * tick);
+  team.channel->Send(0, {9, 9, 9, 9});
+  const auto events = team.Run(1.0);
+  ASSERT_EQ(events.started.size(), 1u);
+  // Sent after the MAC's random back-off from now, not from when the silence began.
+  const nava_modem::MacOptions mac;
+  EXPECT_GE(events.started[0].start, 100.0 + mac.backoff_min_bits / mac.bit_rate - 2.0 * tick);
+  EXPECT_LE(events.started[0].start, 100.0 + (mac.backoff_max_bits + 1.0) / mac.bit_rate);
+  ASSERT_EQ(events.received.size(), 1u);
+  EXPECT_NEAR(events.received[0].time - events.started[0].start, events.started[0].duration + 10.0 / 343.0,
+              2.0 * tick);
+}
+
 }  // namespace
 }  // namespace audio_propagation

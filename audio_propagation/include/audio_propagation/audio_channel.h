@@ -91,6 +91,8 @@ class AudioChannel {
   };
   void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
   void Finish(std::size_t receiver, const Arrival& a, Events& events);
+  // Nothing in the air, nothing on its way, nobody with anything to send: ticks change nothing.
+  bool Quiet() const;
   // The path from the sender to every robot, from the cache where it can.
   std::vector<SoundPath> PathsFrom(std::size_t sender);
 

@@ -46,6 +46,12 @@ class CsmaMac {
   // Advances one tick having heard `level_db`; returns the packet to start sending now, if any.
   std::optional<Packet> Tick(double level_db);
 
+  // Waiting with nothing to send: a Tick() on a level below the threshold changes nothing but
+  // the tick count, so a caller that knows the air is silent may skip such ticks.
+  bool Idle() const { return state_ == MacState::kWaiting && queue_.empty(); }
+  // Counts `ticks` silent ticks while Idle() without running them.
+  void SkipIdle(std::uint64_t ticks) { ticks_ += ticks; }
+
   MacState state() const { return state_; }
   double threshold_db() const { return threshold_db_; }
   bool carrier() const { return carrier_; }

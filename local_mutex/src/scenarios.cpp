@@ -1,0 +1,116 @@
+#include "local_mutex/scenarios.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace local_mutex {
+
+std::unique_ptr<audio_propagation::PropagationModel> OpenFloor(double size) {
+  const double resolution = 0.1;
+  const int cells = static_cast<int>(std::lround(size / resolution));
+  audio_propagation::PropagationOptions options;
+  options.threads = 1;
+  return std::make_unique<audio_propagation::PropagationModel>(grid::OccupancyMap(cells, cells, resolution),
+                                                               options);
+}
+
+std::vector<TeamRobot> SingleScenario(const Eigen::Vector2d& centre) {
+  return {{11, centre, {{3.3, 0, 99.8 - 43.3}}}};
+}
+
+std::vector<TeamRobot> ThreeScenario(const Eigen::Vector2d& centre) {
+  return {{11, centre + Eigen::Vector2d(-1.0, 0.0), {{1.0, 0, 20.0}}},
+          {30, centre + Eigen::Vector2d(1.0, 0.0), {{1.5, 0, 20.0}}},
+          {212, centre + Eigen::Vector2d(0.0, 1.5), {{32.8, 2, 20.0}}}};
+}
+
+std::vector<TeamRobot> RandomTeam(const TrialOptions& o, const Eigen::Vector2d& centre, std::mt19937& rng) {
+  const int n = std::uniform_int_distribution<int>(o.min_robots, o.max_robots)(rng);
+  std::uniform_real_distribution<double> u(-o.radius, o.radius), want(0.0, o.want_spread),
+      hold(o.hold_min, o.hold_max);
+  // Distinct ids drawn from 1..255, so the order among equal request times varies.
+  std::vector<int> ids(255);
+  for (int k = 0; k < 255; ++k) ids[k] = k + 1;
+  std::shuffle(ids.begin(), ids.end(), rng);
+  std::vector<TeamRobot> team;
+  for (int k = 0; k < n; ++k) {
+    TeamRobot r;
+    r.id = ids[k];
+    for (int attempt = 0;; ++attempt) {
+      if (attempt > 10000) throw std::invalid_argument("trials: cannot place robots that far apart in that radius");
+      const Eigen::Vector2d p = centre + Eigen::Vector2d(u(rng), u(rng));
+      if ((p - centre).norm() > o.radius) continue;
+      const bool clear = std::all_of(team.begin(), team.end(),
+                                     [&](const TeamRobot& t) { return (t.position - p).norm() >= o.spacing; });
+      if (!clear) continue;
+      r.position = p;
+      break;
+    }
+    double at = want(rng);
+    for (int c = 0; c < o.cycles; ++c) {
+      r.demands.push_back({at, 0, hold(rng)});
+      at += o.want_spread;  // the next cycle's wish comes after the last, whenever that is served
+    }
+    team.push_back(std::move(r));
+  }
+  return team;
+}
+
+double LivenessBound(const TrialOptions& trials, const MutexOptions& m, int robots) {
+  if (trials.liveness_bound > 0.0) return trials.liveness_bound;
+  // Served one after another, each robot needs at most: the holder's time, its last
+  // announcement, a request and t_grab of silence; twice that for slack.
+  const double per_robot = trials.hold_max + m.lock_mean + 3.0 * m.lock_sd + m.request_mean +
+                           3.0 * m.request_sd + m.grab_time;
+  return 2.0 * robots * per_robot;
+}
+
+TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                       const TeamSimOptions& options, int count) {
+  if (trials.min_robots < 1 || trials.max_robots < trials.min_robots || trials.max_robots > 255) {
+    throw std::invalid_argument("trials: robots must satisfy 1 <= min <= max <= 255, got " +
+                                std::to_string(trials.min_robots) + ".." + std::to_string(trials.max_robots));
+  }
+  const grid::OccupancyMap& map = model.map();
+  const Eigen::Vector2d centre = map.CellCoordsToWorld({map.width() / 2.0, map.height() / 2.0});
+  TrialSummary s;
+  double wait_sum = 0.0;
+  for (int t = 0; t < count; ++t) {
+    TeamSimOptions o = options;
+    o.seed = options.seed + static_cast<std::uint32_t>(t);
+    std::mt19937 rng(o.seed);
+    std::vector<TeamRobot> team = RandomTeam(trials, centre, rng);
+    const int n = static_cast<int>(team.size());
+    const double bound = LivenessBound(trials, options.mutex, n);
+    TeamSim sim(model, std::move(team), o);
+    // Long enough for every wish to be due and waited on for the bound.
+    sim.Run(trials.want_spread * trials.cycles + trials.cycles * bound);
+    ++s.trials;
+    s.violations += sim.violations();
+    s.trials_with_violations += sim.violations() > 0;
+    for (const Grant& g : sim.grants()) {
+      const double wait = g.granted - g.wanted;
+      ++s.grants;
+      wait_sum += wait;
+      s.max_wait = std::max(s.max_wait, wait);
+      s.liveness_failures += wait > bound;
+    }
+    for (const auto& waiting : sim.Waiting()) {
+      (void)waiting;
+      ++s.liveness_failures;
+    }
+    // Demands never even wanted (their wish came after the run ended) count as failures too.
+    std::size_t wished = 0;
+    for (std::size_t k = 0; k < sim.size(); ++k) wished += sim.robot(k).demands.size();
+    const std::size_t seen = sim.grants().size() + sim.Waiting().size();
+    s.liveness_failures += wished > seen ? wished - seen : 0;
+    for (std::size_t k = 0; k < sim.size(); ++k) s.packets_sent += sim.mutex(k).counters().sent;
+    s.corrupted += sim.corrupted();
+    s.lost += sim.lost();
+  }
+  s.mean_wait = s.grants ? wait_sum / s.grants : 0.0;
+  return s;
+}
+
+}  // namespace local_mutex
