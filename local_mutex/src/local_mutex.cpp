@@ -70,8 +70,16 @@ void LocalMutex::Enter(State s, double now) {
 bool LocalMutex::Request(double now) {
   if (state_ != State::kReleased) return false;
   request_time_ = clock_;
-  next_transmit_ = now + Draw(options_.request_mean, options_.request_sd);
   grab_deadline_ = now + options_.grab_time;
+  if (now - last_request_heard_at_ < options_.grab_time && Precedes(last_request_heard_, request())) {
+    // Someone asked before us, recently: defer from when we heard it (POSTPONEREQUEST).
+    next_transmit_ =
+        std::max(now, last_request_heard_at_ + options_.grab_time + Draw(options_.request_mean, options_.request_sd));
+    grab_deadline_ = next_transmit_ + options_.grab_time;
+    Enter(State::kSilent, now);
+    return true;
+  }
+  next_transmit_ = now + Draw(options_.request_mean, options_.request_sd);
   Enter(State::kWanted, now);
   return true;
 }
@@ -135,6 +143,10 @@ void LocalMutex::HearPacket(const std::vector<std::uint8_t>& packet, double now)
   }
 
   ++counters_.heard;
+  if (m->type == MessageType::kRequest) {
+    last_request_heard_ = {m->time, m->robot_id};
+    last_request_heard_at_ = now;
+  }
   if (LamportAfter(m->time, clock_)) clock_ = m->time;
   ++clock_;
   if (state_ == State::kWanted || state_ == State::kSilent) {
@@ -160,9 +172,8 @@ void LocalMutex::HearPacket(const std::vector<std::uint8_t>& packet, double now)
 void LocalMutex::Tick(double now) {
   if (state_ == State::kWanted && now >= grab_deadline_) {
     ++counters_.grants;
-    next_transmit_ = now + Draw(options_.lock_mean, options_.lock_sd);
     Enter(State::kHeld, now);
-    return;
+    next_transmit_ = now;  // announce at once
   }
   if (now < next_transmit_) return;
   switch (state_) {

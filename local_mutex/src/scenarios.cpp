@@ -66,26 +66,33 @@ double LivenessBound(const TrialOptions& trials, const MutexOptions& m, int robo
   return 2.0 * robots * per_robot;
 }
 
-TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
-                       const TeamSimOptions& options, int count) {
+std::unique_ptr<TeamSim> RunTrial(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                                  const TeamSimOptions& options, int index) {
   if (trials.min_robots < 1 || trials.max_robots < trials.min_robots || trials.max_robots > 255) {
     throw std::invalid_argument("trials: robots must satisfy 1 <= min <= max <= 255, got " +
                                 std::to_string(trials.min_robots) + ".." + std::to_string(trials.max_robots));
   }
   const grid::OccupancyMap& map = model.map();
   const Eigen::Vector2d centre = map.CellCoordsToWorld({map.width() / 2.0, map.height() / 2.0});
+  TeamSimOptions o = options;
+  o.seed = options.seed + static_cast<std::uint32_t>(index);
+  std::mt19937 rng(o.seed);
+  std::vector<TeamRobot> team = RandomTeam(trials, centre, rng);
+  const double bound = LivenessBound(trials, options.mutex, static_cast<int>(team.size()));
+  auto sim = std::make_unique<TeamSim>(model, std::move(team), o);
+  // Long enough for every wish to be due and waited on for the bound.
+  sim->Run(trials.want_spread * trials.cycles + trials.cycles * bound);
+  return sim;
+}
+
+TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                       const TeamSimOptions& options, int count) {
   TrialSummary s;
   double wait_sum = 0.0;
   for (int t = 0; t < count; ++t) {
-    TeamSimOptions o = options;
-    o.seed = options.seed + static_cast<std::uint32_t>(t);
-    std::mt19937 rng(o.seed);
-    std::vector<TeamRobot> team = RandomTeam(trials, centre, rng);
-    const int n = static_cast<int>(team.size());
-    const double bound = LivenessBound(trials, options.mutex, n);
-    TeamSim sim(model, std::move(team), o);
-    // Long enough for every wish to be due and waited on for the bound.
-    sim.Run(trials.want_spread * trials.cycles + trials.cycles * bound);
+    const std::unique_ptr<TeamSim> trial = RunTrial(model, trials, options, t);
+    const TeamSim& sim = *trial;
+    const double bound = LivenessBound(trials, options.mutex, static_cast<int>(sim.size()));
     ++s.trials;
     s.violations += sim.violations();
     s.trials_with_violations += sim.violations() > 0;

@@ -53,15 +53,16 @@ TEST(LocalMutex, AloneItRequestsEveryTRequestAndTakesTheLockAfterTGrabOfSilence)
   EXPECT_EQ(r.mutex.state(), State::kHeld);
   EXPECT_NEAR(r.mutex.state_since(), 43.3, 1e-9);
   EXPECT_EQ(r.mutex.counters().grants, 1u);
-  // Lock announcements every t_lock, the first t_lock after taking it, stamped with the clock.
-  r.RunTo(43.3, 73.3);
-  ASSERT_EQ(r.sent.size(), 5u);
+  // A lock announcement at once, then every t_lock, stamped with the clock.
+  ASSERT_EQ(r.sent.size(), 3u);
   EXPECT_EQ(r.sent[2], (Message{11, MessageType::kLock, 2}));
+  r.RunTo(43.3, 73.3);
+  ASSERT_EQ(r.sent.size(), 6u);
   EXPECT_EQ(r.sent[3], (Message{11, MessageType::kLock, 3}));
-  EXPECT_EQ(r.sent[4], (Message{11, MessageType::kLock, 4}));
+  EXPECT_EQ(r.sent[5], (Message{11, MessageType::kLock, 5}));
   ASSERT_TRUE(r.mutex.Release(80.0));
   r.RunTo(80.0, 200.0);
-  EXPECT_EQ(r.sent.size(), 5u);
+  EXPECT_EQ(r.sent.size(), 6u);
   EXPECT_EQ(r.mutex.state(), State::kReleased);
 }
 
@@ -117,6 +118,24 @@ TEST(LocalMutex, ARequestWithPriorityDefersUsIntoSilence) {
   EXPECT_EQ(r.mutex.state(), State::kWanted);
   r.mutex.Tick(100.0);
   EXPECT_EQ(r.mutex.state(), State::kHeld);
+}
+
+TEST(LocalMutex, ARecentRequestHeardBeforeWantingDefersUsFromTheStart) {
+  Robot r(18);
+  r.Hear({164, MessageType::kRequest, 0}, 43.0);
+  r.mutex.Request(45.0);  // (1, 18) comes after (0, 164)
+  EXPECT_EQ(r.mutex.state(), State::kSilent);
+  EXPECT_NEAR(r.mutex.next_transmit(), 43.0 + 40.0 + 15.0, 1e-9);
+  EXPECT_NEAR(r.mutex.grab_deadline(), 98.0 + 40.0, 1e-9);
+  r.RunTo(45.0, 97.9);
+  EXPECT_TRUE(r.sent.empty());
+}
+
+TEST(LocalMutex, AnOldRequestIsForgotten) {
+  Robot r(18);
+  r.Hear({164, MessageType::kRequest, 0}, 3.0);
+  r.mutex.Request(45.0);  // more than t_grab later: 164 has had its turn
+  EXPECT_EQ(r.mutex.state(), State::kWanted);
 }
 
 TEST(LocalMutex, ARequestWithoutPriorityOnlyRestartsTheGrabTimer) {
@@ -261,7 +280,7 @@ TEST(LocalMutex, ObserverSeesEveryStateChangeAndMessage) {
     seen.push_back(std::string(EventKindName(e.kind)) + ":" + StateName(e.state));
   }
   EXPECT_EQ(seen, (std::vector<std::string>{"state:WANTED", "sent:WANTED", "sent:WANTED", "state:HELD",
-                                            "sent:HELD"}));
+                                            "sent:HELD", "sent:HELD"}));
 }
 
 TEST(MutexOptions, ImpossibleTimersAreRefusedByName) {

@@ -2,6 +2,7 @@
 //
 //   local_mutex_sim --scenario single|three [--timeline out.png] [timers] [--seed S]
 //   local_mutex_sim --trials N [--robots 2..6] [--noise P] [--loss Q] [trial options] [timers] [--seed S]
+//                   [--timeline out.png, with --trials 1: that trial]
 //   local_mutex_sim --sweep N [--robots 2..6] [--seed S]
 //
 // Timers (s): --grab 40 --request 15 --request-sd 2 --lock 10 --lock-sd 1.
@@ -152,13 +153,18 @@ int main(int argc, char** argv) {
   try {
     ValidateMutexOptions(m);
     if (!scenario.empty()) return RunScenario(scenario, options, timeline);
-    if (!timeline.empty()) args.Fail("--timeline goes with --scenario");
+    if (!timeline.empty() && trial_count != 1) args.Fail("--timeline goes with --scenario or --trials 1");
     if (sweep > 0) {
       Sweep(trials, options, static_cast<int>(sweep));
       return 0;
     }
     const double cpu0 = CpuSeconds();
     auto model = OpenFloor();
+    if (!timeline.empty()) {
+      options.record = true;
+      DrawTimeline(*RunTrial(*model, trials, options, 0), timeline);
+      std::printf("timeline written to %s\n", timeline.c_str());
+    }
     const TrialSummary s = RunTrials(*model, trials, options, static_cast<int>(trial_count));
     std::printf("grants %llu packets_sent %llu corrupted %llu lost %llu cpu_s %.1f\n",
                 static_cast<unsigned long long>(s.grants), static_cast<unsigned long long>(s.packets_sent),

@@ -52,6 +52,11 @@ struct MutexCounters {
 // - WANTED: the grab timer (t_grab) restarts on every sound heard, packet or noise; requests go
 //   out every t_request (Gaussian), the first one t_request after entering WANTED; the grab
 //   timer running out means t_grab of silence: HELD.
+// - Entering WANTED, the robot first looks at what it heard recently (section 6.3.1; Program
+//   7.2 forgets it): a REQUEST heard in the last t_grab has priority over ours (our clock has
+//   passed its time), so we start SILENT, deferring as if it had just arrived when it did.
+//   Without this, a robot that heard a request just before wanting the lock asks anyway, and if
+//   that one request collides, both robots take the lock (seen in the random trials).
 // - A LOCK heard while WANTED or SILENT brings the next request forward to at most a fresh
 //   t_request from now (SCHEDULEREQUEST): the holder is no competitor, and our request must be
 //   on the air when it lets go. This also shortens a silence, as the program does.
@@ -62,8 +67,10 @@ struct MutexCounters {
 //   timer runs until t_grab after the first request is sent, so while SILENT a sound restarts
 //   it to no earlier than that.
 // - SILENT ends when its transmit timer runs out: the request is sent and the robot is WANTED.
-// - HELD: a LOCK every t_lock (Gaussian), the first t_lock after taking the lock (Program 7.2
-//   sets the transmit timer to announce_time on entering HELD). Nothing heard changes HELD.
+// - HELD: a LOCK at once on taking the lock (Figure 7.2's entry action), then every t_lock
+//   (Gaussian). Program 7.2 read literally waits t_lock before the first announcement, which
+//   leaves a robot whose requests were lost in a collision t_lock to take the lock too; the
+//   random trials showed exactly that. Nothing heard changes HELD.
 // - RELEASED: silent; packets and noise only move the clock.
 // - A packet that is not a lock message (wrong length, unknown type) is noise, as the thesis
 //   treats anything it cannot read. A packet with our own id repeating what we sent within
@@ -128,6 +135,8 @@ class LocalMutex {
   double grab_deadline_ = 0.0, next_transmit_ = 0.0, state_since_ = 0.0;
   Message last_sent_;
   double last_sent_at_ = -1e300;
+  RequestTuple last_request_heard_;
+  double last_request_heard_at_ = -1e300;
   MutexCounters counters_;
 };
 

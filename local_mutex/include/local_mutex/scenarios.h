@@ -47,6 +47,10 @@ struct TrialSummary {
   std::uint64_t packets_sent = 0, corrupted = 0, lost = 0;
 };
 
+// Trial number `index` of a series (seed options.seed + index), run to its end.
+std::unique_ptr<TeamSim> RunTrial(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                                  const TeamSimOptions& options, int index);
+
 // Runs `trials` random trials on `model`, seeds options.seed, options.seed + 1, ...
 TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
                        const TeamSimOptions& options, int count);
