@@ -33,6 +33,7 @@ AudioChannel::AudioChannel(const PropagationModel& model,
   tick_ = n > 0 ? macs_[0].tick_seconds() : 1.0 / (16.0 * mac.bit_rate);
   poses_.resize(n);
   levels_.assign(n, options_.noise_floor_db);
+  powers_.assign(n, 0.0);
   arrivals_.resize(n);
   sending_.resize(n);
 }
@@ -142,8 +143,11 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
       for (const Arrival& a : arrivals_[r]) {
         if (a.start <= ticks_ && ticks_ < a.end) power += a.power;
       }
-      levels_[r] = power > 0.0 ? std::max(options_.noise_floor_db, 10.0 * std::log10(power))
-                               : options_.noise_floor_db;
+      if (power != powers_[r]) {  // the level only changes when an arrival starts or ends
+        powers_[r] = power;
+        levels_[r] = power > 0.0 ? std::max(options_.noise_floor_db, 10.0 * std::log10(power))
+                                 : options_.noise_floor_db;
+      }
       if (auto packet = macs_[r].Tick(levels_[r])) StartTransmission(r, std::move(*packet), events);
     }
     for (std::size_t r = 0; r < n; ++r) {

@@ -102,6 +102,7 @@ class AudioChannel {
   std::vector<nava_modem::CsmaMac> macs_;
   std::vector<grid::Pose2D> poses_;
   std::vector<double> levels_;
+  std::vector<double> powers_;  // linear power behind each level
   std::vector<std::deque<Arrival>> arrivals_;  // per receiver: pending and recently finished
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> sending_;  // per robot, recent
   PathCache cache_;
