@@ -1,16 +1,23 @@
 # The ROS side: messages, nodes (all in src/), rostests and launch-file checks (in test/).
 
+# The local mutex's action and release service. Found again with everything the top
+# CMakeLists asks for, because each find_package(catkin COMPONENTS) call sets catkin_LIBRARIES
+# and catkin_INCLUDE_DIRS anew.
+find_package(catkin REQUIRED COMPONENTS ${ROS_DEPENDENCIES} actionlib actionlib_msgs std_srvs)
+
 add_message_files(DIRECTORY msg FILES
   AudioPacket.msg
   AudioReception.msg
   CarrierSense.msg
   Fiducial.msg
   FiducialArray.msg
+  LockState.msg
 )
-generate_messages(DEPENDENCIES std_msgs)
+add_action_files(DIRECTORY action FILES AcquireLock.action)
+generate_messages(DEPENDENCIES std_msgs actionlib_msgs)
 
 catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sensor_msgs nav_msgs
-               visualization_msgs rosgraph_msgs tf2_msgs diagnostic_msgs)
+               visualization_msgs rosgraph_msgs tf2_msgs diagnostic_msgs actionlib actionlib_msgs std_srvs)
 
 # Bridges between the components and ROS: conversions and the node classes.
 add_library(multirobot_audio_ros STATIC
@@ -20,10 +27,13 @@ add_library(multirobot_audio_ros STATIC
   src/wanderer_ros.cpp
   src/audio_propagation_ros.cpp
   src/nava_modem_ros.cpp
+  src/local_mutex_ros.cpp
+  src/mutex_client_ros.cpp
 )
 target_include_directories(multirobot_audio_ros PUBLIC ${PROJECT_SOURCE_DIR}/src)
 target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem world_sim grid ${catkin_LIBRARIES})
+target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem local_mutex world_sim grid
+                      ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
@@ -37,6 +47,8 @@ multirobot_audio_node(world_sim_node world_sim src/world_sim_node.cpp)
 multirobot_audio_node(wanderer_node wanderer src/wanderer_node.cpp)
 multirobot_audio_node(audio_propagation_node audio_propagation src/audio_propagation_node.cpp)
 multirobot_audio_node(nava_modem_node nava_modem src/nava_modem_node.cpp)
+multirobot_audio_node(local_mutex_node local_mutex src/local_mutex_node.cpp)
+multirobot_audio_node(mutex_client_node mutex_client src/mutex_client_node.cpp)
 
 install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 

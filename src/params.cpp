@@ -10,6 +10,10 @@ std::string Name(const ros::NodeHandle& pnh, const std::string& name) {
   return pnh.resolveName(name);
 }
 
+ParamError Missing(const ros::NodeHandle& pnh, const std::string& name) {
+  return ParamError(Name(pnh, name) + ": missing; this parameter is required");
+}
+
 std::string Range(double lo, double hi, double value) {
   std::ostringstream s;
   s << "expected a number in [" << lo << ", " << hi << "], got " << value;
@@ -54,8 +58,13 @@ std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
 
 std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name) {
   const std::string value = StringParam(pnh, name, "");
-  if (value.empty()) throw ParamError(Name(pnh, name) + ": missing; this parameter is required");
+  if (value.empty()) throw Missing(pnh, name);
   return value;
+}
+
+int RequiredIntParam(const ros::NodeHandle& pnh, const std::string& name, int lo, int hi) {
+  if (!pnh.hasParam(name)) throw Missing(pnh, name);
+  return IntParam(pnh, name, lo, lo, hi);
 }
 
 }  // namespace multirobot_audio

@@ -22,5 +22,7 @@ std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
                         const std::string& fallback);
 // Throws when the parameter is unset or empty.
 std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name);
+// Throws when the parameter is unset, as IntParam does for a bad value.
+int RequiredIntParam(const ros::NodeHandle& pnh, const std::string& name, int lo, int hi);
 
 }  // namespace multirobot_audio
