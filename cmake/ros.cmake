@@ -88,6 +88,12 @@ if(MULTIROBOT_AUDIO_TESTS)
   endforeach()
   roslaunch_add_file_check(launch/include/wanderers.launch count:=2 DEPENDENCIES wanderer_node)
   roslaunch_add_file_check(launch/nava_robot.launch DEPENDENCIES nava_modem_node)
+  roslaunch_add_file_check(launch/mutex_sim.launch
+                           DEPENDENCIES world_sim_node audio_propagation_node local_mutex_node mutex_client_node)
+  roslaunch_add_file_check(launch/mutex_robot.launch robot_id:=11
+                           DEPENDENCIES nava_modem_node local_mutex_node mutex_client_node)
+  roslaunch_add_file_check(launch/include/local_mutex.launch robot:=robot_0 robot_id:=11
+                           DEPENDENCIES local_mutex_node mutex_client_node)
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
   endforeach()
