@@ -73,6 +73,12 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
 
+  # Three local mutexes on the simulated audio channel; the test node plays their clients.
+  add_rostest_gtest(local_mutex_rostest test/local_mutex.test test/local_mutex_rostest.cpp test/lock_watch.cpp
+                    test/rostest_main.cpp)
+  target_link_libraries(local_mutex_rostest multirobot_audio_ros)
+  add_dependencies(local_mutex_rostest world_sim_node audio_propagation_node local_mutex_node)
+
   # Over the air: built like a rostest node, but run by test/nava_air.sh, which starts the
   # PulseAudio server the test needs and stops it.
   add_executable(nava_air_rostest test/nava_air_rostest.cpp)
