@@ -79,15 +79,21 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(local_mutex_rostest multirobot_audio_ros)
   add_dependencies(local_mutex_rostest world_sim_node audio_propagation_node local_mutex_node)
 
-  # Over the air: built like a rostest node, but run by test/nava_air.sh, which starts the
-  # PulseAudio server the test needs and stops it.
-  add_executable(nava_air_rostest test/nava_air_rostest.cpp)
-  target_include_directories(nava_air_rostest PRIVATE ${PROJECT_SOURCE_DIR}/test)
-  target_link_libraries(nava_air_rostest multirobot_audio_ros GTest::gtest)
-  set_target_properties(nava_air_rostest PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib/${PROJECT_NAME})
-  add_dependencies(nava_air_rostest ${PROJECT_NAME}_generate_messages_cpp)
-  add_dependencies(tests nava_air_rostest nava_modem_node)
-  add_test(NAME nava_air_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh)
+  # Over the air: built like rostest nodes, but each run by test/nava_air.sh, which starts the
+  # PulseAudio server the test needs, runs the given .test file and stops the server.
+  function(multirobot_audio_air_test target test_file)
+    add_executable(${target} ${ARGN})
+    target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/test)
+    target_link_libraries(${target} multirobot_audio_ros GTest::gtest)
+    set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib/${PROJECT_NAME})
+    add_dependencies(${target} ${PROJECT_NAME}_generate_messages_cpp)
+    add_dependencies(tests ${target} nava_modem_node)
+    add_test(NAME ${target} COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh ${test_file})
+  endfunction()
+  multirobot_audio_air_test(nava_air_rostest nava_air.test test/nava_air_rostest.cpp)
+  multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
+                            test/rostest_main.cpp)
+  add_dependencies(tests local_mutex_node)
 
   foreach(launch_file sim_team.launch)
     roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)

@@ -1,9 +1,20 @@
 #!/usr/bin/env bash
-# The over-the-air test of nava_modem: starts a private PulseAudio server whose null sink is the
-# shared "air" (norewinds=1, or its monitor drops audio), points ALSA's pulse device at it, runs
-# test/nava_air.test with rostest, and stops the server by its PID.
+# Runs an over-the-air rostest of nava_modem links:
+#
+#   test/nava_air.sh TEST_FILE [rostest arguments]     e.g. test/nava_air.sh nava_air.test
+#
+# starts a private PulseAudio server whose null sink is the shared "air" (norewinds=1, or its
+# monitor drops audio), points ALSA's pulse device at it, runs TEST_FILE (a .test file of this
+# package) with rostest, and stops the server by its PID.
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+
+if [ $# -lt 1 ]; then
+  echo "usage: $0 TEST_FILE [rostest arguments]" >&2
+  exit 2
+fi
+test_file=$1
+shift
 
 dir=$(mktemp -d /tmp/nava_air.XXXXXX)
 pa_pid=""
@@ -30,4 +41,4 @@ if [ ! -S "$dir/native" ]; then
   exit 1
 fi
 export PULSE_SERVER="unix:$dir/native"
-rostest multirobot_audio nava_air.test "$@"
+rostest multirobot_audio "$test_file" "$@"
