@@ -1,10 +1,5 @@
 # The ROS side: messages, nodes (all in src/), rostests and launch-file checks (in test/).
 
-# The local mutex's action and release service. Found again with everything the top
-# CMakeLists asks for, because each find_package(catkin COMPONENTS) call sets catkin_LIBRARIES
-# and catkin_INCLUDE_DIRS anew.
-find_package(catkin REQUIRED COMPONENTS ${ROS_DEPENDENCIES} actionlib actionlib_msgs std_srvs)
-
 add_message_files(DIRECTORY msg FILES
   AudioPacket.msg
   AudioReception.msg
