@@ -150,12 +150,12 @@ void LocalMutex::HearPacket(const std::vector<std::uint8_t>& packet, double now)
   if (LamportAfter(m->time, clock_)) clock_ = m->time;
   ++clock_;
   if (state_ == State::kWanted || state_ == State::kSilent) {
-    PostponeGrab(now);
     if (m->type == MessageType::kLock) {
       // SCHEDULEREQUEST: someone holds the lock; keep asking so we are next.
       next_transmit_ = std::min(next_transmit_, now + Draw(options_.request_mean, options_.request_sd));
-      if (state_ == State::kSilent) PostponeGrab(now);
-    } else if (Precedes({m->time, m->robot_id}, request())) {
+    }
+    PostponeGrab(now);  // after the next request is known: SILENT's floor depends on it
+    if (m->type == MessageType::kRequest && Precedes({m->time, m->robot_id}, request())) {
       // POSTPONEREQUEST: the other robot asked first; let it have the lock.
       next_transmit_ = now + options_.grab_time + Draw(options_.request_mean, options_.request_sd);
       grab_deadline_ = next_transmit_ + options_.grab_time;

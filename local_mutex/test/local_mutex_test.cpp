@@ -28,6 +28,13 @@ struct Robot {
     for (int k = 0; from + 0.1 * k <= to + 1e-9; ++k) mutex.Tick(from + 0.1 * k);
   }
   void Hear(const Message& m, double now) { mutex.HearPacket(Encode(m), now); }
+  // WANTED until a tick before `at`, HELD at `at`.
+  void ExpectGrantAt(double from, double at) {
+    RunTo(from, at - 0.1);
+    EXPECT_EQ(mutex.state(), State::kWanted);
+    mutex.Tick(at);
+    EXPECT_EQ(mutex.state(), State::kHeld);
+  }
 };
 
 TEST(LocalMutex, StartsReleasedAtClockZeroAndSaysNothing) {
@@ -72,10 +79,7 @@ TEST(LocalMutex, AnyNoiseRestartsTheGrabTimerAndTicksTheClock) {
   r.mutex.HearNoise(10.0);
   EXPECT_EQ(r.mutex.clock(), 1);
   EXPECT_NEAR(r.mutex.grab_deadline(), 50.0, 1e-9);
-  r.RunTo(0.0, 49.9);
-  EXPECT_EQ(r.mutex.state(), State::kWanted);
-  r.mutex.Tick(50.0);
-  EXPECT_EQ(r.mutex.state(), State::kHeld);
+  r.ExpectGrantAt(0.0, 50.0);
 }
 
 TEST(LocalMutex, APacketSetsTheClockPastItsStamp) {
@@ -114,10 +118,8 @@ TEST(LocalMutex, ARequestWithPriorityDefersUsIntoSilence) {
   ASSERT_EQ(r.sent.size(), 1u);
   EXPECT_EQ(r.sent[0], (Message{30, MessageType::kRequest, 0}));
   EXPECT_EQ(r.mutex.state(), State::kWanted);
-  r.RunTo(60.0, 99.9);
-  EXPECT_EQ(r.mutex.state(), State::kWanted);
-  r.mutex.Tick(100.0);
-  EXPECT_EQ(r.mutex.state(), State::kHeld);
+  r.ExpectGrantAt(60.0, 100.0);
+  EXPECT_EQ(r.mutex.counters().grants, 1u);
 }
 
 TEST(LocalMutex, ARecentRequestHeardBeforeWantingDefersUsFromTheStart) {
