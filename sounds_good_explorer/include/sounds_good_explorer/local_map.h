@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "grid/pose2d.h"
+
+namespace sounds_good_explorer {
+
+enum class CellState : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
+
+struct LocalMapOptions {
+  int size = 61;             // cells on a side (odd, so one cell is the centre)
+  double resolution = 0.15;  // m per cell: the thesis's robot size
+  double expiry = 20.0;      // s after which a cell not seen again reverts to unknown
+};
+
+// Throws std::invalid_argument naming the field when an option is impossible.
+void ValidateOptions(const LocalMapOptions& options);
+
+// The thesis's "local map" (section 3.3.2): a fixed-size occupancy grid in the odometry frame,
+// kept centred on the robot by shifting whole cells (cells that fall off the edge are lost),
+// filled from range readings, with every cell reverting to unknown `expiry` s after it was
+// last seen (other robots move; odometry slips). Cells are aligned to a grid fixed in the odom
+// frame, so shifting never blurs them. Cell (0, 0) is the lower-left corner.
+class LocalMap {
+ public:
+  explicit LocalMap(const LocalMapOptions& options);
+
+  // Moves the map so that `position` (odom frame) lies in the centre cell.
+  void Recentre(const Eigen::Vector2d& position);
+  // Marks what one ranger saw from `pose`: free along the beam up to `range` (or `reach` when
+  // nothing was in reach: range +inf, NaN or beyond reach), and occupied where it ended on
+  // something. `bearing` is the ranger's angle in the robot frame.
+  void AddRange(const grid::Pose2D& pose, double bearing, double range, double reach, double time);
+  // Marks a disc free (the robot's own body).
+  void MarkFree(const Eigen::Vector2d& centre, double radius, double time);
+  // Reverts cells last seen more than `expiry` s before `time` to unknown.
+  void Expire(double time);
+
+  int size() const { return options_.size; }
+  double resolution() const { return options_.resolution; }
+  bool Inside(const Eigen::Vector2i& cell) const {
+    return cell.x() >= 0 && cell.y() >= 0 && cell.x() < options_.size && cell.y() < options_.size;
+  }
+  CellState at(const Eigen::Vector2i& cell) const { return cells_[Index(cell)]; }
+  void Set(const Eigen::Vector2i& cell, CellState state, double time);
+  // Odom-frame point to the cell containing it (may be outside), and a cell's centre.
+  Eigen::Vector2i CellOf(const Eigen::Vector2d& point) const;
+  Eigen::Vector2d CentreOf(const Eigen::Vector2i& cell) const;
+  Eigen::Vector2i centre_cell() const { return {options_.size / 2, options_.size / 2}; }
+  // Odom-frame cell index of cell (0, 0): the map covers [origin, origin + size) in odom cells.
+  const Eigen::Vector2i& origin() const { return origin_; }
+  const std::vector<CellState>& cells() const { return cells_; }  // row-major, y rows
+
+ private:
+  std::size_t Index(const Eigen::Vector2i& cell) const {
+    return static_cast<std::size_t>(cell.y()) * options_.size + cell.x();
+  }
+
+  LocalMapOptions options_;
+  Eigen::Vector2i origin_{0, 0};
+  bool placed_ = false;
+  std::vector<CellState> cells_;
+  std::vector<float> seen_;  // s, when each cell was last marked
+};
+
+}  // namespace sounds_good_explorer

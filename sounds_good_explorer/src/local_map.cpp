@@ -1,0 +1,104 @@
+#include "sounds_good_explorer/local_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sounds_good_explorer {
+
+void ValidateOptions(const LocalMapOptions& o) {
+  if (o.size < 3 || o.size % 2 == 0 || o.size > 4001)
+    throw std::invalid_argument("local map size must be odd and within 3..4001 cells, got " +
+                                std::to_string(o.size));
+  if (!(o.resolution > 0.0))
+    throw std::invalid_argument("local map resolution must be > 0 m, got " +
+                                std::to_string(o.resolution));
+  if (!(o.expiry > 0.0))
+    throw std::invalid_argument("local map expiry must be > 0 s, got " + std::to_string(o.expiry));
+}
+
+LocalMap::LocalMap(const LocalMapOptions& options)
+    : options_(options),
+      cells_((ValidateOptions(options), static_cast<std::size_t>(options.size) * options.size),
+             CellState::kUnknown),
+      seen_(cells_.size(), 0.0f) {
+  origin_ = -centre_cell();
+}
+
+Eigen::Vector2i LocalMap::CellOf(const Eigen::Vector2d& point) const {
+  return Eigen::Vector2i(static_cast<int>(std::floor(point.x() / options_.resolution)),
+                         static_cast<int>(std::floor(point.y() / options_.resolution))) -
+         origin_;
+}
+
+Eigen::Vector2d LocalMap::CentreOf(const Eigen::Vector2i& cell) const {
+  return ((cell + origin_).cast<double>() + Eigen::Vector2d::Constant(0.5)) * options_.resolution;
+}
+
+void LocalMap::Recentre(const Eigen::Vector2d& position) {
+  const Eigen::Vector2i wanted = CellOf(position) + origin_ - centre_cell();
+  if (placed_ && wanted == origin_) return;
+  const Eigen::Vector2i shift = wanted - origin_;
+  std::vector<CellState> cells(cells_.size(), CellState::kUnknown);
+  std::vector<float> seen(seen_.size(), 0.0f);
+  if (placed_) {
+    const int n = options_.size;
+    for (int y = 0; y < n; ++y) {
+      const int from_y = y + shift.y();
+      if (from_y < 0 || from_y >= n) continue;
+      for (int x = 0; x < n; ++x) {
+        const int from_x = x + shift.x();
+        if (from_x < 0 || from_x >= n) continue;
+        const std::size_t to = static_cast<std::size_t>(y) * n + x;
+        const std::size_t from = static_cast<std::size_t>(from_y) * n + from_x;
+        cells[to] = cells_[from];
+        seen[to] = seen_[from];
+      }
+    }
+  }
+  cells_.swap(cells);
+  seen_.swap(seen);
+  origin_ = wanted;
+  placed_ = true;
+}
+
+void LocalMap::Set(const Eigen::Vector2i& cell, CellState state, double time) {
+  if (!Inside(cell)) return;
+  cells_[Index(cell)] = state;
+  seen_[Index(cell)] = static_cast<float>(time);
+}
+
+void LocalMap::AddRange(const grid::Pose2D& pose, double bearing, double range, double reach,
+                        double time) {
+  const bool hit = std::isfinite(range) && range < reach;
+  const double length = hit ? std::max(range, 0.0) : reach;
+  const double angle = pose.yaw + bearing;
+  const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
+  const Eigen::Vector2d from = pose.position();
+  // Half-cell steps visit every cell the beam crosses closely enough for a map this coarse.
+  const double step = options_.resolution * 0.5;
+  const Eigen::Vector2i end = CellOf(from + dir * length);
+  for (double s = 0.0; s < length; s += step) {
+    const Eigen::Vector2i cell = CellOf(from + dir * s);
+    if (hit && cell == end) break;
+    Set(cell, CellState::kFree, time);
+  }
+  if (hit) Set(end, CellState::kOccupied, time);
+  else Set(end, CellState::kFree, time);
+}
+
+void LocalMap::MarkFree(const Eigen::Vector2d& centre, double radius, double time) {
+  const Eigen::Vector2i lo = CellOf(centre - Eigen::Vector2d::Constant(radius));
+  const Eigen::Vector2i hi = CellOf(centre + Eigen::Vector2d::Constant(radius));
+  for (int y = lo.y(); y <= hi.y(); ++y)
+    for (int x = lo.x(); x <= hi.x(); ++x) Set({x, y}, CellState::kFree, time);
+}
+
+void LocalMap::Expire(double time) {
+  const float oldest = static_cast<float>(time - options_.expiry);
+  for (std::size_t i = 0; i < cells_.size(); ++i)
+    if (cells_[i] != CellState::kUnknown && seen_[i] < oldest) cells_[i] = CellState::kUnknown;
+}
+
+}  // namespace sounds_good_explorer

@@ -1,0 +1,166 @@
+#include "sounds_good_explorer/planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+namespace sounds_good_explorer {
+
+namespace {
+
+const Eigen::Vector2i kSteps[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+
+bool Inside(int size, const Eigen::Vector2i& c) {
+  return c.x() >= 0 && c.y() >= 0 && c.x() < size && c.y() < size;
+}
+
+template <typename T>
+Grid<T> MakeGrid(int size, T value) {
+  return {size, std::vector<T>(static_cast<std::size_t>(size) * size, value)};
+}
+
+}  // namespace
+
+void ValidateOptions(const PlannerOptions& o) {
+  if (!(o.robot_radius >= 0.0))
+    throw std::invalid_argument("planner robot_radius must be >= 0 m, got " +
+                                std::to_string(o.robot_radius));
+  if (!(o.risk_scale >= 0.0 && o.risk_scale <= 1000.0))
+    throw std::invalid_argument("planner risk_scale must be within 0..1000, got " +
+                                std::to_string(o.risk_scale));
+  if (!(o.risk_decay > 0.0))
+    throw std::invalid_argument("planner risk_decay must be > 0 cells, got " +
+                                std::to_string(o.risk_decay));
+  if (!(o.grown_cost >= 1.0 && o.grown_cost <= 100000.0))
+    throw std::invalid_argument("planner grown_cost must be within 1..100000, got " +
+                                std::to_string(o.grown_cost));
+}
+
+Grid<std::uint8_t> GrowObstacles(const LocalMap& map, int radius_cells) {
+  const int n = map.size();
+  Grid<std::uint8_t> grown = MakeGrid<std::uint8_t>(n, 0);
+  for (std::size_t i = 0; i < grown.values.size(); ++i)
+    grown.values[i] = map.cells()[i] == CellState::kOccupied ? 255 : 0;
+  if (radius_cells <= 0) return grown;
+  cv::Mat occupied(n, n, CV_8UC1, grown.values.data());
+  // A Euclidean disc of the radius, so a robot's clearance is the same in every direction.
+  const int k = 2 * radius_cells + 1;
+  cv::Mat disc = cv::Mat::zeros(k, k, CV_8UC1);
+  for (int y = -radius_cells; y <= radius_cells; ++y)
+    for (int x = -radius_cells; x <= radius_cells; ++x)
+      if (x * x + y * y <= radius_cells * radius_cells)
+        disc.at<std::uint8_t>(y + radius_cells, x + radius_cells) = 1;
+  cv::Mat dilated;
+  cv::dilate(occupied, dilated, disc, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  std::copy(dilated.datastart, dilated.dataend, grown.values.begin());
+  return grown;
+}
+
+Grid<int> ManhattanDistance(const Grid<std::uint8_t>& obstacles) {
+  const int n = obstacles.size;
+  Grid<int> distance = MakeGrid<int>(n, 2 * n);
+  if (std::none_of(obstacles.values.begin(), obstacles.values.end(),
+                   [](std::uint8_t v) { return v != 0; }))
+    return distance;
+  // OpenCV measures the distance to the nearest zero pixel; with the L1 metric and a 3x3 mask
+  // its two-pass transform is exact.
+  cv::Mat free(n, n, CV_8UC1);
+  for (std::size_t i = 0; i < obstacles.values.size(); ++i)
+    free.data[i] = obstacles.values[i] ? 0 : 255;
+  cv::Mat dist;
+  cv::distanceTransform(free, dist, cv::DIST_L1, 3, CV_32F);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      distance.at({x, y}) = static_cast<int>(std::lround(dist.at<float>(y, x)));
+  return distance;
+}
+
+Grid<std::uint32_t> StepCosts(const LocalMap& map, const Grid<std::uint8_t>& grown,
+                              const Grid<int>& distance, const PlannerOptions& options) {
+  const int n = map.size();
+  Grid<std::uint32_t> costs = MakeGrid<std::uint32_t>(n, 0);
+  // The risk depends only on the distance: tabulate it once.
+  std::vector<std::uint32_t> by_distance(2 * n + 1);
+  for (int d = 0; d <= 2 * n; ++d)
+    by_distance[d] = 10 + static_cast<std::uint32_t>(
+                              std::lround(10.0 * options.risk_scale * std::exp(-d / options.risk_decay)));
+  const auto grown_cost = static_cast<std::uint32_t>(std::lround(10.0 * options.grown_cost));
+  for (std::size_t i = 0; i < costs.values.size(); ++i) {
+    if (map.cells()[i] == CellState::kOccupied) costs.values[i] = kUnreachable;
+    else if (grown.values[i]) costs.values[i] = grown_cost;
+    else costs.values[i] = by_distance[std::min(distance.values[i], 2 * n)];
+  }
+  return costs;
+}
+
+Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vector2i& goal) {
+  const int n = costs.size;
+  Grid<std::uint32_t> potential = MakeGrid<std::uint32_t>(n, kUnreachable);
+  if (!Inside(n, goal) || costs.at(goal) == kUnreachable) return potential;
+  std::uint32_t max_cost = 1;
+  for (std::uint32_t c : costs.values)
+    if (c != kUnreachable) max_cost = std::max(max_cost, c);
+  // Dial's bucket queue: every step costs at most max_cost, so max_cost + 1 circular buckets
+  // hold all cells waiting, and each cell is settled once.
+  std::vector<std::vector<int>> buckets(max_cost + 1);
+  potential.at(goal) = 0;
+  buckets[0].push_back(goal.y() * n + goal.x());
+  std::size_t waiting = 1;
+  for (std::uint32_t d = 0; waiting > 0; ++d) {
+    std::vector<int>& bucket = buckets[d % buckets.size()];
+    while (!bucket.empty()) {
+      const int index = bucket.back();
+      bucket.pop_back();
+      --waiting;
+      if (potential.values[index] != d) continue;  // settled earlier at a lower value
+      const Eigen::Vector2i cell(index % n, index / n);
+      for (const Eigen::Vector2i& step : kSteps) {
+        const Eigen::Vector2i next = cell + step;
+        if (!Inside(n, next) || costs.at(next) == kUnreachable) continue;
+        const std::uint32_t value = d + costs.at(next);
+        if (value >= potential.at(next)) continue;
+        potential.at(next) = value;
+        buckets[value % buckets.size()].push_back(next.y() * n + next.x());
+        ++waiting;
+      }
+    }
+  }
+  return potential;
+}
+
+std::vector<Eigen::Vector2i> SteepestDescent(const Grid<std::uint32_t>& potential,
+                                             const Eigen::Vector2i& start) {
+  const int n = potential.size;
+  std::vector<Eigen::Vector2i> path;
+  if (!Inside(n, start) || potential.at(start) == kUnreachable) return path;
+  Eigen::Vector2i cell = start;
+  path.push_back(cell);
+  // Each move lowers the potential, so the walk ends at the goal within the cell count.
+  while (potential.at(cell) != 0) {
+    Eigen::Vector2i best = cell;
+    for (const Eigen::Vector2i& step : kSteps) {
+      const Eigen::Vector2i next = cell + step;
+      if (Inside(n, next) && potential.at(next) < potential.at(best)) best = next;
+    }
+    if (best == cell) return {};  // a local minimum cannot happen in a wavefront; be safe
+    cell = best;
+    path.push_back(cell);
+  }
+  return path;
+}
+
+Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal,
+              const PlannerOptions& options) {
+  const int radius = static_cast<int>(std::ceil(options.robot_radius / map.resolution() - 1e-9));
+  const Grid<std::uint8_t> grown = GrowObstacles(map, radius);
+  const Grid<std::uint32_t> costs = StepCosts(map, grown, ManhattanDistance(grown), options);
+  Plan plan;
+  plan.potential = Wavefront(costs, goal);
+  plan.cells = SteepestDescent(plan.potential, start);
+  return plan;
+}
+
+}  // namespace sounds_good_explorer

@@ -1,0 +1,123 @@
+#include "sounds_good_explorer/frontiers.h"
+#include "sounds_good_explorer/local_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace sounds_good_explorer {
+namespace {
+
+// 11 x 11 cells of 1 m: easy to count by hand. The map is centred on the origin, so cell
+// (5, 5) holds [0, 1) x [0, 1) once recentred on (0.5, 0.5).
+LocalMap SmallMap(double expiry = 10.0) {
+  LocalMap map(LocalMapOptions{11, 1.0, expiry});
+  map.Recentre({0.5, 0.5});
+  return map;
+}
+
+TEST(LocalMap, BeamMarksFreeCellsAndTheCellItEndsIn) {
+  LocalMap map = SmallMap();
+  // From the centre of cell (5, 5) east: 3.2 m hits something in cell (8, 5).
+  map.AddRange({0.5, 0.5, 0.0}, 0.0, 3.2, 4.0, 1.0);
+  EXPECT_EQ(map.at({5, 5}), CellState::kFree);
+  EXPECT_EQ(map.at({6, 5}), CellState::kFree);
+  EXPECT_EQ(map.at({7, 5}), CellState::kFree);
+  EXPECT_EQ(map.at({8, 5}), CellState::kOccupied);
+  EXPECT_EQ(map.at({9, 5}), CellState::kUnknown);
+  EXPECT_EQ(map.at({5, 6}), CellState::kUnknown);
+  EXPECT_EQ(map.at({4, 5}), CellState::kUnknown);
+}
+
+TEST(LocalMap, NothingInReachMarksTheWholeBeamFree) {
+  LocalMap map = SmallMap();
+  const double inf = std::numeric_limits<double>::infinity();
+  // North, rotated robot: bearing -pi/2 from a robot facing pi.
+  map.AddRange({0.5, 0.5, M_PI}, -M_PI / 2, inf, 3.0, 1.0);
+  for (int y = 5; y <= 8; ++y) EXPECT_EQ(map.at({5, y}), CellState::kFree) << y;
+  EXPECT_EQ(map.at({5, 9}), CellState::kUnknown);
+  map.AddRange({0.5, 0.5, 0.0}, M_PI, std::nan(""), 2.0, 1.0);
+  EXPECT_EQ(map.at({3, 5}), CellState::kFree);
+  EXPECT_EQ(map.at({2, 5}), CellState::kUnknown);
+}
+
+TEST(LocalMap, CellsExpireBackToUnknown) {
+  LocalMap map = SmallMap(10.0);
+  map.Set({1, 1}, CellState::kOccupied, 1.0);
+  map.Set({2, 2}, CellState::kFree, 6.0);
+  map.Expire(11.0);
+  EXPECT_EQ(map.at({1, 1}), CellState::kOccupied);  // exactly the expiry: still known
+  map.Expire(11.5);
+  EXPECT_EQ(map.at({1, 1}), CellState::kUnknown);
+  EXPECT_EQ(map.at({2, 2}), CellState::kFree);
+  map.Expire(16.5);
+  EXPECT_EQ(map.at({2, 2}), CellState::kUnknown);
+}
+
+TEST(LocalMap, RecentringKeepsCellsWhereTheyAreInOdomAndDropsThoseThatFallOff) {
+  LocalMap map = SmallMap();
+  map.Set({0, 5}, CellState::kOccupied, 1.0);  // odom [-5, -4) x [0, 1)
+  map.Set({7, 6}, CellState::kFree, 1.0);      // odom [2, 3) x [1, 2)
+  const Eigen::Vector2d occupied = map.CentreOf({0, 5}), free = map.CentreOf({7, 6});
+  map.Recentre({2.4, 0.9});  // two cells east
+  EXPECT_EQ(map.centre_cell(), map.CellOf({2.4, 0.9}));
+  EXPECT_EQ(map.at(map.CellOf(free)), CellState::kFree);
+  EXPECT_EQ(map.CellOf(free), Eigen::Vector2i(5, 6));
+  EXPECT_FALSE(map.Inside(map.CellOf(occupied)));  // fell off the west edge
+  map.Recentre({0.5, 0.5});  // back: the lost cell does not come back
+  EXPECT_EQ(map.at({0, 5}), CellState::kUnknown);
+  EXPECT_EQ(map.at({7, 6}), CellState::kFree);
+}
+
+TEST(LocalMap, RejectsImpossibleOptions) {
+  EXPECT_THROW(LocalMap(LocalMapOptions{10, 0.15, 20.0}), std::invalid_argument);
+  EXPECT_THROW(LocalMap(LocalMapOptions{11, 0.0, 20.0}), std::invalid_argument);
+  EXPECT_THROW(LocalMap(LocalMapOptions{11, 0.15, -1.0}), std::invalid_argument);
+}
+
+bool Contains(const std::vector<Eigen::Vector2i>& cells, const Eigen::Vector2i& c) {
+  return std::find(cells.begin(), cells.end(), c) != cells.end();
+}
+
+TEST(Frontiers, FreeCellsNextToUnknownAndOnTheBorder) {
+  LocalMap map(LocalMapOptions{5, 1.0, 100.0});
+  map.Recentre({0.5, 0.5});
+  // Row y = 2 free from x = 0 to 3; (1, 1) free, (1, 3) occupied; everything else unknown.
+  // Then fill the 3 x 3 block around (2, 2)... by hand:
+  //   y=4  ? ? ? ? ?
+  //   y=3  ? # F F ?
+  //   y=2  F F F F ?
+  //   y=1  ? F F F ?
+  //   y=0  ? ? ? ? ?
+  for (int x = 0; x < 4; ++x) map.Set({x, 2}, CellState::kFree, 0.0);
+  for (int x = 1; x < 4; ++x) map.Set({x, 1}, CellState::kFree, 0.0);
+  map.Set({1, 3}, CellState::kOccupied, 0.0);
+  map.Set({2, 3}, CellState::kFree, 0.0);
+  map.Set({3, 3}, CellState::kFree, 0.0);
+  const std::vector<Eigen::Vector2i> f = FindFrontiers(map);
+  // Every free cell here touches unknown except (2, 2): its 8 neighbours are all known.
+  EXPECT_FALSE(Contains(f, {2, 2}));
+  for (const Eigen::Vector2i& c : {Eigen::Vector2i(0, 2), Eigen::Vector2i(1, 2),
+                                  Eigen::Vector2i(3, 2), Eigen::Vector2i(1, 1),
+                                  Eigen::Vector2i(2, 1), Eigen::Vector2i(3, 1),
+                                  Eigen::Vector2i(2, 3), Eigen::Vector2i(3, 3)})
+    EXPECT_TRUE(Contains(f, c)) << c.transpose();
+  EXPECT_FALSE(Contains(f, {1, 3}));  // occupied cells are never frontiers
+  EXPECT_EQ(f.size(), 8u);
+}
+
+TEST(Frontiers, BorderCellsAreFrontiersEvenWhenAllNeighboursInsideAreKnown) {
+  LocalMap map(LocalMapOptions{3, 1.0, 100.0});
+  map.Recentre({0.5, 0.5});
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) map.Set({x, y}, CellState::kFree, 0.0);
+  const std::vector<Eigen::Vector2i> f = FindFrontiers(map);
+  EXPECT_EQ(f.size(), 8u);  // all but the centre
+  EXPECT_FALSE(Contains(f, {1, 1}));
+}
+
+}  // namespace
+}  // namespace sounds_good_explorer
