@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
+
+#include <yaml-cpp/yaml.h>
 
 #include "grid/input_error.h"
 #include "grid/map_file.h"
@@ -177,6 +180,77 @@ LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_overri
   }
   ValidateWorld(path, config, map);
   return {config, std::move(map)};
+}
+
+}  // namespace world_sim
+
+namespace world_sim {
+namespace {
+
+void EmitPose(YAML::Emitter& out, const grid::Pose2D& p) {
+  out << YAML::Flow << YAML::BeginSeq << p.x << p.y << p.yaw << YAML::EndSeq;
+}
+
+void EmitModel(YAML::Emitter& out, const RobotModel& m) {
+  out << YAML::Key << "robot_model" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "radius" << YAML::Value << m.radius;
+  out << YAML::Key << "max_speed" << YAML::Value << m.max_speed;
+  out << YAML::Key << "max_turn_rate" << YAML::Value << m.max_turn_rate;
+  out << YAML::Key << "ir_count" << YAML::Value << m.ir_count;
+  out << YAML::Key << "ir_range" << YAML::Value << m.ir_range;
+  out << YAML::Key << "camera_range" << YAML::Value << m.camera_range;
+  out << YAML::Key << "camera_fov" << YAML::Value << m.camera_fov;
+  out << YAML::Key << "odometry" << YAML::Value << YAML::Flow << YAML::BeginMap
+      << YAML::Key << "linear" << YAML::Value << m.odometry.linear
+      << YAML::Key << "angular" << YAML::Value << m.odometry.angular
+      << YAML::Key << "heading_bias" << YAML::Value << m.odometry.heading_bias << YAML::EndMap;
+  const BatteryModel& b = m.battery;
+  out << YAML::Key << "battery" << YAML::Value << YAML::Flow << YAML::BeginMap
+      << YAML::Key << "idle_drain" << YAML::Value << b.idle_drain
+      << YAML::Key << "motion_drain" << YAML::Value << b.motion_drain
+      << YAML::Key << "charge_rate" << YAML::Value << b.charge_rate
+      << YAML::Key << "empty_voltage" << YAML::Value << b.empty_voltage
+      << YAML::Key << "full_voltage" << YAML::Value << b.full_voltage
+      << YAML::Key << "capacity_ah" << YAML::Value << b.capacity_ah << YAML::EndMap;
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+void SaveWorldFile(const std::string& path, const WorldConfig& config) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);  // enough digits to read back every double exactly
+  out << YAML::BeginMap;
+  out << YAML::Key << "map" << YAML::Value << config.map_file;
+  out << YAML::Key << "seed" << YAML::Value << config.seed;
+  EmitModel(out, config.model);
+  out << YAML::Key << "robots" << YAML::Value << YAML::BeginSeq;
+  for (const RobotSpec& r : config.robots) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << r.name
+        << YAML::Key << "pose" << YAML::Value;
+    EmitPose(out, r.start);
+    out << YAML::Key << "microphone" << YAML::Value << MicrophoneName(r.microphone)
+        << YAML::Key << "battery" << YAML::Value << r.battery << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "markers" << YAML::Value << YAML::BeginSeq;
+  for (const MarkerSpec& m : config.markers)
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "id" << YAML::Value << m.id
+        << YAML::Key << "position" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.x << m.y
+        << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+  out << YAML::Key << "chargers" << YAML::Value << YAML::BeginSeq;
+  for (const ChargerSpec& c : config.chargers) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "pose" << YAML::Value;
+    EmitPose(out, c.pose);
+    out << YAML::Key << "radius" << YAML::Value << c.radius;
+    if (c.marker) out << YAML::Key << "marker" << YAML::Value << *c.marker;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  std::ofstream file(path);
+  file << out.c_str() << "\n";
+  if (!file) throw std::runtime_error(path + ": cannot write the world file");
 }
 
 }  // namespace world_sim

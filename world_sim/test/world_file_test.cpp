@@ -72,6 +72,42 @@ TEST_F(WorldFileTest, LoadsEveryField) {
   EXPECT_EQ(w.map.width(), 120);
 }
 
+TEST_F(WorldFileTest, SavedWorldLoadsBackTheSame) {
+  const LoadedWorld w = LoadWorldFile(Write(
+      "seed: 7\n"
+      "robot_model: {radius: 0.1, ir_range: 1.25, odometry: {heading_bias: 0.01}}\n"
+      "robots:\n"
+      "  - {name: a, pose: [1.0, 1.0, 0.5], microphone: bidirectional, battery: 0.5}\n"
+      "  - {name: b, pose: [4.5, 1.0, -3.0], microphone: none}\n"
+      "markers: [{id: 3, position: [1.0, 3.0]}, {id: 70000, position: [2.25, 3.5]}]\n"
+      "chargers: [{pose: [5.0, 3.0, 0.0], radius: 0.3, marker: 9}, {pose: [4.0, 3.0, 1.0]}]\n"));
+  const std::string saved = (dir_ / "saved.yaml").string();
+  SaveWorldFile(saved, w.config);
+  const LoadedWorld back = LoadWorldFile(saved);
+  const WorldConfig &a = w.config, &b = back.config;
+  EXPECT_EQ(b.map_file, a.map_file);
+  EXPECT_EQ(b.seed, 7u);
+  EXPECT_DOUBLE_EQ(b.model.radius, 0.1);
+  EXPECT_DOUBLE_EQ(b.model.ir_range, 1.25);
+  EXPECT_DOUBLE_EQ(b.model.odometry.heading_bias, 0.01);
+  EXPECT_DOUBLE_EQ(b.model.battery.motion_drain, a.model.battery.motion_drain);
+  ASSERT_EQ(b.robots.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(b.robots[k].name, a.robots[k].name);
+    EXPECT_DOUBLE_EQ(b.robots[k].start.x, a.robots[k].start.x);
+    EXPECT_DOUBLE_EQ(b.robots[k].start.yaw, a.robots[k].start.yaw);
+    EXPECT_EQ(b.robots[k].microphone, a.robots[k].microphone);
+    EXPECT_DOUBLE_EQ(b.robots[k].battery, a.robots[k].battery);
+  }
+  ASSERT_EQ(b.markers.size(), 2u);
+  EXPECT_EQ(b.markers[1].id, 70000u);
+  EXPECT_DOUBLE_EQ(b.markers[1].x, 2.25);
+  ASSERT_EQ(b.chargers.size(), 2u);
+  EXPECT_EQ(*b.chargers[0].marker, 9u);
+  EXPECT_FALSE(b.chargers[1].marker);
+  EXPECT_THROW(SaveWorldFile((dir_ / "no_such_dir" / "x.yaml").string(), a), std::runtime_error);
+}
+
 TEST_F(WorldFileTest, ShippedWorldsLoad) {
   for (const char* name : {"office_world.yaml", "test_room_world.yaml"}) {
     const LoadedWorld w = LoadWorldFile(std::string(PROJECT_MAPS_DIR) + "/" + name);

@@ -26,6 +26,11 @@ struct LoadedWorld {
 // grid::InputError naming the file and field otherwise.
 LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_override = "");
 
+// Writes `config` as a world file that LoadWorldFile reads back to the same config (the map
+// path as given, the whole robot model, every robot, marker and charger). Throws
+// std::runtime_error naming the path when it cannot be written.
+void SaveWorldFile(const std::string& path, const WorldConfig& config);
+
 // Checks a config against its map; throws grid::InputError (`file` names the source).
 void ValidateWorld(const std::string& file, const WorldConfig& config, const grid::OccupancyMap& map);
 
