@@ -96,18 +96,23 @@ Grid<std::uint32_t> StepCosts(const LocalMap& map, const Grid<std::uint8_t>& gro
   return costs;
 }
 
-Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vector2i& goal) {
+Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vector2i& goal,
+                              const std::optional<Eigen::Vector2i>& stop_at) {
   const int n = costs.size;
   Grid<std::uint32_t> potential = MakeGrid<std::uint32_t>(n, kUnreachable);
   if (!Inside(n, goal) || costs.at(goal) == kUnreachable) return potential;
   std::uint32_t max_cost = 1;
   for (std::uint32_t c : costs.values)
     if (c != kUnreachable) max_cost = std::max(max_cost, c);
+  const int stop = stop_at && Inside(n, *stop_at) ? stop_at->y() * n + stop_at->x() : -1;
   // Dial's bucket queue: every step costs at most max_cost, so max_cost + 1 circular buckets
   // hold all cells waiting, and each cell is settled once.
   std::vector<std::vector<int>> buckets(max_cost + 1);
-  potential.at(goal) = 0;
-  buckets[0].push_back(goal.y() * n + goal.x());
+  std::vector<std::uint32_t>& p = potential.values;
+  const std::vector<std::uint32_t>& cost = costs.values;
+  const int start = goal.y() * n + goal.x();
+  p[start] = 0;
+  buckets[0].push_back(start);
   std::size_t waiting = 1;
   for (std::uint32_t d = 0; waiting > 0; ++d) {
     std::vector<int>& bucket = buckets[d % buckets.size()];
@@ -115,15 +120,17 @@ Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vec
       const int index = bucket.back();
       bucket.pop_back();
       --waiting;
-      if (potential.values[index] != d) continue;  // settled earlier at a lower value
-      const Eigen::Vector2i cell(index % n, index / n);
-      for (const Eigen::Vector2i& step : kSteps) {
-        const Eigen::Vector2i next = cell + step;
-        if (!Inside(n, next) || costs.at(next) == kUnreachable) continue;
-        const std::uint32_t value = d + costs.at(next);
-        if (value >= potential.at(next)) continue;
-        potential.at(next) = value;
-        buckets[value % buckets.size()].push_back(next.y() * n + next.x());
+      if (p[index] != d) continue;  // settled earlier at a lower value
+      if (index == stop) return potential;
+      const int x = index % n, y = index / n;
+      const int neighbours[4] = {x + 1 < n ? index + 1 : -1, x > 0 ? index - 1 : -1,
+                                 y + 1 < n ? index + n : -1, y > 0 ? index - n : -1};
+      for (int next : neighbours) {
+        if (next < 0 || cost[next] == kUnreachable) continue;
+        const std::uint32_t value = d + cost[next];
+        if (value >= p[next]) continue;
+        p[next] = value;
+        buckets[value % buckets.size()].push_back(next);
         ++waiting;
       }
     }
@@ -158,7 +165,7 @@ Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Ve
   const Grid<std::uint8_t> grown = GrowObstacles(map, radius);
   const Grid<std::uint32_t> costs = StepCosts(map, grown, ManhattanDistance(grown), options);
   Plan plan;
-  plan.potential = Wavefront(costs, goal);
+  plan.potential = Wavefront(costs, goal, start);
   plan.cells = SteepestDescent(plan.potential, start);
   return plan;
 }

@@ -12,7 +12,7 @@ namespace sounds_good_explorer {
 enum class CellState : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
 
 struct LocalMapOptions {
-  int size = 61;             // cells on a side (odd, so one cell is the centre)
+  int size = 41;             // cells on a side (odd, so one cell is the centre): 6.15 m
   double resolution = 0.15;  // m per cell: the thesis's robot size
   double expiry = 20.0;      // s after which a cell not seen again reverts to unknown
 };

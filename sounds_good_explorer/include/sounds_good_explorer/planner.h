@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -48,8 +49,11 @@ Grid<std::uint32_t> StepCosts(const LocalMap& map, const Grid<std::uint8_t>& gro
                               const Grid<int>& distance, const PlannerOptions& options);
 // Wavefront potential: least total cost from `goal` to each cell over 4-connected steps
 // (the goal itself 0; kUnreachable where no path). A bucket queue on the integer costs keeps it
-// linear in the cells, as the thesis's FIFO flood fill.
-Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vector2i& goal);
+// linear in the cells, as the thesis's FIFO flood fill. With `stop_at`, the fill stops once
+// that cell is settled: cells costlier than it may keep unfinished (too high) values, which
+// steepest descent from it never looks at.
+Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vector2i& goal,
+                              const std::optional<Eigen::Vector2i>& stop_at = std::nullopt);
 // From `start`, always into the lowest-valued 4-neighbour until the goal (potential 0).
 // Empty when `start` cannot reach the goal.
 std::vector<Eigen::Vector2i> SteepestDescent(const Grid<std::uint32_t>& potential,

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,9 @@ namespace multirobot_audio::tools {
 
 class ToolArgs {
  public:
-  ToolArgs(const std::string& program, const std::string& usage, int argc, char** argv)
+  // `switches` are flags that take no value (e.g. --quick); every other flag takes one.
+  ToolArgs(const std::string& program, const std::string& usage, int argc, char** argv,
+           const std::set<std::string>& switches = {})
       : program_(program), usage_(usage) {
     for (int i = 1; i < argc; ++i) {
       const std::string flag = argv[i];
@@ -23,6 +26,10 @@ class ToolArgs {
       }
       if (flag.rfind("--", 0) != 0 || flag == "--") {
         positional_.push_back(flag);
+        continue;
+      }
+      if (switches.count(flag)) {
+        values_[flag] = "";
         continue;
       }
       if (i + 1 >= argc) Fail(flag + ": expected --flag VALUE");
@@ -39,6 +46,12 @@ class ToolArgs {
     const auto it = values_.find(flag);
     used_[flag] = true;
     return it == values_.end() ? fallback : it->second;
+  }
+
+  // Whether a switch was given.
+  bool Switch(const std::string& flag) const {
+    used_[flag] = true;
+    return values_.count(flag) > 0;
   }
 
   std::string Required(const std::string& flag) const {

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "audio_propagation/propagation_model.h"
+#include "grid/occupancy_map.h"
+#include "sounds_good_explorer/team_trial.h"
+#include "world_sim/world_config.h"
+
+namespace sounds_good_explorer {
+
+struct ExperimentOptions {
+  std::vector<ListenMode> modes{ListenMode::kNone, ListenMode::kBidirectional, ListenMode::kOmni};
+  int trials = 20;          // per configuration and mode
+  TrialOptions trial;       // mode and seed are set per trial
+  int threads = 0;          // 0: one per core
+  std::uint32_t seed = 1;
+};
+
+struct TrialRow {
+  int config = 0;  // 1-based, as the thesis numbers them
+  ListenMode mode = ListenMode::kNone;
+  int trial = 0;   // 1-based
+  std::uint32_t seed = 0;
+  TrialResult result;
+};
+
+// The seed of one trial: the same for every mode, so the modes meet the same odometry noise and
+// controller draws where their runs agree.
+std::uint32_t TrialSeed(std::uint32_t base, int config, int trial);
+
+// Runs every configuration x mode x trial, spread over `threads` worker threads (each trial is
+// independent and deterministic, so the rows do not depend on the thread count). `progress`
+// is called after each trial with (done, total), from one thread at a time. Rows come back in
+// (config, mode, trial) order.
+std::vector<TrialRow> RunExperiment(const grid::OccupancyMap& map,
+                                    const std::vector<world_sim::WorldConfig>& configs,
+                                    const audio_propagation::PropagationModel& model,
+                                    const ExperimentOptions& options,
+                                    const std::function<void(int, int)>& progress = {});
+
+}  // namespace sounds_good_explorer

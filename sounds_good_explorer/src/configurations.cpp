@@ -1,0 +1,135 @@
+#include "sounds_good_explorer/configurations.h"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+#include "grid/input_error.h"
+#include "world_sim/world_file.h"
+
+namespace sounds_good_explorer {
+
+namespace {
+
+std::string Where(double x, double y) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "(" << x << ", " << y << ")";
+  return s.str();
+}
+
+}  // namespace
+
+Reachability::Reachability(const grid::OccupancyMap& map, double radius) : map_(map) {
+  const int w = map.width(), h = map.height();
+  cv::Mat free(h, w, CV_8UC1);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) free.at<std::uint8_t>(j, i) = map.Blocks(i, j) ? 0 : 255;
+  // Euclidean distance (cells) from each free cell to the nearest blocked one.
+  cv::Mat distance;
+  cv::distanceTransform(free, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::Mat room = distance * map.resolution() > radius;
+  cv::Mat labels;
+  const int count = cv::connectedComponents(room, labels, 8, CV_32S);
+  labels_.assign(static_cast<std::size_t>(w) * h, 0);
+  cells_.resize(count);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const int label = labels.at<int>(j, i);
+      labels_[static_cast<std::size_t>(j) * w + i] = label;
+      if (label > 0) cells_[label].push_back(j * w + i);
+    }
+  }
+  for (int r = 1; r < count; ++r)
+    if (largest_ == 0 || cells_[r].size() > cells_[largest_].size()) largest_ = r;
+}
+
+int Reachability::Region(const Eigen::Vector2d& point) const {
+  const Eigen::Vector2i c = map_.WorldToCell(point);
+  if (!map_.InBounds(c.x(), c.y())) return 0;
+  return labels_[static_cast<std::size_t>(c.y()) * map_.width() + c.x()];
+}
+
+Eigen::Vector2d Reachability::Sample(int region, std::mt19937& rng) const {
+  const std::vector<int>& cells = cells_.at(region);
+  if (cells.empty()) throw std::invalid_argument("no room for a robot anywhere on the map");
+  const int index = cells[std::uniform_int_distribution<std::size_t>(0, cells.size() - 1)(rng)];
+  std::uniform_real_distribution<double> jitter(0.1, 0.9);
+  return map_.CellCoordsToWorld({index % map_.width() + jitter(rng), index / map_.width() + jitter(rng)});
+}
+
+world_sim::WorldConfig RandomConfiguration(const grid::OccupancyMap& map,
+                                           const std::string& map_file,
+                                           const world_sim::RobotModel& model,
+                                           const ConfigurationOptions& options, std::mt19937& rng) {
+  if (options.robots < 1)
+    throw std::invalid_argument("a configuration needs at least 1 robot, got " +
+                                std::to_string(options.robots));
+  const Reachability room(map, model.radius + options.margin);
+  const int region = room.largest();
+  world_sim::WorldConfig config;
+  config.map_file = map_file;
+  config.model = model;
+  std::uniform_real_distribution<double> yaw(-M_PI, M_PI);
+  // Rejection sampling: the region is most of the map, so a few draws suffice; the bound
+  // turns an impossible request (too many robots for the room) into an error.
+  const int max_draws = 100000;
+  int draws = 0;
+  auto draw = [&]() {
+    if (++draws > max_draws)
+      throw std::invalid_argument("cannot place " + std::to_string(options.robots) +
+                                  " robots and two markers on " + map_file);
+    return room.Sample(region, rng);
+  };
+  while (static_cast<int>(config.robots.size()) < options.robots) {
+    const Eigen::Vector2d p = draw();
+    const bool overlaps = std::any_of(config.robots.begin(), config.robots.end(), [&](const auto& r) {
+      return (r.start.position() - p).norm() < 2.0 * model.radius + options.margin;
+    });
+    if (overlaps) continue;
+    world_sim::RobotSpec r;
+    r.name = "robot_" + std::to_string(config.robots.size());
+    r.start = {p.x(), p.y(), yaw(rng)};
+    config.robots.push_back(r);
+  }
+  const Eigen::Vector2d source = draw();
+  Eigen::Vector2d sink = draw();
+  while ((sink - source).norm() < options.min_marker_separation) sink = draw();
+  config.markers = {{options.source, source.x(), source.y()}, {options.sink, sink.x(), sink.y()}};
+  return config;
+}
+
+void ValidateConfiguration(const std::string& file, const world_sim::WorldConfig& config,
+                           const grid::OccupancyMap& map, std::uint32_t source, std::uint32_t sink) {
+  world_sim::ValidateWorld(file, config, map);
+  if (config.robots.empty()) throw grid::InputError(file, "robots", "expected at least one robot");
+  const Reachability room(map, config.model.radius);
+  const world_sim::RobotSpec& first = config.robots.front();
+  const int region = room.Region(first.start.position());
+  if (region == 0)
+    throw grid::InputError(file, "robots[0].pose",
+                           "robot '" + first.name + "' at " + Where(first.start.x, first.start.y) +
+                               " has no room to move (a wall is closer than its radius)");
+  for (std::size_t k = 1; k < config.robots.size(); ++k) {
+    const world_sim::RobotSpec& r = config.robots[k];
+    if (room.Region(r.start.position()) != region)
+      throw grid::InputError(file, "robots[" + std::to_string(k) + "].pose",
+                             "robot '" + r.name + "' at " + Where(r.start.x, r.start.y) +
+                                 " cannot reach robot '" + first.name + "' (walled off or too near a wall)");
+  }
+  for (std::uint32_t id : {source, sink}) {
+    const auto it = std::find_if(config.markers.begin(), config.markers.end(),
+                                 [id](const world_sim::MarkerSpec& m) { return m.id == id; });
+    if (it == config.markers.end())
+      throw grid::InputError(file, "markers", "expected a marker with id " + std::to_string(id) +
+                                                  (id == source ? " (the source)" : " (the sink)"));
+    if (room.Region({it->x, it->y}) != region)
+      throw grid::InputError(file, "markers[" + std::to_string(it - config.markers.begin()) + "].position",
+                             "marker " + std::to_string(id) + " at " + Where(it->x, it->y) +
+                                 " cannot be reached by the robots (walled off or too near a wall)");
+  }
+}
+
+}  // namespace sounds_good_explorer

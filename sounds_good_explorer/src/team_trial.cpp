@@ -1,0 +1,115 @@
+#include "sounds_good_explorer/team_trial.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "world_sim/ir_rangers.h"
+
+namespace sounds_good_explorer {
+
+namespace {
+
+world_sim::Microphone MicrophoneFor(ListenMode mode) {
+  switch (mode) {
+    case ListenMode::kOmni: return world_sim::Microphone::kOmni;
+    case ListenMode::kBidirectional: return world_sim::Microphone::kBidirectional;
+    case ListenMode::kNone: return world_sim::Microphone::kNone;
+  }
+  return world_sim::Microphone::kNone;
+}
+
+}  // namespace
+
+void ValidateOptions(const TrialOptions& o) {
+  if (o.jobs < 1)
+    throw std::invalid_argument("jobs must be at least 1, got " + std::to_string(o.jobs));
+  if (!(o.time_cap > 0.0))
+    throw std::invalid_argument("time cap must be > 0 s, got " + std::to_string(o.time_cap));
+  if (!(o.control_period > 0.0))
+    throw std::invalid_argument("control period must be > 0 s, got " +
+                                std::to_string(o.control_period));
+  ValidateOptions(o.explorer);
+}
+
+TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldConfig& config,
+                         const audio_propagation::PropagationModel& model,
+                         const TrialOptions& options) {
+  ValidateOptions(options);
+  if (config.robots.empty()) throw std::invalid_argument("a trial needs at least one robot");
+  world_sim::WorldConfig team = config;
+  team.seed = options.seed;
+  for (world_sim::RobotSpec& r : team.robots) r.microphone = MicrophoneFor(options.mode);
+  world_sim::World world(map, team, options.world);
+
+  const std::size_t n = team.robots.size();
+  audio_propagation::ChannelOptions channel_options = options.channel;
+  channel_options.seed = options.seed;
+  audio_propagation::AudioChannel channel(
+      model, std::vector<world_sim::Microphone>(n, MicrophoneFor(options.mode)), channel_options);
+
+  std::vector<Explorer> robots;
+  robots.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    ExplorerOptions o = options.explorer;
+    o.mode = options.mode;
+    o.seed = options.seed * 7919u + static_cast<std::uint32_t>(k) + 1u;
+    robots.emplace_back(o);
+  }
+  const world_sim::RobotModel& body = team.model;
+  std::vector<double> bearings;
+  for (int k = 0; k < body.ir_count; ++k) bearings.push_back(world_sim::IrAngle(body, k));
+  const double reach = body.radius + body.ir_range;
+
+  std::vector<std::uint64_t> odom_seen(n, 0), scan_seen(n, 0), camera_seen(n, 0);
+  const std::uint64_t control_every =
+      world_sim::StepsPerPeriod(options.control_period, options.world.step);
+  TrialResult result;
+  std::vector<RangeReading> readings(bearings.size());
+  std::vector<MarkerSighting> sightings;
+  while (static_cast<int>(result.jobs.size()) < options.jobs && world.elapsed() < options.time_cap) {
+    world.Step();
+    if (world.steps() % control_every != 0) continue;
+    const double now = world.time();
+    const auto& states = world.robots();
+    for (std::size_t k = 0; k < n; ++k) channel.SetPose(k, states[k].pose);
+    const audio_propagation::AudioChannel::Events events = channel.AdvanceTo(now);
+    result.packets_sent += events.started.size();
+    for (const audio_propagation::Reception& rx : events.received) {
+      if (rx.kind != audio_propagation::Reception::Kind::kPacket) continue;
+      ++result.packets_heard;
+      robots[rx.receiver].OnHeard(rx.data, rx.level_db, rx.direction, now);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const world_sim::RobotState& s = states[k];
+      Explorer& robot = robots[k];
+      if (s.odom_step != odom_seen[k]) {
+        odom_seen[k] = s.odom_step;
+        robot.OnOdometry(s.odom, now);
+      }
+      if (s.scan_step != scan_seen[k]) {
+        scan_seen[k] = s.scan_step;
+        for (std::size_t b = 0; b < bearings.size(); ++b) readings[b] = {bearings[b], s.scan[b]};
+        robot.OnRanges(readings, reach, now);
+      }
+      if (s.fiducials_step != camera_seen[k]) {
+        camera_seen[k] = s.fiducials_step;
+        sightings.clear();
+        for (const world_sim::FiducialSighting& f : s.fiducials)
+          sightings.push_back({f.id, f.range, f.bearing});
+        robot.OnSightings(sightings, now);
+      }
+      const ExplorerOutput out = robot.Update(now);
+      world.SetCommand(k, out.v, out.w);
+      for (const auto& packet : out.packets)
+        if (!channel.Send(k, {packet.begin(), packet.end()})) ++result.queue_overflows;
+      if (out.job) result.jobs.push_back({k, out.job->marker, world.elapsed()});
+    }
+  }
+  result.censored = static_cast<int>(result.jobs.size()) < options.jobs;
+  result.time = result.censored ? options.time_cap : result.jobs.back().time;
+  result.collisions = world.TotalCollisions();
+  for (const Explorer& r : robots) result.stuck += r.stuck_count();
+  return result;
+}
+
+}  // namespace sounds_good_explorer
