@@ -137,6 +137,16 @@ std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenM
       t << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": significantly faster in "
         << faster << "/" << configs << ", significantly slower in " << slower << "/" << configs
         << ", not different in " << configs - faster - slower << "/" << configs << '\n';
+      std::vector<double> all_a, all_b;
+      for (int c = 1; c <= configs; ++c) {
+        const std::vector<double> ta = Times(rows, c, modes[a]), tb = Times(rows, c, modes[b]);
+        all_a.insert(all_a.end(), ta.begin(), ta.end());
+        all_b.insert(all_b.end(), tb.begin(), tb.end());
+      }
+      const TTest pooled = StudentTTest(all_a, all_b);
+      t << "pooled " << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": gain "
+        << Format("%.1f", 100.0 * pooled.gain) << " % t " << Format("%.2f", pooled.t) << " p "
+        << Format("%.6f", pooled.p) << '\n';
     }
   return t.str();
 }

@@ -16,6 +16,9 @@ void ValidateOptions(const LocalMapOptions& o) {
                                 std::to_string(o.resolution));
   if (!(o.expiry > 0.0))
     throw std::invalid_argument("local map expiry must be > 0 s, got " + std::to_string(o.expiry));
+  if (!(o.expiry_step >= 0.0 && o.expiry_step <= o.expiry))
+    throw std::invalid_argument("local map expiry_step must be within 0..expiry s, got " +
+                                std::to_string(o.expiry_step));
 }
 
 LocalMap::LocalMap(const LocalMapOptions& options)
@@ -96,6 +99,8 @@ void LocalMap::MarkFree(const Eigen::Vector2d& centre, double radius, double tim
 }
 
 void LocalMap::Expire(double time) {
+  if (time - swept_ < options_.expiry_step) return;
+  swept_ = time;
   const float oldest = static_cast<float>(time - options_.expiry);
   for (std::size_t i = 0; i < cells_.size(); ++i)
     if (cells_[i] != CellState::kUnknown && seen_[i] < oldest) cells_[i] = CellState::kUnknown;

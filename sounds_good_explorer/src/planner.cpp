@@ -70,11 +70,10 @@ Grid<int> ManhattanDistance(const Grid<std::uint8_t>& obstacles) {
   cv::Mat free(n, n, CV_8UC1);
   for (std::size_t i = 0; i < obstacles.values.size(); ++i)
     free.data[i] = obstacles.values[i] ? 0 : 255;
+  // Whole numbers under the L1 metric: 8-bit output (saturating at 255) needs no rounding.
   cv::Mat dist;
-  cv::distanceTransform(free, dist, cv::DIST_L1, 3, CV_32F);
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x)
-      distance.at({x, y}) = static_cast<int>(std::lround(dist.at<float>(y, x)));
+  cv::distanceTransform(free, dist, cv::DIST_L1, 3, CV_8U);
+  std::copy(dist.datastart, dist.dataend, distance.values.begin());
   return distance;
 }
 

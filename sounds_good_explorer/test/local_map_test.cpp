@@ -14,7 +14,7 @@ namespace {
 // 11 x 11 cells of 1 m: easy to count by hand. The map is centred on the origin, so cell
 // (5, 5) holds [0, 1) x [0, 1) once recentred on (0.5, 0.5).
 LocalMap SmallMap(double expiry = 10.0) {
-  LocalMap map(LocalMapOptions{11, 1.0, expiry});
+  LocalMap map(LocalMapOptions{11, 1.0, expiry, 0.0});  // sweep at every call
   map.Recentre({0.5, 0.5});
   return map;
 }
@@ -55,6 +55,17 @@ TEST(LocalMap, CellsExpireBackToUnknown) {
   EXPECT_EQ(map.at({2, 2}), CellState::kFree);
   map.Expire(16.5);
   EXPECT_EQ(map.at({2, 2}), CellState::kUnknown);
+}
+
+TEST(LocalMap, ExpirySweepsAtMostOncePerStep) {
+  LocalMap map(LocalMapOptions{11, 1.0, 10.0, 1.0});
+  map.Set({1, 1}, CellState::kFree, 1.0);
+  map.Expire(10.8);  // sweeps: nothing old enough yet
+  map.Expire(11.5);  // within a second of the last sweep: skipped
+  EXPECT_EQ(map.at({1, 1}), CellState::kFree);
+  map.Expire(11.8);
+  EXPECT_EQ(map.at({1, 1}), CellState::kUnknown);
+  EXPECT_THROW(LocalMap(LocalMapOptions{11, 1.0, 10.0, 11.0}), std::invalid_argument);
 }
 
 TEST(LocalMap, RecentringKeepsCellsWhereTheyAreInOdomAndDropsThoseThatFallOff) {

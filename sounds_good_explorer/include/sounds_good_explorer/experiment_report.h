@@ -27,8 +27,9 @@ std::string Table31(const std::vector<TrialRow>& rows, const std::vector<ListenM
 // Table 3.2 (gain and two-tailed t-test for every pair of modes on every configuration), Markdown.
 std::string Table32(const std::vector<TrialRow>& rows, const std::vector<ListenMode>& modes,
                     int configs);
-// One line per pair of modes: in how many configurations the second was significantly
-// (p < 0.05) faster, slower, or not different.
+// Per pair of modes: in how many configurations the second was significantly (p < 0.05)
+// faster, slower, or not different; then the same test on all configurations' trials pooled
+// ("pooled B vs A: gain G % t T p P").
 std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenMode>& modes,
                     int configs);
 

@@ -15,6 +15,7 @@ struct LocalMapOptions {
   int size = 41;             // cells on a side (odd, so one cell is the centre): 6.15 m
   double resolution = 0.15;  // m per cell: the thesis's robot size
   double expiry = 20.0;      // s after which a cell not seen again reverts to unknown
+  double expiry_step = 1.0;  // s between sweeps for expired cells
 };
 
 // Throws std::invalid_argument naming the field when an option is impossible.
@@ -37,7 +38,8 @@ class LocalMap {
   void AddRange(const grid::Pose2D& pose, double bearing, double range, double reach, double time);
   // Marks a disc free (the robot's own body).
   void MarkFree(const Eigen::Vector2d& centre, double radius, double time);
-  // Reverts cells last seen more than `expiry` s before `time` to unknown.
+  // Reverts cells last seen more than `expiry` s before `time` to unknown. The sweep over the
+  // cells runs at most once per `expiry_step` s: a cell may outlive its expiry by that much.
   void Expire(double time);
 
   int size() const { return options_.size; }
@@ -65,6 +67,7 @@ class LocalMap {
   bool placed_ = false;
   std::vector<CellState> cells_;
   std::vector<float> seen_;  // s, when each cell was last marked
+  double swept_ = -1e9;      // s, last sweep for expired cells
 };
 
 }  // namespace sounds_good_explorer

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The quick Sounds Good protocol end to end: it runs, writes every output, and the audio modes
+# beat "no audio" over all its trials; then the tool's answers to bad input.
+#   experiment_quick.sh SOUNDS_GOOD_EXPERIMENT MAPS_DIR
+set -uo pipefail
+tool=$1
+maps=$2
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$tool" --quick --out "$out/run" >"$out/stdout" 2>"$out/stderr" || { cat "$out/stderr"; fail "--quick exited $?"; }
+cat "$out/stdout"
+for f in trials.csv jobs.csv table_3_1.md table_3_2.md figure_3_6a.png figure_3_6b.png \
+         configs/config_01.yaml configs/config_03.yaml; do
+  [ -s "$out/run/$f" ] || fail "missing or empty $f"
+done
+[ "$(head -1 "$out/run/trials.csv")" = "config,mode,trial,seed,time_s,censored" ] || fail "trials.csv header"
+rows=$(($(wc -l <"$out/run/trials.csv") - 1))
+[ "$rows" -eq 36 ] || fail "trials.csv has $rows rows, expected 3 configs x 3 modes x 4 trials = 36"
+for png in figure_3_6a.png figure_3_6b.png; do
+  [ "$(head -c 4 "$out/run/$png" | tail -c 3)" = "PNG" ] || fail "$png is not a PNG"
+done
+grep -q '^| #03 |' "$out/run/table_3_1.md" || fail "Table 3.1 lacks configuration #03"
+grep -q '^| none | omni | #03 |' "$out/run/table_3_2.md" || fail "Table 3.2 lacks none vs omni on #03"
+# Both audio modes significantly faster than none over all the quick trials.
+for mode in bidirectional omni; do
+  line=$(grep "^pooled $mode vs none:" "$out/stdout") || fail "no pooled line for $mode"
+  awk -v l="$line" 'BEGIN { n = split(l, w, " "); for (i = 1; i <= n; ++i) { if (w[i] == "gain") g = w[i + 1]; if (w[i] == "p") p = w[i + 1] }
+                     exit !(g > 0 && p < 0.05) }' || fail "$mode not significantly faster than none: $line"
+done
+# A configuration saved by the run replays through --worlds.
+"$tool" --worlds "$out/run/configs/config_02.yaml" --trials 1 --jobs 2 --modes bidirectional \
+  --out "$out/replay" >/dev/null 2>&1 || fail "replaying a saved configuration failed"
+
+# Bad input: a clear message and exit status 1.
+expect_error() {
+  local words=$1
+  shift
+  "$tool" "$@" >"$out/err.out" 2>"$out/err" && fail "$* succeeded"
+  [ $? -eq 1 ] || fail "$* did not exit with 1"
+  grep -q -- "$words" "$out/err" || { cat "$out/err"; fail "$* did not say '$words'"; }
+}
+expect_error "expected none, bidirectional or omni, got 'loud'" --quick --modes loud --out "$out/x"
+expect_error "--robots: expected a whole number from 1" --quick --robots 0 --out "$out/x"
+expect_error "--jobs: expected a whole number from 1" --quick --jobs 0 --out "$out/x"
+expect_error "give --map, --worlds or --quick" --out "$out/x"
+expect_error "map file not found" --map "$out/nothing.yaml" --out "$out/x"
+cat >"$out/unreachable.yaml" <<YAML
+map: $maps/test_room.yaml
+robots: [{name: robot_0, pose: [1.0, 1.0, 0.0]}]
+markers: [{id: 1, position: [2.98, 1.0]}, {id: 2, position: [1.0, 3.0]}]
+YAML
+expect_error "marker 1 at (2.98, 1) cannot be reached" --worlds "$out/unreachable.yaml" --out "$out/x"
+cat >"$out/nosink.yaml" <<YAML
+map: $maps/test_room.yaml
+robots: [{name: robot_0, pose: [1.0, 1.0, 0.0]}]
+markers: [{id: 1, position: [1.0, 3.0]}]
+YAML
+expect_error "expected a marker with id 2 (the sink)" --worlds "$out/nosink.yaml" --out "$out/x"
+echo "experiment_quick: all checks passed"
