@@ -17,7 +17,7 @@ for f in trials.csv jobs.csv table_3_1.md table_3_2.md figure_3_6a.png figure_3_
 done
 [ "$(head -1 "$out/run/trials.csv")" = "config,mode,trial,seed,time_s,censored" ] || fail "trials.csv header"
 rows=$(($(wc -l <"$out/run/trials.csv") - 1))
-[ "$rows" -eq 36 ] || fail "trials.csv has $rows rows, expected 3 configs x 3 modes x 4 trials = 36"
+[ "$rows" -eq 54 ] || fail "trials.csv has $rows rows, expected 3 configs x 3 modes x 6 trials = 54"
 for png in figure_3_6a.png figure_3_6b.png; do
   [ "$(head -c 4 "$out/run/$png" | tail -c 3)" = "PNG" ] || fail "$png is not a PNG"
 done

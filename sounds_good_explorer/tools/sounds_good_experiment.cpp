@@ -9,7 +9,7 @@
 //   --seed 1 --threads 0 (one per core) --chart-config 9
 // Explorer: --audio-weight 3 --noise-std 0.3 --announce-period 2 --announce-window 10
 //   --arrive-radius 0.6
-// --quick: a small protocol for CI (3 configurations, 4 trials, 8 jobs, all three modes, on the
+// --quick: a small protocol for CI (3 configurations, 6 trials, 8 jobs, all three modes, on the
 //   project's office map unless --map is given).
 //
 // Writes into DIR (default sounds_good_results): configs/config_NN.yaml (each configuration as a
@@ -113,7 +113,7 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
   if (!worlds.empty() && !args.String("--map", "").empty()) args.Fail("give --map or --worlds, not both");
 
   const int configs = static_cast<int>(args.Int("--configs", quick ? 3 : 10, 1, 1000));
-  options.trials = static_cast<int>(args.Int("--trials", quick ? 4 : 20, 1, 100000));
+  options.trials = static_cast<int>(args.Int("--trials", quick ? 6 : 20, 1, 100000));
   options.modes.clear();
   for (const std::string& name : Split(args.String("--modes", "none,bidirectional,omni"))) {
     const auto mode = ParseListenMode(name);
