@@ -133,9 +133,10 @@ SoundsGoodExplorerRos::SoundsGoodExplorerRos(ros::NodeHandle nh, ros::NodeHandle
 SoundsGoodExplorerRos::~SoundsGoodExplorerRos() {
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("sounds_good_explorer summary: %s jobs %lu, packets sent %lu, heard %lu (foreign %lu), stuck %lu, "
-              "plans %lu\n",
+              "plans %lu, late updates %lu of %lu\n",
               nh_.getNamespace().c_str(), Count(jobs_), Count(sent_), Count(heard_),
-              Count(explorer_.foreign_packets()), Count(explorer_.stuck_count()), Count(explorer_.plans()));
+              Count(explorer_.foreign_packets()), Count(explorer_.stuck_count()), Count(explorer_.plans()),
+              Count(late_), Count(updates_));
   std::fflush(stdout);
 }
 
@@ -172,8 +173,12 @@ void SoundsGoodExplorerRos::OnRx(const multirobot_audio::AudioReception::ConstPt
   explorer_.OnHeard(msg->data, msg->level_db, msg->direction, msg->header.stamp.toSec());
 }
 
-void SoundsGoodExplorerRos::OnControl(const ros::TimerEvent&) {
+void SoundsGoodExplorerRos::OnControl(const ros::TimerEvent& event) {
   const ros::Time now = ros::Time::now();
+  // An update more than half a period behind its schedule: the node does not keep up with the
+  // simulated clock (too high a real-time factor for the machine).
+  if ((now - event.current_expected).toSec() > 0.5 / options_.control_rate) ++late_;
+  ++updates_;
   const sg::ExplorerOutput out = explorer_.Update(now.toSec());
   geometry_msgs::Twist cmd;
   cmd.linear.x = out.v;

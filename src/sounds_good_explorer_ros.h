@@ -68,6 +68,7 @@ class SoundsGoodExplorerRos {
   ros::Timer control_timer_, map_timer_;
   std::string odom_frame_, base_frame_;  // empty until the first odometry
   std::uint64_t jobs_ = 0, sent_ = 0, heard_ = 0;
+  std::uint64_t updates_ = 0, late_ = 0;  // control updates, and those well behind schedule
   bool frontier_shown_ = false;  // a goal sphere is up in rviz and must be deleted when it goes
 };
 
