@@ -6,6 +6,7 @@ add_message_files(DIRECTORY msg FILES
   CarrierSense.msg
   Fiducial.msg
   FiducialArray.msg
+  Job.msg
   LockState.msg
 )
 add_action_files(DIRECTORY action FILES AcquireLock.action)
@@ -30,6 +31,9 @@ target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_D
 target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem local_mutex world_sim grid
                       ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
+# The Sounds Good team's bridges, apart so that only their nodes link the explorer.
+add_library(sounds_good_ros STATIC src/sounds_good_explorer_ros.cpp src/task_monitor_ros.cpp)
+target_link_libraries(sounds_good_ros PUBLIC multirobot_audio_ros sounds_good_explorer)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
 function(multirobot_audio_node target name source)
@@ -44,6 +48,10 @@ multirobot_audio_node(audio_propagation_node audio_propagation src/audio_propaga
 multirobot_audio_node(nava_modem_node nava_modem src/nava_modem_node.cpp)
 multirobot_audio_node(local_mutex_node local_mutex src/local_mutex_node.cpp)
 multirobot_audio_node(mutex_client_node mutex_client src/mutex_client_node.cpp)
+multirobot_audio_node(sounds_good_explorer_node sounds_good_explorer src/sounds_good_explorer_node.cpp)
+multirobot_audio_node(task_monitor_node task_monitor src/task_monitor_node.cpp)
+target_link_libraries(sounds_good_explorer_node sounds_good_ros)
+target_link_libraries(task_monitor_node sounds_good_ros)
 
 install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 
@@ -74,6 +82,12 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(local_mutex_rostest multirobot_audio_ros)
   add_dependencies(local_mutex_rostest world_sim_node audio_propagation_node local_mutex_node)
 
+  # A small Sounds Good team in the test room at high speed: jobs, local maps and plans.
+  add_rostest_gtest(sounds_good_rostest test/sounds_good.test test/sounds_good_rostest.cpp test/rostest_main.cpp)
+  target_link_libraries(sounds_good_rostest multirobot_audio_ros)
+  add_dependencies(sounds_good_rostest world_sim_node audio_propagation_node sounds_good_explorer_node
+                   task_monitor_node)
+
   # Over the air: built like rostest nodes, but each run by test/nava_air.sh, which starts the
   # PulseAudio server the test needs, runs the given .test file and stops the server.
   function(multirobot_audio_air_test target test_file)
@@ -101,6 +115,10 @@ if(MULTIROBOT_AUDIO_TESTS)
                            DEPENDENCIES nava_modem_node local_mutex_node mutex_client_node)
   roslaunch_add_file_check(launch/include/local_mutex.launch robot:=robot_0 robot_id:=11
                            DEPENDENCIES local_mutex_node mutex_client_node)
+  roslaunch_add_file_check(launch/sounds_good.launch
+                           DEPENDENCIES world_sim_node audio_propagation_node sounds_good_explorer_node task_monitor_node)
+  roslaunch_add_file_check(launch/include/sounds_good_team.launch count:=2 mode:=bidirectional
+                           DEPENDENCIES sounds_good_explorer_node)
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
   endforeach()
