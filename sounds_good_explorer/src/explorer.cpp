@@ -8,6 +8,8 @@
 #include "sounds_good_explorer/frontiers.h"
 #include "sounds_good_explorer/marker_packet.h"
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace sounds_good_explorer {
 
 namespace {
@@ -24,22 +26,15 @@ Eigen::Vector2i Clamp(const Eigen::Vector2i& cell, int size) {
 }  // namespace
 
 void ValidateOptions(const MotionOptions& o) {
-  auto positive = [](const char* name, double value) {
-    if (!(value > 0.0))
-      throw std::invalid_argument(std::string("motion ") + name + " must be > 0, got " +
-                                  std::to_string(value));
-  };
-  positive("max_speed", o.max_speed);
-  positive("max_turn_rate", o.max_turn_rate);
-  positive("turn_gain", o.turn_gain);
-  positive("lookahead", o.lookahead);
-  positive("goal_tolerance", o.goal_tolerance);
-  positive("goal_hold", o.goal_hold);
-  positive("replan_period", o.replan_period);
-  positive("stuck_time", o.stuck_time);
-  if (!(o.backoff_time >= 0.0))
-    throw std::invalid_argument("motion backoff_time must be >= 0 s, got " +
-                                std::to_string(o.backoff_time));
+  RequireAbove("motion max_speed (m/s)", o.max_speed, 0.0);
+  RequireAbove("motion max_turn_rate (rad/s)", o.max_turn_rate, 0.0);
+  RequireAbove("motion turn_gain", o.turn_gain, 0.0);
+  RequireAbove("motion lookahead (m)", o.lookahead, 0.0);
+  RequireAbove("motion goal_tolerance (m)", o.goal_tolerance, 0.0);
+  RequireAbove("motion goal_hold (s)", o.goal_hold, 0.0);
+  RequireAbove("motion replan_period (s)", o.replan_period, 0.0);
+  RequireAbove("motion stuck_time (s)", o.stuck_time, 0.0);
+  RequireAtLeast("motion backoff_time (s)", o.backoff_time, 0.0);
 }
 
 void ValidateOptions(const ExplorerOptions& o) {

@@ -6,18 +6,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace sounds_good_explorer {
 
 void ValidateOptions(const FrontierOptions& o) {
-  if (!(o.noise_std >= 0.0))
-    throw std::invalid_argument("frontier noise_std must be >= 0 m, got " +
-                                std::to_string(o.noise_std));
-  if (!(o.audio_weight >= 0.0))
-    throw std::invalid_argument("frontier audio_weight must be >= 0 m, got " +
-                                std::to_string(o.audio_weight));
-  if (!(o.min_distance >= 0.0))
-    throw std::invalid_argument("frontier min_distance must be >= 0 m, got " +
-                                std::to_string(o.min_distance));
+  RequireAtLeast("frontier noise_std (m)", o.noise_std, 0.0);
+  RequireAtLeast("frontier audio_weight (m)", o.audio_weight, 0.0);
+  RequireAtLeast("frontier min_distance (m)", o.min_distance, 0.0);
 }
 
 std::optional<Eigen::Vector2i> ChooseFrontier(const LocalMap& map,

@@ -5,11 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace sounds_good_explorer {
 
 void ValidateOptions(const AudioTermOptions& o) {
-  if (!(o.lifetime > 0.0))
-    throw std::invalid_argument("audio lifetime must be > 0 s, got " + std::to_string(o.lifetime));
+  RequireAbove("audio lifetime (s)", o.lifetime, 0.0);
   if (!(o.level_full_db > o.level_floor_db))
     throw std::invalid_argument("audio level_full_db (" + std::to_string(o.level_full_db) +
                                 ") must be above level_floor_db (" +

@@ -5,17 +5,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace sounds_good_explorer {
 
 void ValidateOptions(const LocalMapOptions& o) {
   if (o.size < 3 || o.size % 2 == 0 || o.size > 4001)
     throw std::invalid_argument("local map size must be odd and within 3..4001 cells, got " +
                                 std::to_string(o.size));
-  if (!(o.resolution > 0.0))
-    throw std::invalid_argument("local map resolution must be > 0 m, got " +
-                                std::to_string(o.resolution));
-  if (!(o.expiry > 0.0))
-    throw std::invalid_argument("local map expiry must be > 0 s, got " + std::to_string(o.expiry));
+  RequireAbove("local map resolution (m)", o.resolution, 0.0);
+  RequireAbove("local map expiry (s)", o.expiry, 0.0);
   if (!(o.expiry_step >= 0.0 && o.expiry_step <= o.expiry))
     throw std::invalid_argument("local map expiry_step must be within 0..expiry s, got " +
                                 std::to_string(o.expiry_step));

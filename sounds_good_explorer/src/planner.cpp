@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace sounds_good_explorer {
 
 namespace {
@@ -25,15 +27,11 @@ Grid<T> MakeGrid(int size, T value) {
 }  // namespace
 
 void ValidateOptions(const PlannerOptions& o) {
-  if (!(o.robot_radius >= 0.0))
-    throw std::invalid_argument("planner robot_radius must be >= 0 m, got " +
-                                std::to_string(o.robot_radius));
+  RequireAtLeast("planner robot_radius (m)", o.robot_radius, 0.0);
+  RequireAbove("planner risk_decay (cells)", o.risk_decay, 0.0);
   if (!(o.risk_scale >= 0.0 && o.risk_scale <= 1000.0))
     throw std::invalid_argument("planner risk_scale must be within 0..1000, got " +
                                 std::to_string(o.risk_scale));
-  if (!(o.risk_decay > 0.0))
-    throw std::invalid_argument("planner risk_decay must be > 0 cells, got " +
-                                std::to_string(o.risk_decay));
   if (!(o.grown_cost >= 1.0 && o.grown_cost <= 100000.0))
     throw std::invalid_argument("planner grown_cost must be within 1..100000, got " +
                                 std::to_string(o.grown_cost));

@@ -3,27 +3,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace sounds_good_explorer {
 
 void ValidateOptions(const TaskOptions& o) {
   if (o.source == o.sink)
     throw std::invalid_argument("task source and sink must be different markers, both are " +
                                 std::to_string(o.source));
-  auto positive = [](const char* name, double value) {
-    if (!(value > 0.0))
-      throw std::invalid_argument(std::string("task ") + name + " must be > 0, got " +
-                                  std::to_string(value));
-  };
-  positive("arrive_radius", o.arrive_radius);
-  positive("announce_period", o.announce_period);
-  if (!(o.work_time >= 0.0))
-    throw std::invalid_argument("task work_time must be >= 0 s, got " + std::to_string(o.work_time));
-  if (!(o.marker_memory >= 0.0))
-    throw std::invalid_argument("task marker_memory must be >= 0 s, got " +
-                                std::to_string(o.marker_memory));
-  if (!(o.announce_window >= 0.0))
-    throw std::invalid_argument("task announce_window must be >= 0 s, got " +
-                                std::to_string(o.announce_window));
+  RequireAbove("task arrive_radius (m)", o.arrive_radius, 0.0);
+  RequireAbove("task announce_period (s)", o.announce_period, 0.0);
+  RequireAtLeast("task work_time (s)", o.work_time, 0.0);
+  RequireAtLeast("task marker_memory (s)", o.marker_memory, 0.0);
+  RequireAtLeast("task announce_window (s)", o.announce_window, 0.0);
 }
 
 TransportTask::TransportTask(const TaskOptions& options)
