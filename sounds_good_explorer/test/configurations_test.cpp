@@ -7,6 +7,7 @@
 
 #include "grid/input_error.h"
 #include "grid/map_file.h"
+#include "world_sim/world_file.h"
 
 namespace sounds_good_explorer {
 namespace {
@@ -75,6 +76,14 @@ TEST(Configurations, ValidationNamesWhatCannotBeReached) {
   c = TwoRobots();
   c.robots.clear();
   ExpectError(c, "robots");
+}
+
+TEST(Configurations, ShippedSoundsGoodWorldsAreValid) {
+  for (const char* name : {"sounds_good_world.yaml", "test_room_sounds_good_world.yaml"}) {
+    const std::string file = std::string(PROJECT_MAPS_DIR) + "/" + name;
+    const world_sim::LoadedWorld w = world_sim::LoadWorldFile(file);
+    EXPECT_NO_THROW(ValidateConfiguration(file, w.config, w.map, 1, 2)) << name;
+  }
 }
 
 TEST(Configurations, ImpossibleRequestsAreRefused) {

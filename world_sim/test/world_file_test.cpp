@@ -109,7 +109,9 @@ TEST_F(WorldFileTest, SavedWorldLoadsBackTheSame) {
 }
 
 TEST_F(WorldFileTest, ShippedWorldsLoad) {
-  for (const char* name : {"office_world.yaml", "test_room_world.yaml"}) {
+  for (const char* name : {"office_world.yaml", "test_room_world.yaml", "test_room_audio_world.yaml",
+                           "mutex_world.yaml", "sounds_good_world.yaml",
+                           "test_room_sounds_good_world.yaml"}) {
     const LoadedWorld w = LoadWorldFile(std::string(PROJECT_MAPS_DIR) + "/" + name);
     EXPECT_FALSE(w.config.robots.empty()) << name;
   }
