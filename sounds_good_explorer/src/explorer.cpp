@@ -69,8 +69,10 @@ void Explorer::OnOdometry(const grid::Pose2D& odom, double time) {
 void Explorer::OnRanges(const std::vector<RangeReading>& readings, double reach, double time) {
   if (!have_pose_) return;
   front_clearance_ = std::numeric_limits<double>::infinity();
+  const double half_width =
+      options_.clear_sectors && !readings.empty() ? M_PI / readings.size() : 0.0;
   for (const RangeReading& r : readings) {
-    map_.AddRange(pose_, r.bearing, r.range, reach, time);
+    map_.AddRange(pose_, r.bearing, r.range, reach, time, half_width);
     if (std::abs(grid::NormalizeAngle(r.bearing)) <= M_PI / 3.0 && std::isfinite(r.range))
       front_clearance_ = std::min(front_clearance_, r.range);
   }

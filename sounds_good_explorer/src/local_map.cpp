@@ -71,11 +71,54 @@ void LocalMap::Set(const Eigen::Vector2i& cell, CellState state, double time) {
   seen_[Index(cell)] = static_cast<float>(time);
 }
 
+const std::vector<LocalMap::Offset>& LocalMap::Offsets(int radius) {
+  if (radius == offsets_radius_) return offsets_;
+  offsets_.clear();
+  for (int dy = -radius; dy <= radius; ++dy) {
+    for (int dx = -radius; dx <= radius; ++dx) {
+      if ((dx == 0 && dy == 0) || dx * dx + dy * dy > radius * radius) continue;
+      offsets_.push_back({std::atan2(dy, dx), std::hypot(dx, dy) * options_.resolution, {dx, dy}});
+    }
+  }
+  std::sort(offsets_.begin(), offsets_.end(),
+            [](const Offset& a, const Offset& b) { return a.angle < b.angle; });
+  offsets_radius_ = radius;
+  return offsets_;
+}
+
+void LocalMap::ClearSector(const Eigen::Vector2i& from, double lo, double hi, double length,
+                           double time) {
+  const auto by_angle = [](const Offset& o, double a) { return o.angle < a; };
+  auto first = std::lower_bound(offsets_.begin(), offsets_.end(), lo, by_angle);
+  const auto last = std::lower_bound(offsets_.begin(), offsets_.end(), hi, by_angle);
+  for (; first != last; ++first) {
+    if (first->distance > length) continue;
+    const Eigen::Vector2i cell = from + first->cell;
+    // Keep what a beam saw: a sector only clears cells that are not known occupied.
+    if (Inside(cell) && cells_[Index(cell)] != CellState::kOccupied)
+      Set(cell, CellState::kFree, time);
+  }
+}
+
 void LocalMap::AddRange(const grid::Pose2D& pose, double bearing, double range, double reach,
-                        double time) {
+                        double time, double half_width) {
   const bool hit = std::isfinite(range) && range < reach;
   const double length = hit ? std::max(range, 0.0) : reach;
   const double angle = pose.yaw + bearing;
+  if (half_width > 0.0) {
+    Offsets(static_cast<int>(std::ceil(reach / options_.resolution)) + 1);
+    // Up to half a cell short of the end, so the cell the beam ended in is not cleared.
+    const double clear = hit ? length - 0.5 * options_.resolution : length;
+    const double lo = grid::NormalizeAngle(angle - half_width);
+    const double hi = grid::NormalizeAngle(angle + half_width);
+    const Eigen::Vector2i from = CellOf(pose.position());
+    if (lo <= hi) {
+      ClearSector(from, lo, hi, clear, time);
+    } else {  // the sector spans the +-pi seam
+      ClearSector(from, lo, M_PI + 1e-9, clear, time);
+      ClearSector(from, -M_PI - 1e-9, hi, clear, time);
+    }
+  }
   const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
   const Eigen::Vector2d from = pose.position();
   // Half-cell steps visit every cell the beam crosses closely enough for a map this coarse.

@@ -103,8 +103,11 @@ Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vec
     if (c != kUnreachable) max_cost = std::max(max_cost, c);
   const int stop = stop_at && Inside(n, *stop_at) ? stop_at->y() * n + stop_at->x() : -1;
   // Dial's bucket queue: every step costs at most max_cost, so max_cost + 1 circular buckets
-  // hold all cells waiting, and each cell is settled once.
-  std::vector<std::vector<int>> buckets(max_cost + 1);
+  // hold all cells waiting, and each cell is settled once. The buckets are kept per thread
+  // between calls (empty when a call returns), so planning does not allocate.
+  thread_local std::vector<std::vector<int>> buckets;
+  for (auto& bucket : buckets) bucket.clear();
+  if (buckets.size() != max_cost + 1) buckets.resize(max_cost + 1);
   std::vector<std::uint32_t>& p = potential.values;
   const std::vector<std::uint32_t>& cost = costs.values;
   const int start = goal.y() * n + goal.x();

@@ -44,6 +44,26 @@ TEST(LocalMap, NothingInReachMarksTheWholeBeamFree) {
   EXPECT_EQ(map.at({2, 5}), CellState::kUnknown);
 }
 
+TEST(LocalMap, ASectorClearsItsShareOfTheRingButKeepsObstacles) {
+  LocalMap map = SmallMap();
+  map.Set({8, 6}, CellState::kOccupied, 0.5);  // seen before, off the beam's axis
+  // East, +-pi/8, nothing within 4 m. Offsets (3, +-1) are 18.4 degrees off the axis and
+  // 3.16 m away: inside the sector; (2, 1) is 26.6 degrees off: outside.
+  map.AddRange({0.5, 0.5, 0.0}, 0.0, std::numeric_limits<double>::infinity(), 4.0, 1.0, M_PI / 8);
+  for (int x = 5; x <= 9; ++x) EXPECT_EQ(map.at({x, 5}), CellState::kFree) << x;
+  EXPECT_EQ(map.at({8, 4}), CellState::kFree);
+  EXPECT_EQ(map.at({8, 6}), CellState::kOccupied);  // inside, but known occupied
+  EXPECT_EQ(map.at({7, 6}), CellState::kUnknown);   // another beam's share
+  EXPECT_EQ(map.at({7, 7}), CellState::kUnknown);
+  EXPECT_EQ(map.at({4, 5}), CellState::kUnknown);   // behind
+  // West, across the +-pi seam, hitting something at 2.2 m: cleared to half a cell short.
+  map.AddRange({0.5, 0.5, 0.0}, M_PI, 2.2, 4.0, 2.0, M_PI / 8);
+  EXPECT_EQ(map.at({4, 5}), CellState::kFree);
+  EXPECT_EQ(map.at({3, 5}), CellState::kOccupied);
+  EXPECT_EQ(map.at({3, 4}), CellState::kUnknown);  // 26.6 degrees off the axis
+  EXPECT_EQ(map.at({4, 4}), CellState::kUnknown);  // 45 degrees off
+}
+
 TEST(LocalMap, CellsExpireBackToUnknown) {
   LocalMap map = SmallMap(10.0);
   map.Set({1, 1}, CellState::kOccupied, 1.0);

@@ -27,7 +27,7 @@ struct MotionOptions {
   double lookahead = 0.45;     // m along the plan to steer at
   double goal_tolerance = 0.3;  // m: a frontier goal this close is reached
   double goal_hold = 4.0;      // s a frontier goal is kept before choosing again
-  double replan_period = 0.4;  // s between plans
+  double replan_period = 0.8;  // s between plans
   double stuck_time = 4.0;     // s without moving 0.1 m towards a goal: stuck
   double backoff_time = 1.5;   // s of reversing and turning when stuck
 };
@@ -37,6 +37,10 @@ void ValidateOptions(const MotionOptions& options);
 struct ExplorerOptions {
   ListenMode mode = ListenMode::kBidirectional;
   LocalMapOptions map;
+  // Each range reading also clears its share of the ring (pi / readings either side of its
+  // bearing, up to its range), so eight narrow rangers map the whole disc around the robot as
+  // the thesis's local maps show; false marks only the beams themselves.
+  bool clear_sectors = true;
   PlannerOptions planner;
   FrontierOptions frontier;
   AudioTermOptions audio;

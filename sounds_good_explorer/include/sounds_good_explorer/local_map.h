@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -34,8 +35,12 @@ class LocalMap {
   void Recentre(const Eigen::Vector2d& position);
   // Marks what one ranger saw from `pose`: free along the beam up to `range` (or `reach` when
   // nothing was in reach: range +inf, NaN or beyond reach), and occupied where it ended on
-  // something. `bearing` is the ranger's angle in the robot frame.
-  void AddRange(const grid::Pose2D& pose, double bearing, double range, double reach, double time);
+  // something. `bearing` is the ranger's angle in the robot frame. With `half_width` > 0 the
+  // reading also clears the sector bearing +- half_width up to that range (cells are taken
+  // from the robot's cell centre), as a sonar-style ranger model does: a ring of rangers then
+  // sees all round, not only along its few beams.
+  void AddRange(const grid::Pose2D& pose, double bearing, double range, double reach, double time,
+                double half_width = 0.0);
   // Marks a disc free (the robot's own body).
   void MarkFree(const Eigen::Vector2d& centre, double radius, double time);
   // Reverts cells last seen more than `expiry` s before `time` to unknown. The sweep over the
@@ -58,6 +63,16 @@ class LocalMap {
   const std::vector<CellState>& cells() const { return cells_; }  // row-major, y rows
 
  private:
+  // A cell within reach of the robot's cell: offset, direction and distance from its centre.
+  struct Offset {
+    double angle;  // rad, (-pi, pi]
+    double distance;  // m
+    Eigen::Vector2i cell;
+  };
+  // The offsets within `radius` cells, sorted by angle (built once per radius).
+  const std::vector<Offset>& Offsets(int radius);
+  void ClearSector(const Eigen::Vector2i& from, double lo, double hi, double length, double time);
+
   std::size_t Index(const Eigen::Vector2i& cell) const {
     return static_cast<std::size_t>(cell.y()) * options_.size + cell.x();
   }
@@ -68,6 +83,8 @@ class LocalMap {
   std::vector<CellState> cells_;
   std::vector<float> seen_;  // s, when each cell was last marked
   double swept_ = -1e9;      // s, last sweep for expired cells
+  int offsets_radius_ = -1;
+  std::vector<Offset> offsets_;
 };
 
 }  // namespace sounds_good_explorer
