@@ -31,7 +31,8 @@ void HeardMessages::Add(std::uint32_t marker, double direction, double robot_yaw
     messages_.pop_front();
     ++dropped_;
   }
-  messages_.push_back({marker, direction + robot_yaw, level_db, time});
+  messages_.push_back({marker, direction + robot_yaw, level_db, time,
+                       mode == ListenMode::kBidirectional});
 }
 
 void HeardMessages::Forget(double time) {
@@ -41,14 +42,19 @@ void HeardMessages::Forget(double time) {
 
 double HeardMessages::Score(std::uint32_t marker, double cell_direction, double time) const {
   double score = 0.0;
+  int count = 0;
   for (const HeardMessage& m : messages_) {
     if (m.marker != marker || std::isnan(m.direction)) continue;
     const double freshness = 1.0 - (time - m.time) / options_.lifetime;
     if (freshness <= 0.0) continue;
+    ++count;
     const double loudness = std::clamp((m.level_db - options_.level_floor_db) /
                                            (options_.level_full_db - options_.level_floor_db),
                                        0.0, 1.0);
-    score += std::cos(m.direction - cell_direction) * std::min(freshness, 1.0) * loudness;
+    const double agreement = std::cos(m.direction - cell_direction);
+    // One bit says only which half-plane: every direction in it agrees alike.
+    const double weight = m.half_plane ? (agreement >= 0.0 ? 1.0 : -1.0) : agreement;
+    score += weight * std::min(freshness, 1.0) * loudness;
   }
   return score;
 }

@@ -57,6 +57,14 @@ TEST(HeardMessages, BidirectionalKeepsOneBitAndNoneKeepsNothing) {
   ASSERT_EQ(heard.messages().size(), 2u);
   EXPECT_NEAR(heard.messages()[0].direction, M_PI / 2, 1e-12);
   EXPECT_NEAR(heard.messages()[1].direction, M_PI, 1e-12);
+  // One bit: every direction in the heard half-plane agrees fully, every other disagrees.
+  HeardMessages one(AudioTermOptions{});
+  one.Add(1, 0.3, 0.0, 70.0, 0.0, ListenMode::kBidirectional);  // ahead of a robot facing +x
+  EXPECT_DOUBLE_EQ(one.Score(1, 0.0, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(one.Score(1, 1.4, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(one.Score(1, -1.4, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(one.Score(1, 1.7, 0.0), -1.0);
+  EXPECT_DOUBLE_EQ(one.Score(1, M_PI, 0.0), -1.0);
 }
 
 TEST(HeardMessages, AFullQueueDropsTheOldestAndCountsIt) {

@@ -25,6 +25,7 @@ struct HeardMessage {
   double direction = 0.0;  // rad, odom frame
   double level_db = 0.0;
   double time = 0.0;
+  bool half_plane = false;  // one bit: only the side of the robot it came from is known
 };
 
 // The queue of heard announcements and the audio term of the frontier cost (thesis section
@@ -35,7 +36,11 @@ struct HeardMessage {
 //   score(cell) = sum over messages m about the sought marker of
 //                 agreement(m, cell) * freshness(m) * loudness(m)
 //   agreement  = cos(angle between the message's direction and the cell's, seen from the robot)
-//                (the thesis's (pi - 2x) / pi is its linear stand-in)
+//                (the thesis's (pi - 2x) / pi is its linear stand-in); for a one-bit
+//                (bidirectional) message, +1 anywhere in the heard half-plane and -1 outside:
+//                the bit says nothing about where in the half-plane, and the cosine would
+//                favour the robot's own axis (tried: bidirectional teams were then slower than
+//                no audio in two of ten configurations)
 //   freshness  = 1 - age / lifetime (the thesis's "message age factor", 0 at three minutes)
 //   loudness   = level mapped linearly from level_floor_db (0) to level_full_db (1), clamped.
 class HeardMessages {
