@@ -32,7 +32,8 @@ target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem l
                       ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 # The Sounds Good team's bridges, apart so that only their nodes link the explorer.
-add_library(sounds_good_ros STATIC src/sounds_good_explorer_ros.cpp src/task_monitor_ros.cpp)
+add_library(sounds_good_ros STATIC src/sounds_good_conversions.cpp src/sounds_good_explorer_ros.cpp
+            src/task_monitor_ros.cpp)
 target_link_libraries(sounds_good_ros PUBLIC multirobot_audio_ros sounds_good_explorer)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
@@ -61,6 +62,8 @@ if(MULTIROBOT_AUDIO_TESTS)
 
   catkin_add_gtest(conversions_test test/conversions_test.cpp)
   target_link_libraries(conversions_test multirobot_audio_ros)
+  catkin_add_gtest(sounds_good_conversions_test test/sounds_good_conversions_test.cpp)
+  target_link_libraries(sounds_good_conversions_test sounds_good_ros)
 
   add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp test/rostest_main.cpp)
   target_link_libraries(world_sim_rostest multirobot_audio_ros)

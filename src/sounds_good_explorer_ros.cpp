@@ -12,6 +12,7 @@
 
 #include "conversions.h"
 #include "params.h"
+#include "sounds_good_conversions.h"
 
 namespace multirobot_audio {
 namespace {
@@ -62,48 +63,6 @@ SoundsGoodExplorerNodeOptions ReadSoundsGoodExplorerNodeOptions(const ros::NodeH
     throw ParamError(pnh.getNamespace() + ": the parameters give impossible explorer options: " + error.what());
   }
   return o;
-}
-
-nav_msgs::OccupancyGrid ToOccupancyGrid(const sg::LocalMap& map, const std::string& frame,
-                                        const ros::Time& stamp) {
-  nav_msgs::OccupancyGrid msg;
-  msg.header.frame_id = frame;
-  msg.header.stamp = stamp;
-  msg.info.map_load_time = stamp;
-  msg.info.resolution = static_cast<float>(map.resolution());
-  msg.info.width = static_cast<std::uint32_t>(map.size());
-  msg.info.height = static_cast<std::uint32_t>(map.size());
-  // Cell (0, 0) spans [origin, origin + 1) odom cells: its lower-left corner is the grid's origin.
-  msg.info.origin.position.x = map.origin().x() * map.resolution();
-  msg.info.origin.position.y = map.origin().y() * map.resolution();
-  msg.info.origin.orientation.w = 1.0;
-  msg.data.reserve(map.cells().size());
-  for (sg::CellState c : map.cells()) {
-    msg.data.push_back(c == sg::CellState::kOccupied ? 100 : c == sg::CellState::kFree ? 0 : -1);
-  }
-  return msg;
-}
-
-nav_msgs::Path ToPath(const std::vector<Eigen::Vector2d>& points, const std::string& frame,
-                      const ros::Time& stamp) {
-  nav_msgs::Path msg;
-  msg.header.frame_id = frame;
-  msg.header.stamp = stamp;
-  double yaw = 0.0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    // The last pose keeps the heading of the step into it.
-    if (i + 1 < points.size()) {
-      const Eigen::Vector2d step = points[i + 1] - points[i];
-      yaw = std::atan2(step.y(), step.x());
-    }
-    geometry_msgs::PoseStamped pose;
-    pose.header = msg.header;
-    pose.pose.position.x = points[i].x();
-    pose.pose.position.y = points[i].y();
-    pose.pose.orientation = ToYawQuaternion(yaw);
-    msg.poses.push_back(pose);
-  }
-  return msg;
 }
 
 SoundsGoodExplorerRos::SoundsGoodExplorerRos(ros::NodeHandle nh, ros::NodeHandle pnh,

@@ -42,12 +42,10 @@ void HeardMessages::Forget(double time) {
 
 double HeardMessages::Score(std::uint32_t marker, double cell_direction, double time) const {
   double score = 0.0;
-  int count = 0;
   for (const HeardMessage& m : messages_) {
     if (m.marker != marker || std::isnan(m.direction)) continue;
     const double freshness = 1.0 - (time - m.time) / options_.lifetime;
     if (freshness <= 0.0) continue;
-    ++count;
     const double loudness = std::clamp((m.level_db - options_.level_floor_db) /
                                            (options_.level_full_db - options_.level_floor_db),
                                        0.0, 1.0);

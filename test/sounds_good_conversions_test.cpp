@@ -1,0 +1,51 @@
+#include "sounds_good_conversions.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "conversions.h"
+
+namespace multirobot_audio {
+namespace {
+
+TEST(SoundsGoodConversions, LocalMapAsOccupancyGridInTheOdomFrame) {
+  sounds_good_explorer::LocalMap map(sounds_good_explorer::LocalMapOptions{5, 0.5, 100.0});
+  map.Recentre({1.2, -0.3});  // the robot's cell is odom cell (2, -1): the map starts at (0, -3)
+  map.Set({0, 0}, sounds_good_explorer::CellState::kOccupied, 0.0);
+  map.Set({1, 0}, sounds_good_explorer::CellState::kFree, 0.0);
+  const nav_msgs::OccupancyGrid msg = ToOccupancyGrid(map, "robot_0/odom", ros::Time(3.0));
+  EXPECT_EQ(msg.header.frame_id, "robot_0/odom");
+  EXPECT_EQ(msg.info.width, 5u);
+  EXPECT_EQ(msg.info.height, 5u);
+  EXPECT_FLOAT_EQ(msg.info.resolution, 0.5f);
+  EXPECT_DOUBLE_EQ(msg.info.origin.position.x, 0.0);
+  EXPECT_DOUBLE_EQ(msg.info.origin.position.y, -1.5);
+  ASSERT_EQ(msg.data.size(), 25u);
+  EXPECT_EQ(msg.data[0], 100);
+  EXPECT_EQ(msg.data[1], 0);
+  EXPECT_EQ(msg.data[2], -1);
+  // The grid's cell under the robot is the map's centre cell.
+  const int i = static_cast<int>((1.2 - msg.info.origin.position.x) / 0.5);
+  const int j = static_cast<int>((-0.3 - msg.info.origin.position.y) / 0.5);
+  EXPECT_EQ(Eigen::Vector2i(i, j), map.centre_cell());
+}
+
+TEST(SoundsGoodConversions, PathPosesFaceTheNextPoint) {
+  const nav_msgs::Path path = ToPath({{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}}, "odom", ros::Time(1.0));
+  ASSERT_EQ(path.poses.size(), 3u);
+  EXPECT_EQ(path.header.frame_id, "odom");
+  EXPECT_NEAR(FromQuaternionYaw(path.poses[0].pose.orientation), 0.0, 1e-9);
+  EXPECT_NEAR(FromQuaternionYaw(path.poses[1].pose.orientation), M_PI / 2, 1e-9);
+  EXPECT_NEAR(FromQuaternionYaw(path.poses[2].pose.orientation), M_PI / 2, 1e-9);
+  EXPECT_DOUBLE_EQ(path.poses[2].pose.position.y, 1.0);
+  EXPECT_TRUE(ToPath({}, "odom", ros::Time(1.0)).poses.empty());
+}
+
+}  // namespace
+}  // namespace multirobot_audio
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
