@@ -6,24 +6,22 @@
 
 namespace multirobot_audio {
 
-nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& map, const std::string& frame,
-                                        const ros::Time& stamp) {
-  nav_msgs::OccupancyGrid msg;
-  msg.header.frame_id = frame;
-  msg.header.stamp = stamp;
-  msg.info.map_load_time = stamp;
-  msg.info.resolution = static_cast<float>(map.resolution());
-  msg.info.width = static_cast<std::uint32_t>(map.size());
-  msg.info.height = static_cast<std::uint32_t>(map.size());
-  // Cell (0, 0) spans [origin, origin + 1) odom cells: its lower-left corner is the grid's origin.
-  msg.info.origin.position.x = map.origin().x() * map.resolution();
-  msg.info.origin.position.y = map.origin().y() * map.resolution();
-  msg.info.origin.orientation.w = 1.0;
-  msg.data.reserve(map.cells().size());
-  for (sounds_good_explorer::CellState c : map.cells()) {
-    msg.data.push_back(c == sounds_good_explorer::CellState::kOccupied ? 100 : c == sounds_good_explorer::CellState::kFree ? 0 : -1);
+nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& map,
+                                        const std::string& frame, const ros::Time& stamp) {
+  // Cell (0, 0) spans [origin, origin + 1) odom cells: its lower-left corner is the grid's
+  // origin. Going through grid::OccupancyMap keeps one message layout for every map we publish.
+  const double res = map.resolution();
+  grid::OccupancyMap grid(map.size(), map.size(), res,
+                          {map.origin().x() * res, map.origin().y() * res, 0.0});
+  for (int y = 0; y < map.size(); ++y) {
+    for (int x = 0; x < map.size(); ++x) {
+      const sounds_good_explorer::CellState c = map.at({x, y});
+      grid.set(x, y, c == sounds_good_explorer::CellState::kOccupied ? grid::Cell::kOccupied
+                     : c == sounds_good_explorer::CellState::kFree   ? grid::Cell::kFree
+                                                                      : grid::Cell::kUnknown);
+    }
   }
-  return msg;
+  return ToOccupancyGrid(grid, frame, stamp);
 }
 
 nav_msgs::Path ToPath(const std::vector<Eigen::Vector2d>& points, const std::string& frame,
