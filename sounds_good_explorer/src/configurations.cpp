@@ -67,7 +67,9 @@ world_sim::WorldConfig RandomConfiguration(const grid::OccupancyMap& map,
   if (options.robots < 1)
     throw std::invalid_argument("a configuration needs at least 1 robot, got " +
                                 std::to_string(options.robots));
-  const Reachability room(map, model.radius + options.margin);
+  // A cell's centre stands for every point in it (and a draw is jittered within the cell), so
+  // keep a cell's width more room: the world's own overlap test then never refuses a draw.
+  const Reachability room(map, model.radius + options.margin + map.resolution());
   const int region = room.largest();
   world_sim::WorldConfig config;
   config.map_file = map_file;

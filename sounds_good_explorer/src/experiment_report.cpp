@@ -121,6 +121,10 @@ std::string Table32(const std::vector<TrialRow>& rows, const std::vector<ListenM
           << Format("%.1f", test.t) << " | " << Format("%.3f", 100.0 * test.p) << " | "
           << (test.p < 0.05 ? "Yes" : "No") << " |\n";
       }
+  int censored = 0;
+  for (const TrialRow& r : rows) censored += r.result.censored;
+  if (censored)
+    t << "\n" << censored << " censored trials enter the tests at the time cap (a lower bound).\n";
   return t.str();
 }
 
@@ -129,7 +133,7 @@ std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenM
   std::ostringstream t;
   for (std::size_t a = 0; a < modes.size(); ++a)
     for (std::size_t b = a + 1; b < modes.size(); ++b) {
-      int faster = 0, slower = 0;
+      int faster = 0, slower = 0;  // the second mode against the first
       for (int c = 1; c <= configs; ++c) {
         const TTest test = StudentTTest(Times(rows, c, modes[a]), Times(rows, c, modes[b]));
         if (test.p < 0.05) (test.t > 0 ? faster : slower) += 1;
@@ -137,16 +141,13 @@ std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenM
       t << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": significantly faster in "
         << faster << "/" << configs << ", significantly slower in " << slower << "/" << configs
         << ", not different in " << configs - faster - slower << "/" << configs << '\n';
-      std::vector<double> all_a, all_b;
-      for (int c = 1; c <= configs; ++c) {
-        const std::vector<double> ta = Times(rows, c, modes[a]), tb = Times(rows, c, modes[b]);
-        all_a.insert(all_a.end(), ta.begin(), ta.end());
-        all_b.insert(all_b.end(), tb.begin(), tb.end());
-      }
-      const TTest pooled = StudentTTest(all_a, all_b);
-      t << "pooled " << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": gain "
-        << Format("%.1f", 100.0 * pooled.gain) << " % t " << Format("%.2f", pooled.t) << " p "
-        << Format("%.6f", pooled.p) << '\n';
+      std::vector<TTest> tests;
+      for (int c = 1; c <= configs; ++c)
+        tests.push_back(StudentTTest(Times(rows, c, modes[a]), Times(rows, c, modes[b])));
+      const CombinedTest combined = Stouffer(tests);
+      t << "combined " << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": gain "
+        << Format("%.1f", 100.0 * combined.gain) << " % z " << Format("%.2f", combined.z) << " p "
+        << Format("%.6f", combined.p) << '\n';
     }
   return t.str();
 }
@@ -178,8 +179,14 @@ void WriteTeamTimeChart(const std::string& path, const std::vector<TrialRow>& ro
 void WriteJobTimeChart(const std::string& path, const std::vector<TrialRow>& rows,
                        const std::vector<ListenMode>& modes, int config, int jobs) {
   IntervalChart chart;
+  // A censored trial has no time for the jobs it did not reach: each job's mean is over the
+  // trials that reached it (the title says so when any did not).
   chart.title = "Time to each team job in configuration " + ConfigName(config) +
                 ": mean and 95% interval";
+  if (std::any_of(rows.begin(), rows.end(), [&](const TrialRow& r) {
+        return r.config == config && r.result.censored;
+      }))
+    chart.title += " (of the trials that reached each job)";
   chart.x_label = "job";
   chart.y_label = "time (s)";
   for (int j = 1; j <= jobs; ++j) chart.x_ticks.push_back(std::to_string(j));

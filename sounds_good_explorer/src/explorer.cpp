@@ -68,6 +68,10 @@ void Explorer::OnOdometry(const grid::Pose2D& odom, double time) {
 
 void Explorer::OnRanges(const std::vector<RangeReading>& readings, double reach, double time) {
   if (!have_pose_) return;
+  if (!std::isfinite(reach) || reach <= 0.0) {  // a ranger reaching nowhere or forever
+    ++bad_scans_;
+    return;
+  }
   front_clearance_ = std::numeric_limits<double>::infinity();
   const double half_width =
       options_.clear_sectors && !readings.empty() ? M_PI / readings.size() : 0.0;
@@ -108,8 +112,11 @@ ExplorerOutput Explorer::Update(double time) {
     goal_.reset();
     unreachable_.clear();
   }
-  for (std::uint32_t marker : task_.DueAnnouncements(time))
-    out.packets.push_back(EncodeMarkerPacket(marker));
+  for (std::uint32_t marker : task_.DueAnnouncements(time)) {
+    // An id the 16-bit announcement cannot carry (another robot's charger, say) goes unsaid.
+    if (marker <= kMaxMarkerId) out.packets.push_back(EncodeMarkerPacket(marker));
+    else ++unannounced_;
+  }
   if (!have_pose_ || task_.working()) {
     plan_.clear();
     progress_at_ = here;

@@ -15,16 +15,14 @@ void ValidateOptions(const LocalMapOptions& o) {
                                 std::to_string(o.size));
   RequireAbove("local map resolution (m)", o.resolution, 0.0);
   RequireAbove("local map expiry (s)", o.expiry, 0.0);
-  if (!(o.expiry_step >= 0.0 && o.expiry_step <= o.expiry))
-    throw std::invalid_argument("local map expiry_step must be within 0..expiry s, got " +
-                                std::to_string(o.expiry_step));
+  RequireAtLeast("local map expiry_step (s)", o.expiry_step, 0.0);
 }
 
 LocalMap::LocalMap(const LocalMapOptions& options)
     : options_(options),
       cells_((ValidateOptions(options), static_cast<std::size_t>(options.size) * options.size),
              CellState::kUnknown),
-      seen_(cells_.size(), 0.0f) {
+      seen_(cells_.size(), 0.0) {
   origin_ = -centre_cell();
 }
 
@@ -43,7 +41,7 @@ void LocalMap::Recentre(const Eigen::Vector2d& position) {
   if (placed_ && wanted == origin_) return;
   const Eigen::Vector2i shift = wanted - origin_;
   std::vector<CellState> cells(cells_.size(), CellState::kUnknown);
-  std::vector<float> seen(seen_.size(), 0.0f);
+  std::vector<double> seen(seen_.size(), 0.0);
   if (placed_) {
     const int n = options_.size;
     for (int y = 0; y < n; ++y) {
@@ -68,7 +66,7 @@ void LocalMap::Recentre(const Eigen::Vector2d& position) {
 void LocalMap::Set(const Eigen::Vector2i& cell, CellState state, double time) {
   if (!Inside(cell)) return;
   cells_[Index(cell)] = state;
-  seen_[Index(cell)] = static_cast<float>(time);
+  seen_[Index(cell)] = time;
 }
 
 const std::vector<LocalMap::Offset>& LocalMap::Offsets(int radius) {
@@ -141,9 +139,9 @@ void LocalMap::MarkFree(const Eigen::Vector2d& centre, double radius, double tim
 }
 
 void LocalMap::Expire(double time) {
-  if (time - swept_ < options_.expiry_step) return;
+  if (time - swept_ < std::min(options_.expiry_step, options_.expiry)) return;
   swept_ = time;
-  const float oldest = static_cast<float>(time - options_.expiry);
+  const double oldest = time - options_.expiry;
   for (std::size_t i = 0; i < cells_.size(); ++i)
     if (cells_[i] != CellState::kUnknown && seen_[i] < oldest) cells_[i] = CellState::kUnknown;
 }

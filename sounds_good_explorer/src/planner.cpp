@@ -97,14 +97,17 @@ Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vec
                               const std::optional<Eigen::Vector2i>& stop_at) {
   const int n = costs.size;
   Grid<std::uint32_t> potential = MakeGrid<std::uint32_t>(n, kUnreachable);
-  if (!Inside(n, goal) || costs.at(goal) == kUnreachable) return potential;
+  // The goal's own cost is never paid, so a goal in an occupied cell (a marker drawn next to a
+  // wall) is still reached from its free neighbours.
+  if (!Inside(n, goal)) return potential;
   std::uint32_t max_cost = 1;
   for (std::uint32_t c : costs.values)
     if (c != kUnreachable) max_cost = std::max(max_cost, c);
   const int stop = stop_at && Inside(n, *stop_at) ? stop_at->y() * n + stop_at->x() : -1;
   // Dial's bucket queue: every step costs at most max_cost, so max_cost + 1 circular buckets
-  // hold all cells waiting, and each cell is settled once. The buckets are kept per thread
-  // between calls (empty when a call returns), so planning does not allocate.
+  // hold all cells waiting, and each cell is settled once: O(cells + largest potential). The
+  // buckets are kept per thread between calls and emptied at the start of each, so planning
+  // does not allocate.
   thread_local std::vector<std::vector<int>> buckets;
   for (auto& bucket : buckets) bucket.clear();
   if (buckets.size() != max_cost + 1) buckets.resize(max_cost + 1);
@@ -127,8 +130,10 @@ Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vec
                                  y + 1 < n ? index + n : -1, y > 0 ? index - n : -1};
       for (int next : neighbours) {
         if (next < 0 || cost[next] == kUnreachable) continue;
-        const std::uint32_t value = d + cost[next];
-        if (value >= p[next]) continue;
+        // 64-bit sum: a huge map of costly cells must not wrap round to a small potential.
+        const std::uint64_t sum = static_cast<std::uint64_t>(d) + cost[next];
+        if (sum >= p[next]) continue;
+        const auto value = static_cast<std::uint32_t>(sum);
         p[next] = value;
         buckets[value % buckets.size()].push_back(next);
         ++waiting;

@@ -1,9 +1,11 @@
 #include "sounds_good_explorer/statistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
+#include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
 namespace sounds_good_explorer {
@@ -41,6 +43,24 @@ TTest StudentTTest(const std::vector<double>& a, const std::vector<double>& b) {
   result.t = (sa.mean - sb.mean) / error;
   result.p = 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(dof),
                                                             std::abs(result.t)));
+  return result;
+}
+
+CombinedTest Stouffer(const std::vector<TTest>& tests) {
+  CombinedTest result;
+  if (tests.empty()) return result;
+  const boost::math::normal unit;
+  double z_sum = 0.0, log_gain = 0.0;
+  for (const TTest& t : tests) {
+    // p of 0 (constant samples) would give an infinite z: cap it at a p of 1e-300.
+    const double p = std::clamp(t.p, 1e-300, 1.0);
+    const double z = boost::math::quantile(boost::math::complement(unit, p / 2.0));
+    z_sum += t.t >= 0.0 ? z : -z;
+    log_gain += std::log1p(t.gain);
+  }
+  result.z = z_sum / std::sqrt(static_cast<double>(tests.size()));
+  result.p = 2.0 * boost::math::cdf(boost::math::complement(unit, std::abs(result.z)));
+  result.gain = std::expm1(log_gain / tests.size());
   return result;
 }
 

@@ -52,7 +52,12 @@ TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldCo
   for (std::size_t k = 0; k < n; ++k) {
     ExplorerOptions o = options.explorer;
     o.mode = options.mode;
-    o.seed = options.seed * 7919u + static_cast<std::uint32_t>(k) + 1u;
+    // The controller fits the robot it drives.
+    o.planner.robot_radius = team.model.radius;
+    o.motion.max_speed = team.model.max_speed;
+    o.motion.max_turn_rate = team.model.max_turn_rate;
+    // A seed of its own, unlike world_sim's per-robot seeds (world seed + index).
+    o.seed = (options.seed * 2654435761u) ^ (0x9E3779B9u * (static_cast<std::uint32_t>(k) + 1u));
     robots.emplace_back(o);
   }
   const world_sim::RobotModel& body = team.model;

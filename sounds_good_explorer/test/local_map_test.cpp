@@ -85,7 +85,20 @@ TEST(LocalMap, ExpirySweepsAtMostOncePerStep) {
   EXPECT_EQ(map.at({1, 1}), CellState::kFree);
   map.Expire(11.8);
   EXPECT_EQ(map.at({1, 1}), CellState::kUnknown);
-  EXPECT_THROW(LocalMap(LocalMapOptions{11, 1.0, 10.0, 11.0}), std::invalid_argument);
+  EXPECT_THROW(LocalMap(LocalMapOptions{11, 1.0, 10.0, -1.0}), std::invalid_argument);
+  // A step longer than the expiry sweeps once per expiry.
+  LocalMap slow(LocalMapOptions{11, 1.0, 2.0, 60.0});
+  slow.Set({1, 1}, CellState::kFree, 1.0);
+  slow.Expire(2.0);
+  slow.Expire(4.5);
+  EXPECT_EQ(slow.at({1, 1}), CellState::kUnknown);
+  // Wall-clock stamps keep their sub-second resolution.
+  LocalMap wall(LocalMapOptions{11, 1.0, 20.0, 0.0});
+  wall.Set({1, 1}, CellState::kFree, 1.7e9);
+  wall.Expire(1.7e9 + 19.9);
+  EXPECT_EQ(wall.at({1, 1}), CellState::kFree);
+  wall.Expire(1.7e9 + 20.1);
+  EXPECT_EQ(wall.at({1, 1}), CellState::kUnknown);
 }
 
 TEST(LocalMap, RecentringKeepsCellsWhereTheyAreInOdomAndDropsThoseThatFallOff) {

@@ -38,5 +38,21 @@ TEST(Statistics, FarApartSamplesAreSignificantAndEqualOnesAreNot) {
   EXPECT_EQ(StudentTTest({5, 5, 5}, {4, 4}).p, 0.0);
 }
 
+TEST(Statistics, StoufferCombinesConsistentEvidence) {
+  // Three tests each at p = 0.1 in the same direction: z = 1.6449 each, Z = 2.849, p = 0.0044.
+  const TTest one{2.0, 0.1, 0.5};
+  const CombinedTest c = Stouffer({one, one, one});
+  EXPECT_NEAR(c.z, 3 * 1.644854 / std::sqrt(3.0), 1e-5);
+  EXPECT_NEAR(c.p, 0.004387, 1e-5);
+  EXPECT_NEAR(c.gain, 0.5, 1e-12);
+  // Opposite directions cancel.
+  const TTest other{-2.0, 0.1, -1.0 / 3.0};
+  const CombinedTest none = Stouffer({one, other});
+  EXPECT_NEAR(none.z, 0.0, 1e-9);
+  EXPECT_NEAR(none.p, 1.0, 1e-9);
+  EXPECT_NEAR(none.gain, 0.0, 1e-12);  // 1.5 x (2/3) = 1
+  EXPECT_EQ(Stouffer({}).p, 1.0);
+}
+
 }  // namespace
 }  // namespace sounds_good_explorer

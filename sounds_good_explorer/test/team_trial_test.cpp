@@ -1,3 +1,4 @@
+#include "sounds_good_explorer/experiment.h"
 #include "sounds_good_explorer/team_trial.h"
 
 #include <stdexcept>
@@ -64,6 +65,26 @@ TEST(TeamTrial, SameSeedSameTrial) {
   const TrialResult b = RunTeamTrial(w.map, w.config, w.model, o);
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.jobs.size(), b.jobs.size());
+}
+
+TEST(TeamTrial, ExperimentRowsDoNotDependOnTheThreadCount) {
+  const SmallWorld w;
+  ExperimentOptions o;
+  o.modes = {ListenMode::kNone, ListenMode::kOmni};
+  o.trials = 2;
+  o.trial.jobs = 2;
+  o.trial.time_cap = 600.0;
+  o.threads = 1;
+  const std::vector<TrialRow> one = RunExperiment(w.map, {w.config}, w.model, o);
+  o.threads = 3;
+  const std::vector<TrialRow> three = RunExperiment(w.map, {w.config}, w.model, o);
+  ASSERT_EQ(one.size(), 4u);
+  ASSERT_EQ(three.size(), 4u);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].mode, three[i].mode);
+    EXPECT_EQ(one[i].seed, three[i].seed);
+    EXPECT_EQ(one[i].result.time, three[i].result.time) << i;
+  }
 }
 
 TEST(TeamTrial, ImpossibleRequestsAreRefused) {

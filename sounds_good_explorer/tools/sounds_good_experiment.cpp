@@ -111,6 +111,11 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
   std::string map_file = args.String("--map", quick ? MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml" : "");
   if (worlds.empty() && map_file.empty()) args.Fail("give --map, --worlds or --quick");
   if (!worlds.empty() && !args.String("--map", "").empty()) args.Fail("give --map or --worlds, not both");
+  if (!worlds.empty() && Split(worlds).empty()) args.Fail("--worlds: expected world files separated by commas, got '" + worlds + "'");
+  if (!worlds.empty())
+    for (const char* flag : {"--configs", "--robots", "--ir-range", "--camera-range", "--quick"})
+      if (!args.String(flag, "").empty() || (std::string(flag) == "--quick" && quick))
+        args.Fail(std::string(flag) + " makes configurations; the world files given by --worlds are used as they are");
 
   const int configs = static_cast<int>(args.Int("--configs", quick ? 3 : 10, 1, 1000));
   options.trials = static_cast<int>(args.Int("--trials", quick ? 6 : 20, 1, 100000));
@@ -136,14 +141,12 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
   trial.time_cap = args.Double("--cap", 20000.0, 1.0, 1e8);
   options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
   options.threads = static_cast<int>(args.Int("--threads", 0, 0, 1024));
-  const int chart_config = static_cast<int>(args.Int("--chart-config", std::min(9, configs), 1, configs));
+  const int chart_config = static_cast<int>(args.Int("--chart-config", 9, 1, 1000));
   explorer.frontier.audio_weight = args.Double("--audio-weight", explorer.frontier.audio_weight, 0.0, 1e6);
   explorer.frontier.noise_std = args.Double("--noise-std", explorer.frontier.noise_std, 0.0, 1e6);
   explorer.task.announce_period = args.Double("--announce-period", explorer.task.announce_period, 0.01, 1e6);
   explorer.task.announce_window = args.Double("--announce-window", explorer.task.announce_window, 0.0, 1e6);
   explorer.task.arrive_radius = args.Double("--arrive-radius", explorer.task.arrive_radius, 0.01, 100.0);
-  explorer.planner.robot_radius = body.radius;
-  explorer.motion.max_speed = body.max_speed;
   const std::string out_dir = args.String("--out", "sounds_good_results");
   args.CheckAllUsed();
   placement.source = explorer.task.source;
@@ -160,6 +163,9 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
       setup.configs.push_back(RandomConfiguration(setup.map, setup.map_file, body, placement, rng));
   }
   const int config_count = static_cast<int>(setup.configs.size());
+  if (chart_config > config_count && !args.String("--chart-config", "").empty())
+    args.Fail("--chart-config: expected a configuration from 1 to " + std::to_string(config_count) +
+              ", got " + std::to_string(chart_config));
 
   fs::create_directories(fs::path(out_dir) / "configs");
   for (int c = 0; c < config_count; ++c) {

@@ -221,7 +221,9 @@ void SaveWorldFile(const std::string& path, const WorldConfig& config) {
   YAML::Emitter out;
   out.SetDoublePrecision(17);  // enough digits to read back every double exactly
   out << YAML::BeginMap;
-  out << YAML::Key << "map" << YAML::Value << config.map_file;
+  // Absolute, so the file can be loaded from wherever it is written.
+  out << YAML::Key << "map" << YAML::Value
+      << std::filesystem::absolute(config.map_file).lexically_normal().string();
   out << YAML::Key << "seed" << YAML::Value << config.seed;
   EmitModel(out, config.model);
   out << YAML::Key << "robots" << YAML::Value << YAML::BeginSeq;

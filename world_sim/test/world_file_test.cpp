@@ -106,6 +106,11 @@ TEST_F(WorldFileTest, SavedWorldLoadsBackTheSame) {
   EXPECT_EQ(*b.chargers[0].marker, 9u);
   EXPECT_FALSE(b.chargers[1].marker);
   EXPECT_THROW(SaveWorldFile((dir_ / "no_such_dir" / "x.yaml").string(), a), std::runtime_error);
+  // A map given relative to the working directory is written absolute.
+  WorldConfig relative = a;
+  relative.map_file = fs::relative(a.map_file).string();
+  SaveWorldFile(saved, relative);
+  EXPECT_EQ(LoadWorldFile(saved).config.map_file, fs::path(a.map_file).lexically_normal().string());
 }
 
 TEST_F(WorldFileTest, ShippedWorldsLoad) {

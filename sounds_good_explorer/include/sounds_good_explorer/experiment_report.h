@@ -28,8 +28,8 @@ std::string Table31(const std::vector<TrialRow>& rows, const std::vector<ListenM
 std::string Table32(const std::vector<TrialRow>& rows, const std::vector<ListenMode>& modes,
                     int configs);
 // Per pair of modes: in how many configurations the second was significantly (p < 0.05)
-// faster, slower, or not different; then the same test on all configurations' trials pooled
-// ("pooled B vs A: gain G % t T p P").
+// faster, slower, or not different; then the configurations' tests combined (Stouffer:
+// "combined B vs A: gain G % z Z p P", G the geometric mean of the per-configuration gains).
 std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenMode>& modes,
                     int configs);
 

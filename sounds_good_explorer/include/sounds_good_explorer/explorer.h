@@ -28,7 +28,7 @@ struct MotionOptions {
   double goal_tolerance = 0.3;  // m: a frontier goal this close is reached
   double goal_hold = 4.0;      // s a frontier goal is kept before choosing again
   double replan_period = 0.8;  // s between plans
-  double stuck_time = 4.0;     // s without moving 0.1 m towards a goal: stuck
+  double stuck_time = 4.0;     // s without moving 0.1 m while following a plan: stuck
   double backoff_time = 1.5;   // s of reversing and turning when stuck
 };
 
@@ -80,7 +80,8 @@ class Explorer {
 
   void OnOdometry(const grid::Pose2D& odom, double time);
   // One sweep of the rangers, taken at the last odometry pose; `reach` is their range from the
-  // centre (readings at or beyond it, +inf or NaN, are "nothing").
+  // centre (readings at or beyond it, +inf or NaN, are "nothing"). A sweep whose reach is not a
+  // finite positive number is ignored and counted (bad_scans).
   void OnRanges(const std::vector<RangeReading>& readings, double reach, double time);
   void OnSightings(const std::vector<MarkerSighting>& sightings, double time);
   // A packet heard: level in dB, direction in the robot frame (NaN when unknown). Packets
@@ -100,6 +101,8 @@ class Explorer {
   std::uint64_t foreign_packets() const { return foreign_packets_; }
   std::uint64_t stuck_count() const { return stuck_count_; }
   std::uint64_t plans() const { return plans_; }
+  std::uint64_t bad_scans() const { return bad_scans_; }
+  std::uint64_t unannounced() const { return unannounced_; }  // markers whose id does not fit
 
  private:
   void ChooseGoal(double time);
@@ -126,7 +129,7 @@ class Explorer {
   double progress_time_ = 0.0;
   double backoff_until_ = -1e9;
   double backoff_turn_ = 1.0;
-  std::uint64_t foreign_packets_ = 0, stuck_count_ = 0, plans_ = 0;
+  std::uint64_t foreign_packets_ = 0, stuck_count_ = 0, plans_ = 0, bad_scans_ = 0, unannounced_ = 0;
 };
 
 }  // namespace sounds_good_explorer

@@ -16,7 +16,7 @@ struct LocalMapOptions {
   int size = 41;             // cells on a side (odd, so one cell is the centre): 6.15 m
   double resolution = 0.15;  // m per cell: the thesis's robot size
   double expiry = 20.0;      // s after which a cell not seen again reverts to unknown
-  double expiry_step = 1.0;  // s between sweeps for expired cells
+  double expiry_step = 1.0;  // s between sweeps for expired cells (at most `expiry`)
 };
 
 // Throws std::invalid_argument naming the field when an option is impossible.
@@ -81,7 +81,8 @@ class LocalMap {
   Eigen::Vector2i origin_{0, 0};
   bool placed_ = false;
   std::vector<CellState> cells_;
-  std::vector<float> seen_;  // s, when each cell was last marked
+  // s, when each cell was last marked (double: ROS wall-clock stamps are ~1.7e9 s)
+  std::vector<double> seen_;
   double swept_ = -1e9;      // s, last sweep for expired cells
   int offsets_radius_ = -1;
   std::vector<Offset> offsets_;

@@ -48,8 +48,9 @@ Grid<int> ManhattanDistance(const Grid<std::uint8_t>& obstacles);
 Grid<std::uint32_t> StepCosts(const LocalMap& map, const Grid<std::uint8_t>& grown,
                               const Grid<int>& distance, const PlannerOptions& options);
 // Wavefront potential: least total cost from `goal` to each cell over 4-connected steps
-// (the goal itself 0; kUnreachable where no path). A bucket queue on the integer costs keeps it
-// linear in the cells, as the thesis's FIFO flood fill. With `stop_at`, the fill stops once
+// (the goal itself 0, even in an occupied cell; kUnreachable where no path). A bucket queue on
+// the integer costs keeps it O(cells + largest potential), as the thesis's FIFO flood fill is
+// linear in the cells. With `stop_at`, the fill stops once
 // that cell is settled: cells costlier than it may keep unfinished (too high) values, which
 // steepest descent from it never looks at.
 Grid<std::uint32_t> Wavefront(const Grid<std::uint32_t>& costs, const Eigen::Vector2i& goal,

@@ -24,4 +24,17 @@ struct TTest {
 
 TTest StudentTTest(const std::vector<double>& a, const std::vector<double>& b);
 
+// Stouffer's combination of independent two-tailed tests of the same direction of effect
+// (one per configuration): each signed t becomes the normal z of its p, and
+// Z = sum z / sqrt(k) is tested two-tailed. Unlike one t-test on all trials pooled, it does not
+// drown a consistent effect in the spread between configurations. `gain` is the geometric mean
+// of the per-test gains (1 + gain).
+struct CombinedTest {
+  double z = 0.0;
+  double p = 1.0;
+  double gain = 0.0;
+};
+
+CombinedTest Stouffer(const std::vector<TTest>& tests);
+
 }  // namespace sounds_good_explorer

@@ -27,7 +27,7 @@ struct LoadedWorld {
 LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_override = "");
 
 // Writes `config` as a world file that LoadWorldFile reads back to the same config (the map
-// path as given, the whole robot model, every robot, marker and charger). Throws
+// path made absolute, the whole robot model, every robot, marker and charger). Throws
 // std::runtime_error naming the path when it cannot be written.
 void SaveWorldFile(const std::string& path, const WorldConfig& config);
 
