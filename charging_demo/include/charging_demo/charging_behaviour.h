@@ -1,0 +1,114 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "grid/pose2d.h"
+#include "local_mutex/local_mutex.h"
+
+namespace charging_demo {
+
+struct ChargingOptions {
+  std::set<std::uint32_t> chargers;  // fiducial ids that mark chargers (all look the same)
+  double low_battery = 0.3;      // below this the robot goes to charge
+  double full_battery = 0.98;    // charging ends here
+  double wait_distance = 1.0;    // m from the charger where the robot stops and asks for the lock
+  double arrive_tolerance = 0.25;  // m: this close to the waiting point counts as there
+  double undock_distance = 1.0;  // m from the charger before the lock is released
+  // Policy for a lock that does not come: after waiting this long the robot withdraws its
+  // request and looks for another charger, avoiding this one for `avoid_time`.
+  double lock_timeout = 600.0;   // s
+  double avoid_time = 300.0;     // s
+  // Docking that does not end docked within this time (someone in the way, odometry off) backs
+  // out to the waiting point, still holding the lock, and tries again.
+  double dock_timeout = 60.0;    // s
+  double same_charger = 0.5;     // m: sightings this close together are one charger
+};
+
+// Throws std::invalid_argument naming the field when an option is impossible (no charger ids,
+// a threshold outside (0, 1), full below low, ...).
+void ValidateOptions(const ChargingOptions& options);
+
+enum class Phase : std::uint8_t {
+  kDuty,       // normal work (explore or wander)
+  kSeek,       // battery low: looking for a charger
+  kApproach,   // going to the waiting point wait_distance from a charger
+  kWait,       // standing still at the waiting point, lock wanted
+  kDock,       // lock held: driving onto the charger
+  kCharge,     // docked, charging
+  kUndock,     // full: backing away from the charger, lock still held
+};
+
+const char* PhaseName(Phase phase);
+
+// What the behaviour wants the robot to do; the caller's navigation carries it out.
+struct ChargingCommand {
+  enum class Motion : std::uint8_t {
+    kDuty,      // whatever the normal duty does (explore, wander)
+    kGoTo,      // drive to `target` (odom frame)
+    kStop,      // stand still
+    kBackAway,  // move away from `target` (the charger)
+  };
+  Motion motion = Motion::kDuty;
+  Eigen::Vector2d target{0.0, 0.0};
+  bool want_lock = false;  // the local mutex should be wanted (or held) now
+};
+
+struct ChargerSighting {
+  std::uint32_t id = 0;
+  double range = 0.0;    // m
+  double bearing = 0.0;  // rad, robot frame
+};
+
+// What the robot senses at one update.
+struct ChargingInputs {
+  grid::Pose2D odom;          // pose in the odom frame
+  double battery = 1.0;       // level, 0 to 1
+  bool docked = false;        // the charger's contacts are charging the robot
+  std::vector<ChargerSighting> sightings;  // every fiducial seen now (others are ignored)
+  local_mutex::State lock = local_mutex::State::kReleased;
+  double time = 0.0;          // s
+};
+
+// The charging behaviour of thesis section 7.2 (ROS-free): duty until the battery is low; find
+// any charger; stop wait_distance from it and ask for the local mutex; only when HELD drive in
+// and dock; charge until full; back away to undock_distance, then release; back to duty. It
+// never moves while the lock is wanted but not held (the thesis's assumption for the lock's
+// safety), and never drives onto a charger without holding the lock. Chargers are remembered in
+// the odom frame once seen (they do not move).
+class ChargingBehaviour {
+ public:
+  explicit ChargingBehaviour(const ChargingOptions& options);
+
+  ChargingCommand Update(const ChargingInputs& in);
+
+  Phase phase() const { return phase_; }
+  double phase_since() const { return phase_since_; }
+  std::optional<Eigen::Vector2d> charger() const { return charger_; }  // the one in use
+  std::uint64_t charges() const { return charges_; }
+  std::uint64_t give_ups() const { return give_ups_; }   // lock timeouts
+  std::uint64_t redocks() const { return redocks_; }     // dock timeouts
+
+ private:
+  void Enter(Phase phase, double time);
+  // The nearest remembered charger not being avoided, if any.
+  std::optional<Eigen::Vector2d> ChooseCharger(const Eigen::Vector2d& robot, double time) const;
+  Eigen::Vector2d WaitingPoint(const Eigen::Vector2d& robot) const;
+
+  ChargingOptions options_;
+  Phase phase_ = Phase::kDuty;
+  double phase_since_ = 0.0;
+  std::vector<Eigen::Vector2d> known_;                 // chargers seen, odom frame
+  std::vector<std::pair<Eigen::Vector2d, double>> avoid_;  // charger, until when
+  std::optional<Eigen::Vector2d> charger_;
+  Eigen::Vector2d waiting_point_{0.0, 0.0};
+  bool retry_dock_ = false;  // backing out after a dock timeout, to try again
+  std::uint64_t charges_ = 0, give_ups_ = 0, redocks_ = 0;
+};
+
+}  // namespace charging_demo

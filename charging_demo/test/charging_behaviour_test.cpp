@@ -1,0 +1,162 @@
+#include "charging_demo/charging_behaviour.h"
+
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace charging_demo {
+namespace {
+
+using Motion = ChargingCommand::Motion;
+using local_mutex::State;
+
+ChargingOptions Options() {
+  ChargingOptions o;
+  o.chargers = {100, 101};
+  return o;
+}
+
+ChargingInputs At(double x, double y, double battery, double time, State lock = State::kReleased) {
+  ChargingInputs in;
+  in.odom = {x, y, 0.0};
+  in.battery = battery;
+  in.time = time;
+  in.lock = lock;
+  return in;
+}
+
+TEST(ChargingBehaviour, FullCycleDutyToChargeAndBack) {
+  ChargingBehaviour b(Options());
+  ChargingCommand c = b.Update(At(0, 0, 0.5, 0.0));
+  EXPECT_EQ(b.phase(), Phase::kDuty);
+  EXPECT_EQ(c.motion, Motion::kDuty);
+  EXPECT_FALSE(c.want_lock);
+
+  c = b.Update(At(0, 0, 0.25, 1.0));  // low, no charger known yet: keep exploring
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+  EXPECT_EQ(c.motion, Motion::kDuty);
+
+  ChargingInputs in = At(0, 0, 0.25, 2.0);
+  in.sightings = {{7, 2.0, 1.0}, {100, 3.0, 0.0}};  // a non-charger marker, and a charger 3 m ahead
+  c = b.Update(in);
+  EXPECT_EQ(b.phase(), Phase::kApproach);
+  EXPECT_EQ(c.motion, Motion::kGoTo);
+  EXPECT_NEAR(c.target.x(), 2.0, 1e-9);  // 1 m short of the charger, on the robot's side
+  EXPECT_NEAR(c.target.y(), 0.0, 1e-9);
+  EXPECT_FALSE(c.want_lock);
+
+  c = b.Update(At(1.9, 0.0, 0.24, 10.0));  // at the waiting point
+  EXPECT_EQ(b.phase(), Phase::kWait);
+  EXPECT_EQ(c.motion, Motion::kStop);
+  EXPECT_TRUE(c.want_lock);
+  for (State s : {State::kWanted, State::kSilent, State::kWanted}) {
+    c = b.Update(At(1.9, 0.0, 0.24, 30.0, s));
+    EXPECT_EQ(c.motion, Motion::kStop) << "moved while the lock was only wanted";
+    EXPECT_TRUE(c.want_lock);
+  }
+
+  c = b.Update(At(1.9, 0.0, 0.23, 50.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  EXPECT_EQ(c.motion, Motion::kGoTo);
+  EXPECT_NEAR(c.target.x(), 3.0, 1e-9);
+
+  ChargingInputs docked = At(2.95, 0.0, 0.23, 60.0, State::kHeld);
+  docked.docked = true;
+  c = b.Update(docked);
+  EXPECT_EQ(b.phase(), Phase::kCharge);
+  EXPECT_EQ(c.motion, Motion::kStop);
+  EXPECT_TRUE(c.want_lock);
+  EXPECT_EQ(b.charges(), 1u);
+
+  docked.battery = 0.99;
+  docked.time = 600.0;
+  c = b.Update(docked);
+  EXPECT_EQ(b.phase(), Phase::kUndock);
+  EXPECT_EQ(c.motion, Motion::kBackAway);
+  EXPECT_TRUE(c.want_lock);  // released only once away from the charger
+
+  c = b.Update(At(1.9, 0.0, 0.99, 610.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDuty);
+  EXPECT_EQ(c.motion, Motion::kDuty);
+  EXPECT_FALSE(c.want_lock);
+}
+
+// Drives the behaviour to the waiting point of the charger 3 m ahead.
+ChargingBehaviour Waiting(const ChargingOptions& o) {
+  ChargingBehaviour b(o);
+  ChargingInputs in = At(0, 0, 0.2, 0.0);
+  in.sightings = {{100, 3.0, 0.0}};
+  b.Update(in);
+  b.Update(At(2.0, 0.0, 0.2, 5.0, State::kWanted));
+  EXPECT_EQ(b.phase(), Phase::kWait);
+  return b;
+}
+
+TEST(ChargingBehaviour, GivesUpOnALockThatNeverComesAndAvoidsThatCharger) {
+  ChargingOptions o = Options();
+  o.lock_timeout = 100.0;
+  o.avoid_time = 200.0;
+  ChargingBehaviour b = Waiting(o);
+  ChargingCommand c = b.Update(At(2.0, 0.0, 0.2, 104.0, State::kWanted));
+  EXPECT_EQ(b.phase(), Phase::kWait);
+  c = b.Update(At(2.0, 0.0, 0.2, 106.0, State::kWanted));
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+  EXPECT_FALSE(c.want_lock);  // the request is withdrawn
+  EXPECT_EQ(b.give_ups(), 1u);
+  c = b.Update(At(2.0, 0.0, 0.2, 150.0));
+  EXPECT_EQ(b.phase(), Phase::kSeek);  // the only known charger is avoided
+  ChargingInputs in = At(2.0, 0.0, 0.2, 160.0);
+  in.sightings = {{101, 4.0, M_PI / 2}};  // another charger, 4 m to the left
+  c = b.Update(in);
+  EXPECT_EQ(b.phase(), Phase::kApproach);
+  EXPECT_NEAR(c.target.x(), 2.0, 1e-9);
+  EXPECT_NEAR(c.target.y(), 3.0, 1e-9);
+}
+
+TEST(ChargingBehaviour, NeverDocksWithoutTheLock) {
+  ChargingBehaviour b = Waiting(Options());
+  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  // The lock is not held any more (lost in a noise storm): stand still and ask again.
+  ChargingCommand c = b.Update(At(2.3, 0.0, 0.2, 11.0, State::kWanted));
+  EXPECT_EQ(b.phase(), Phase::kWait);
+  EXPECT_EQ(c.motion, Motion::kStop);
+  EXPECT_TRUE(c.want_lock);
+  c = b.Update(At(2.3, 0.0, 0.2, 12.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  EXPECT_EQ(c.motion, Motion::kGoTo);
+}
+
+TEST(ChargingBehaviour, ADockThatTakesTooLongBacksOutAndTriesAgainHoldingTheLock) {
+  ChargingOptions o = Options();
+  o.dock_timeout = 30.0;
+  ChargingBehaviour b = Waiting(o);
+  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
+  ChargingCommand c = b.Update(At(2.8, 0.0, 0.2, 41.0, State::kHeld));  // not docked after 31 s
+  EXPECT_EQ(b.phase(), Phase::kUndock);
+  EXPECT_EQ(c.motion, Motion::kBackAway);
+  EXPECT_TRUE(c.want_lock);
+  EXPECT_EQ(b.redocks(), 1u);
+  c = b.Update(At(1.8, 0.0, 0.2, 50.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  EXPECT_EQ(c.motion, Motion::kGoTo);
+  EXPECT_TRUE(c.want_lock);
+}
+
+TEST(ChargingBehaviour, RejectsImpossibleOptions) {
+  ChargingOptions o = Options();
+  o.chargers.clear();
+  EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
+  o = Options();
+  o.low_battery = 1.2;
+  EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
+  o = Options();
+  o.full_battery = 0.2;
+  EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
+  o = Options();
+  o.wait_distance = 0.0;
+  EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace charging_demo
