@@ -6,17 +6,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "sounds_good_explorer/option_checks.h"
+
 namespace charging_demo {
 
-namespace {
-
-void RequirePositive(const char* name, double value) {
-  if (!(value > 0.0))
-    throw std::invalid_argument(std::string("charging ") + name + " must be > 0, got " +
-                                std::to_string(value));
-}
-
-}  // namespace
+using sounds_good_explorer::RequireAbove;
+using sounds_good_explorer::RequireAtLeast;
 
 void ValidateOptions(const ChargingOptions& o) {
   if (o.chargers.empty())
@@ -27,15 +22,13 @@ void ValidateOptions(const ChargingOptions& o) {
   if (!(o.full_battery > o.low_battery && o.full_battery <= 1.0))
     throw std::invalid_argument("charging full_battery must be within (low_battery, 1], got " +
                                 std::to_string(o.full_battery));
-  RequirePositive("wait_distance", o.wait_distance);
-  RequirePositive("arrive_tolerance", o.arrive_tolerance);
-  RequirePositive("undock_distance", o.undock_distance);
-  RequirePositive("lock_timeout", o.lock_timeout);
-  RequirePositive("dock_timeout", o.dock_timeout);
-  RequirePositive("same_charger", o.same_charger);
-  if (!(o.avoid_time >= 0.0))
-    throw std::invalid_argument("charging avoid_time must be >= 0 s, got " +
-                                std::to_string(o.avoid_time));
+  RequireAbove("charging wait_distance", o.wait_distance, 0.0);
+  RequireAbove("charging arrive_tolerance", o.arrive_tolerance, 0.0);
+  RequireAbove("charging undock_distance", o.undock_distance, 0.0);
+  RequireAbove("charging lock_timeout", o.lock_timeout, 0.0);
+  RequireAbove("charging dock_timeout", o.dock_timeout, 0.0);
+  RequireAbove("charging same_charger", o.same_charger, 0.0);
+  RequireAtLeast("charging avoid_time (s)", o.avoid_time, 0.0);
 }
 
 const char* PhaseName(Phase phase) {

@@ -46,6 +46,14 @@ std::array<std::uint8_t, 3> ModeColour(ListenMode mode) {
   return {0, 0, 0};
 }
 
+// The t-test of mode b against mode a on each configuration, 1..configs in order.
+std::vector<TTest> PairTests(const std::vector<TrialRow>& rows, ListenMode a, ListenMode b,
+                             int configs) {
+  std::vector<TTest> tests;
+  for (int c = 1; c <= configs; ++c) tests.push_back(StudentTTest(Times(rows, c, a), Times(rows, c, b)));
+  return tests;
+}
+
 }  // namespace
 
 void WriteTrialsCsv(const std::string& path, const std::vector<TrialRow>& rows) {
@@ -113,14 +121,16 @@ std::string Table32(const std::vector<TrialRow>& rows, const std::vector<ListenM
   t << "| Method 1 | Method 2 | Config | Perf. gain % | t | Significance % | Different? |\n"
        "| --- | --- | --- | ---: | ---: | ---: | --- |\n";
   for (std::size_t a = 0; a < modes.size(); ++a)
-    for (std::size_t b = a + 1; b < modes.size(); ++b)
+    for (std::size_t b = a + 1; b < modes.size(); ++b) {
+      const std::vector<TTest> tests = PairTests(rows, modes[a], modes[b], configs);
       for (int c = 1; c <= configs; ++c) {
-        const TTest test = StudentTTest(Times(rows, c, modes[a]), Times(rows, c, modes[b]));
+        const TTest& test = tests[c - 1];
         t << "| " << ListenModeName(modes[a]) << " | " << ListenModeName(modes[b]) << " | "
           << ConfigName(c) << " | " << Format("%.1f", 100.0 * test.gain) << " | "
           << Format("%.1f", test.t) << " | " << Format("%.3f", 100.0 * test.p) << " | "
           << (test.p < 0.05 ? "Yes" : "No") << " |\n";
       }
+    }
   int censored = 0;
   for (const TrialRow& r : rows) censored += r.result.censored;
   if (censored)
@@ -133,17 +143,13 @@ std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenM
   std::ostringstream t;
   for (std::size_t a = 0; a < modes.size(); ++a)
     for (std::size_t b = a + 1; b < modes.size(); ++b) {
+      const std::vector<TTest> tests = PairTests(rows, modes[a], modes[b], configs);
       int faster = 0, slower = 0;  // the second mode against the first
-      for (int c = 1; c <= configs; ++c) {
-        const TTest test = StudentTTest(Times(rows, c, modes[a]), Times(rows, c, modes[b]));
+      for (const TTest& test : tests)
         if (test.p < 0.05) (test.t > 0 ? faster : slower) += 1;
-      }
       t << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": significantly faster in "
         << faster << "/" << configs << ", significantly slower in " << slower << "/" << configs
         << ", not different in " << configs - faster - slower << "/" << configs << '\n';
-      std::vector<TTest> tests;
-      for (int c = 1; c <= configs; ++c)
-        tests.push_back(StudentTTest(Times(rows, c, modes[a]), Times(rows, c, modes[b])));
       const CombinedTest combined = Stouffer(tests);
       t << "combined " << ListenModeName(modes[b]) << " vs " << ListenModeName(modes[a]) << ": gain "
         << Format("%.1f", 100.0 * combined.gain) << " % z " << Format("%.2f", combined.z) << " p "
@@ -154,11 +160,12 @@ std::string Verdict(const std::vector<TrialRow>& rows, const std::vector<ListenM
 
 void WriteTeamTimeChart(const std::string& path, const std::vector<TrialRow>& rows,
                         const std::vector<ListenMode>& modes, int configs) {
+  std::vector<double> first_mean(configs + 1);
+  for (int c = 1; c <= configs; ++c) first_mean[c] = Summarize(Times(rows, c, modes.front())).mean;
   std::vector<int> order(configs);
   std::iota(order.begin(), order.end(), 1);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return Summarize(Times(rows, a, modes.front())).mean < Summarize(Times(rows, b, modes.front())).mean;
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return first_mean[a] < first_mean[b]; });
   IntervalChart chart;
   chart.title = "Time to finish all jobs: mean and 95% interval per configuration";
   chart.x_label = std::string("configuration (ordered by ") + ListenModeName(modes.front()) + ")";

@@ -112,10 +112,12 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
   if (worlds.empty() && map_file.empty()) args.Fail("give --map, --worlds or --quick");
   if (!worlds.empty() && !args.String("--map", "").empty()) args.Fail("give --map or --worlds, not both");
   if (!worlds.empty() && Split(worlds).empty()) args.Fail("--worlds: expected world files separated by commas, got '" + worlds + "'");
-  if (!worlds.empty())
-    for (const char* flag : {"--configs", "--robots", "--ir-range", "--camera-range", "--quick"})
-      if (!args.String(flag, "").empty() || (std::string(flag) == "--quick" && quick))
+  if (!worlds.empty()) {
+    if (quick) args.Fail("--quick makes configurations; give --worlds without it");
+    for (const char* flag : {"--configs", "--robots", "--ir-range", "--camera-range"})
+      if (!args.String(flag, "").empty())
         args.Fail(std::string(flag) + " makes configurations; the world files given by --worlds are used as they are");
+  }
 
   const int configs = static_cast<int>(args.Int("--configs", quick ? 3 : 10, 1, 1000));
   options.trials = static_cast<int>(args.Int("--trials", quick ? 6 : 20, 1, 100000));
