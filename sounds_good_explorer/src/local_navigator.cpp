@@ -1,0 +1,134 @@
+#include "sounds_good_explorer/local_navigator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sounds_good_explorer/option_checks.h"
+
+namespace sounds_good_explorer {
+
+namespace {
+
+// Reversing speed when backing off after being stuck.
+constexpr double kBackoffSpeed = 0.1;
+
+}  // namespace
+
+void ValidateOptions(const MotionOptions& o) {
+  RequireAbove("motion max_speed (m/s)", o.max_speed, 0.0);
+  RequireAbove("motion max_turn_rate (rad/s)", o.max_turn_rate, 0.0);
+  RequireAbove("motion turn_gain", o.turn_gain, 0.0);
+  RequireAbove("motion lookahead (m)", o.lookahead, 0.0);
+  RequireAbove("motion goal_tolerance (m)", o.goal_tolerance, 0.0);
+  RequireAbove("motion goal_hold (s)", o.goal_hold, 0.0);
+  RequireAbove("motion replan_period (s)", o.replan_period, 0.0);
+  RequireAbove("motion stuck_time (s)", o.stuck_time, 0.0);
+  RequireAtLeast("motion backoff_time (s)", o.backoff_time, 0.0);
+}
+
+void ValidateOptions(const NavigatorOptions& o) {
+  ValidateOptions(o.map);
+  ValidateOptions(o.planner);
+  ValidateOptions(o.motion);
+}
+
+LocalNavigator::LocalNavigator(const NavigatorOptions& options)
+    : options_((ValidateOptions(options), options)), map_(options.map) {}
+
+void LocalNavigator::OnOdometry(const grid::Pose2D& odom, double time) {
+  pose_ = odom;
+  map_.Recentre(pose_.position());
+  if (!have_pose_) {
+    progress_at_ = pose_.position();
+    progress_time_ = time;
+  }
+  have_pose_ = true;
+}
+
+void LocalNavigator::OnRanges(const std::vector<RangeReading>& readings, double reach, double time) {
+  if (!have_pose_) return;
+  if (!std::isfinite(reach) || reach <= 0.0) {  // a ranger reaching nowhere or forever
+    ++bad_scans_;
+    return;
+  }
+  front_clearance_ = std::numeric_limits<double>::infinity();
+  const double half_width =
+      options_.clear_sectors && !readings.empty() ? M_PI / readings.size() : 0.0;
+  for (const RangeReading& r : readings) {
+    map_.AddRange(pose_, r.bearing, r.range, reach, time, half_width);
+    if (std::abs(grid::NormalizeAngle(r.bearing)) <= M_PI / 3.0 && std::isfinite(r.range))
+      front_clearance_ = std::min(front_clearance_, r.range);
+  }
+  // The robot stands where it is: its own cells are free whatever the beams said.
+  map_.MarkFree(pose_.position(), options_.planner.robot_radius, time);
+}
+
+bool LocalNavigator::PlanTo(const std::optional<Eigen::Vector2d>& goal, double time) {
+  last_plan_ = time;
+  plan_.clear();
+  if (!goal) return false;
+  const Plan plan = MakePlan(map_, map_.CellOf(pose_.position()), GoalCell(*goal), options_.planner);
+  ++plans_;
+  plan_.reserve(plan.cells.size());
+  for (const Eigen::Vector2i& cell : plan.cells) plan_.push_back(map_.CentreOf(cell));
+  return !plan_.empty();
+}
+
+Eigen::Vector2i LocalNavigator::GoalCell(const Eigen::Vector2d& goal) const {
+  const Eigen::Vector2i cell = map_.CellOf(goal);
+  const int last = map_.size() - 1;
+  return {std::clamp(cell.x(), 0, last), std::clamp(cell.y(), 0, last)};
+}
+
+void LocalNavigator::Hold(double time) {
+  plan_.clear();
+  progress_at_ = pose_.position();
+  progress_time_ = time;
+}
+
+LocalNavigator::Steering LocalNavigator::Steer(double time) {
+  const MotionOptions& m = options_.motion;
+  const Eigen::Vector2d here = pose_.position();
+  Steering out;
+  if (plan_.size() < 2) {
+    // Nothing to go to yet: turn on the spot so the rangers sweep the surroundings.
+    out.command.w = 0.5 * m.max_turn_rate;
+    Hold(time);
+    return out;
+  }
+  Eigen::Vector2d target = plan_.back();
+  for (std::size_t i = 1; i < plan_.size(); ++i) {
+    if ((plan_[i] - here).norm() >= m.lookahead) {
+      target = plan_[i];
+      break;
+    }
+  }
+  const Eigen::Vector2d to = target - here;
+  const double error = grid::NormalizeAngle(std::atan2(to.y(), to.x()) - pose_.yaw);
+  out.command.w = std::clamp(m.turn_gain * error, -m.max_turn_rate, m.max_turn_rate);
+  if (std::abs(error) < M_PI / 3.0) {
+    out.command.v = m.max_speed * std::cos(error);
+    // Slow down near the end of the plan so a goal is not overshot.
+    out.command.v = std::min(out.command.v, 0.05 + 0.8 * (plan_.back() - here).norm());
+    if (front_clearance_ < options_.planner.robot_radius + 0.1) out.command.v = 0.0;
+  }
+
+  if ((here - progress_at_).norm() > 0.1) {
+    progress_at_ = here;
+    progress_time_ = time;
+  } else if (time - progress_time_ > m.stuck_time) {
+    ++stuck_count_;
+    out.stuck = true;
+    Hold(time);
+  }
+  return out;
+}
+
+void LocalNavigator::StartBackoff(double time, double turn) {
+  backoff_until_ = time + options_.motion.backoff_time;
+  backoff_turn_ = turn;
+}
+
+Velocity LocalNavigator::BackoffCommand() const { return {-kBackoffSpeed, backoff_turn_}; }
+
+}  // namespace sounds_good_explorer
