@@ -10,6 +10,13 @@
 
 namespace charging_demo {
 
+namespace {
+
+// m an approach must come closer by to count as progress.
+constexpr double kApproachProgress = 0.5;
+
+}  // namespace
+
 using sounds_good_explorer::RequireAbove;
 using sounds_good_explorer::RequireAtLeast;
 
@@ -25,9 +32,17 @@ void ValidateOptions(const ChargingOptions& o) {
   RequireAbove("charging wait_distance", o.wait_distance, 0.0);
   RequireAbove("charging arrive_tolerance", o.arrive_tolerance, 0.0);
   RequireAbove("charging undock_distance", o.undock_distance, 0.0);
+  RequireAbove("charging undock_timeout", o.undock_timeout, 0.0);
+  RequireAbove("charging undock_min_distance", o.undock_min_distance, 0.0);
   RequireAbove("charging lock_timeout", o.lock_timeout, 0.0);
   RequireAbove("charging dock_timeout", o.dock_timeout, 0.0);
   RequireAbove("charging same_charger", o.same_charger, 0.0);
+  RequireAbove("charging recheck_distance", o.recheck_distance, 0.0);
+  RequireAbove("charging recheck_time", o.recheck_time, 0.0);
+  RequireAbove("charging approach_timeout", o.approach_timeout, 0.0);
+  if (o.max_redocks < 0)
+    throw std::invalid_argument("charging max_redocks must be at least 0, got " +
+                                std::to_string(o.max_redocks));
   RequireAtLeast("charging avoid_time (s)", o.avoid_time, 0.0);
 }
 
@@ -53,17 +68,23 @@ void ChargingBehaviour::Enter(Phase phase, double time) {
   phase_since_ = time;
 }
 
+std::vector<Eigen::Vector2d> ChargingBehaviour::known_chargers() const {
+  std::vector<Eigen::Vector2d> out;
+  for (const Known& k : known_) out.push_back(k.position);
+  return out;
+}
+
 std::optional<Eigen::Vector2d> ChargingBehaviour::ChooseCharger(const Eigen::Vector2d& robot,
                                                                 double time) const {
   std::optional<Eigen::Vector2d> best;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector2d& c : known_) {
+  for (const Known& k : known_) {
     const bool avoided = std::any_of(avoid_.begin(), avoid_.end(), [&](const auto& a) {
-      return a.second > time && (a.first - c).norm() < options_.same_charger;
+      return a.second > time && (a.first - k.position).norm() < options_.same_charger;
     });
     if (avoided) continue;
-    const double d = (c - robot).norm();
-    if (d < best_distance) best_distance = d, best = c;
+    const double d = (k.position - robot).norm();
+    if (d < best_distance) best_distance = d, best = k.position;
   }
   return best;
 }
@@ -74,18 +95,64 @@ Eigen::Vector2d ChargingBehaviour::WaitingPoint(const Eigen::Vector2d& robot) co
   return *charger_ + direction * options_.wait_distance;
 }
 
-ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
-  const Eigen::Vector2d robot = in.odom.position();
-  for (const ChargerSighting& s : in.sightings) {
+void ChargingBehaviour::See(const std::vector<ChargerSighting>& sightings, const grid::Pose2D& odom,
+                            double time) {
+  for (const ChargerSighting& s : sightings) {
     if (!options_.chargers.count(s.id)) continue;
     const Eigen::Vector2d p = grid::TransformPoint(
-        in.odom, {s.range * std::cos(s.bearing), s.range * std::sin(s.bearing)});
-    auto known = std::find_if(known_.begin(), known_.end(), [&](const Eigen::Vector2d& c) {
-      return (c - p).norm() < options_.same_charger;
+        odom, {s.range * std::cos(s.bearing), s.range * std::sin(s.bearing)});
+    auto known = std::find_if(known_.begin(), known_.end(), [&](const Known& k) {
+      return (k.position - p).norm() < options_.same_charger;
     });
-    if (known == known_.end()) known_.push_back(p);
-    else *known = p;  // the latest sighting: odometry drifts
+    if (known == known_.end()) known_.push_back({p, time, -1.0});
+    else known->position = p, known->seen = time;  // the latest sighting: odometry drifts
+    if (!charger_) continue;
+    // The charger in use follows its sightings. One remembered from long ago may be off by
+    // more than same_charger; if it has gone unseen for recheck_time while a charger is in
+    // sight within recheck_distance of it, that one is taken to be it.
+    const double offset = (*charger_ - p).norm();
+    if (offset < options_.same_charger ||
+        (time - charger_seen_ > options_.recheck_time && offset < options_.recheck_distance)) {
+      charger_ = p;
+      charger_seen_ = time;
+    }
   }
+}
+
+void ChargingBehaviour::ForgetUnseen(const Eigen::Vector2d& robot, double time) {
+  const bool in_use = phase_ == Phase::kWait || phase_ == Phase::kDock || phase_ == Phase::kCharge ||
+                      phase_ == Phase::kUndock;
+  auto gone = [&](const Known& k) {
+    if (in_use && charger_ && (k.position - *charger_).norm() < options_.same_charger) return false;
+    return k.near_since >= 0.0 && time - std::max(k.seen, k.near_since) > options_.recheck_time;
+  };
+  for (Known& k : known_) {
+    const bool near = (k.position - robot).norm() < options_.recheck_distance;
+    if (!near) k.near_since = -1.0;
+    else if (k.near_since < 0.0) k.near_since = time;
+    if (!gone(k)) continue;
+    ++forgotten_;
+    if (charger_ && (k.position - *charger_).norm() < options_.same_charger) {
+      charger_.reset();
+      if (phase_ == Phase::kApproach) Enter(Phase::kSeek, time);
+    }
+  }
+  known_.erase(std::remove_if(known_.begin(), known_.end(), gone), known_.end());
+}
+
+void ChargingBehaviour::GiveUp(double time) {
+  ++give_ups_;
+  avoid_.emplace_back(*charger_, time + options_.avoid_time);
+  charger_.reset();
+  retry_dock_ = false;
+  redocks_in_row_ = 0;
+  Enter(Phase::kSeek, time);
+}
+
+ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
+  const Eigen::Vector2d robot = in.odom.position();
+  See(in.sightings, in.odom, in.time);
+  ForgetUnseen(robot, in.time);
   avoid_.erase(std::remove_if(avoid_.begin(), avoid_.end(),
                               [&](const auto& a) { return a.second <= in.time; }),
                avoid_.end());
@@ -99,25 +166,36 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
     case Phase::kSeek:
       charger_ = ChooseCharger(robot, in.time);
       if (!charger_) return cmd;  // keep exploring until a charger comes into view
-      waiting_point_ = WaitingPoint(robot);
+      for (const Known& k : known_)
+        if ((k.position - *charger_).norm() < 1e-9) charger_seen_ = k.seen;
       Enter(Phase::kApproach, in.time);
+      approach_best_ = std::numeric_limits<double>::infinity();
+      approach_improved_ = in.time;
       [[fallthrough]];
-    case Phase::kApproach:
-      if ((robot - waiting_point_).norm() > options_.arrive_tolerance) {
+    case Phase::kApproach: {
+      const double distance = (robot - *charger_).norm();
+      if (distance < approach_best_ - kApproachProgress) {
+        approach_best_ = distance;
+        approach_improved_ = in.time;
+      } else if (in.time - approach_improved_ > options_.approach_timeout) {
+        GiveUp(in.time);
+        return cmd;
+      }
+      // Anywhere on the ring wait_distance from the charger will do: the target is the ring's
+      // nearest point, so robots arriving from different sides wait on different sides.
+      if (std::abs(distance - options_.wait_distance) > options_.arrive_tolerance) {
         cmd.motion = ChargingCommand::Motion::kGoTo;
-        cmd.target = waiting_point_;
+        cmd.target = WaitingPoint(robot);
         return cmd;
       }
       Enter(Phase::kWait, in.time);
+    }
       [[fallthrough]];
     case Phase::kWait:
       if (in.lock != local_mutex::State::kHeld) {
         if (in.time - phase_since_ > options_.lock_timeout) {
           // The documented fallback: withdraw, avoid this charger for a while, look for another.
-          ++give_ups_;
-          avoid_.emplace_back(*charger_, in.time + options_.avoid_time);
-          charger_.reset();
-          Enter(Phase::kSeek, in.time);
+          GiveUp(in.time);
           return cmd;  // want_lock false withdraws the request
         }
         cmd.motion = ChargingCommand::Motion::kStop;
@@ -136,10 +214,11 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
       }
       if (in.docked) {
         ++charges_;
+        redocks_in_row_ = 0;
         Enter(Phase::kCharge, in.time);
       } else if (in.time - phase_since_ > options_.dock_timeout) {
         ++redocks_;
-        retry_dock_ = true;
+        retry_dock_ = ++redocks_in_row_ <= options_.max_redocks;
         Enter(Phase::kUndock, in.time);
       } else {
         cmd.motion = ChargingCommand::Motion::kGoTo;
@@ -159,8 +238,11 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
         Enter(Phase::kUndock, in.time);
       }
       [[fallthrough]];
-    case Phase::kUndock:
-      if ((robot - *charger_).norm() < options_.undock_distance) {
+    case Phase::kUndock: {
+      const double distance = (robot - *charger_).norm();
+      const bool hemmed_in = in.time - phase_since_ > options_.undock_timeout &&
+                             distance >= options_.undock_min_distance;
+      if (distance < options_.undock_distance && !hemmed_in) {
         cmd.motion = ChargingCommand::Motion::kBackAway;
         cmd.target = *charger_;
         cmd.want_lock = true;
@@ -174,9 +256,14 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
         cmd.want_lock = true;
         return cmd;
       }
+      if (redocks_in_row_ > options_.max_redocks) {
+        GiveUp(in.time);  // backed out of the last failed docking: let go, try elsewhere
+        return cmd;
+      }
       charger_.reset();
       Enter(Phase::kDuty, in.time);
       return cmd;  // released: want_lock false
+    }
   }
   return cmd;
 }

@@ -1,5 +1,6 @@
 #include "charging_demo/charging_behaviour.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -45,7 +46,9 @@ TEST(ChargingBehaviour, FullCycleDutyToChargeAndBack) {
   EXPECT_NEAR(c.target.y(), 0.0, 1e-9);
   EXPECT_FALSE(c.want_lock);
 
-  c = b.Update(At(1.9, 0.0, 0.24, 10.0));  // at the waiting point
+  in = At(1.9, 0.0, 0.24, 10.0);  // at the waiting point, the charger still in sight
+  in.sightings = {{100, 1.1, 0.0}};
+  c = b.Update(in);
   EXPECT_EQ(b.phase(), Phase::kWait);
   EXPECT_EQ(c.motion, Motion::kStop);
   EXPECT_TRUE(c.want_lock);
@@ -143,6 +146,94 @@ TEST(ChargingBehaviour, ADockThatTakesTooLongBacksOutAndTriesAgainHoldingTheLock
   EXPECT_TRUE(c.want_lock);
 }
 
+TEST(ChargingBehaviour, GivesUpAfterMaxRedocksInARow) {
+  ChargingOptions o = Options();
+  o.dock_timeout = 30.0;
+  o.max_redocks = 1;
+  ChargingBehaviour b = Waiting(o);
+  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
+  b.Update(At(2.8, 0.0, 0.2, 41.0, State::kHeld));    // first timeout: back out, retry
+  b.Update(At(1.8, 0.0, 0.2, 50.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  b.Update(At(2.8, 0.0, 0.2, 81.0, State::kHeld));    // second: back out for good
+  EXPECT_EQ(b.phase(), Phase::kUndock);
+  ChargingCommand c = b.Update(At(1.8, 0.0, 0.2, 90.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+  EXPECT_FALSE(c.want_lock);  // released once clear of the charger
+  EXPECT_EQ(b.redocks(), 2u);
+  EXPECT_EQ(b.give_ups(), 1u);
+}
+
+TEST(ChargingBehaviour, ForgetsARememberedChargerThatIsNotThere) {
+  ChargingBehaviour b(Options());
+  ChargingInputs in = At(0, 0, 0.9, 0.0);
+  in.sightings = {{100, 4.0, 0.0}};  // seen on duty, 4 m ahead
+  b.Update(in);
+  ASSERT_EQ(b.known_chargers().size(), 1u);
+  ChargingCommand c = b.Update(At(0, 0, 0.2, 100.0));
+  EXPECT_EQ(b.phase(), Phase::kApproach);  // goes where memory says
+  EXPECT_NEAR(c.target.x(), 3.0, 1e-9);
+  // Odometry drifted: near the remembered spot there is nothing in sight.
+  b.Update(At(2.5, 0.0, 0.2, 110.0));
+  EXPECT_EQ(b.phase(), Phase::kApproach);  // not for recheck_time yet
+  c = b.Update(At(2.6, 0.0, 0.2, 116.0));
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+  EXPECT_EQ(c.motion, Motion::kDuty);
+  EXPECT_TRUE(b.known_chargers().empty());
+  EXPECT_EQ(b.forgotten(), 1u);
+}
+
+TEST(ChargingBehaviour, TheChargerInUseFollowsItsSightings) {
+  ChargingBehaviour b = Waiting(Options());
+  ChargingInputs in = At(2.0, 0.0, 0.2, 10.0, State::kHeld);
+  in.sightings = {{100, 1.0, 0.3}};  // seen 0.3 rad to the left now (odometry drifted)
+  ChargingCommand c = b.Update(in);
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  EXPECT_NEAR(c.target.x(), 2.0 + std::cos(0.3), 1e-9);
+  EXPECT_NEAR(c.target.y(), std::sin(0.3), 1e-9);
+  EXPECT_EQ(b.known_chargers().size(), 1u);
+}
+
+TEST(ChargingBehaviour, WaitsAnywhereOnTheRing) {
+  ChargingBehaviour b(Options());
+  ChargingInputs in = At(0, 0, 0.2, 0.0);
+  in.sightings = {{100, 3.0, 0.0}};  // charger at (3, 0)
+  b.Update(in);
+  // Coming round from above: the target is the ring's nearest point, and it waits there.
+  in = At(3.0, 2.0, 0.2, 1.0);
+  in.sightings = {{100, 2.0, -M_PI / 2}};
+  ChargingCommand c = b.Update(in);
+  EXPECT_EQ(b.phase(), Phase::kApproach);
+  EXPECT_NEAR(c.target.x(), 3.0, 1e-9);
+  EXPECT_NEAR(c.target.y(), 1.0, 1e-9);
+  in = At(3.0, 1.1, 0.2, 5.0);
+  in.sightings = {{100, 1.1, -M_PI / 2}};
+  c = b.Update(in);
+  EXPECT_EQ(b.phase(), Phase::kWait);
+  EXPECT_EQ(c.motion, Motion::kStop);
+}
+
+TEST(ChargingBehaviour, HemmedInAfterChargingReleasesOnceOffTheCharger) {
+  ChargingOptions o = Options();
+  o.undock_timeout = 20.0;
+  ChargingBehaviour b = Waiting(o);
+  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
+  ChargingInputs docked = At(3.0, 0.0, 0.99, 20.0, State::kHeld);
+  docked.docked = true;
+  b.Update(docked);
+  docked.time = 21.0;
+  b.Update(docked);
+  EXPECT_EQ(b.phase(), Phase::kUndock);
+  // Waiting robots leave no room for a full metre: 0.6 m off is enough once the timeout passes.
+  ChargingCommand c = b.Update(At(2.4, 0.0, 0.99, 30.0, State::kHeld));
+  EXPECT_EQ(c.motion, Motion::kBackAway);
+  c = b.Update(At(2.8, 0.0, 0.99, 50.0, State::kHeld));  // 0.2 m off: not yet, even after it
+  EXPECT_EQ(b.phase(), Phase::kUndock);
+  c = b.Update(At(2.4, 0.0, 0.99, 52.0, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDuty);
+  EXPECT_FALSE(c.want_lock);
+}
+
 TEST(ChargingBehaviour, RejectsImpossibleOptions) {
   ChargingOptions o = Options();
   o.chargers.clear();
@@ -155,6 +246,9 @@ TEST(ChargingBehaviour, RejectsImpossibleOptions) {
   EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
   o = Options();
   o.wait_distance = 0.0;
+  EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
+  o = Options();
+  o.max_redocks = -1;
   EXPECT_THROW(ChargingBehaviour{o}, std::invalid_argument);
 }
 

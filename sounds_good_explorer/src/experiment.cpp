@@ -1,11 +1,9 @@
 #include "sounds_good_explorer/experiment.h"
 
-#include <atomic>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
+
+#include "sounds_good_explorer/parallel_for.h"
 
 namespace sounds_good_explorer {
 
@@ -35,36 +33,16 @@ std::vector<TrialRow> RunExperiment(const grid::OccupancyMap& map,
         rows.push_back(row);
       }
 
-  int threads = options.threads > 0 ? options.threads
-                                    : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(rows.size())));
-  std::atomic<std::size_t> next{0};
-  std::mutex lock;
-  int done = 0;
-  std::exception_ptr failure;
-  auto work = [&]() {
-    for (std::size_t i = next++; i < rows.size(); i = next++) {
-      TrialRow& row = rows[i];
-      TrialOptions o = options.trial;
-      o.mode = row.mode;
-      o.seed = row.seed;
-      try {
+  ParallelFor(
+      rows.size(), options.threads,
+      [&](std::size_t i) {
+        TrialRow& row = rows[i];
+        TrialOptions o = options.trial;
+        o.mode = row.mode;
+        o.seed = row.seed;
         row.result = RunTeamTrial(map, configs[row.config - 1], model, o);
-      } catch (...) {
-        std::lock_guard<std::mutex> guard(lock);
-        if (!failure) failure = std::current_exception();
-        next = rows.size();
-        return;
-      }
-      std::lock_guard<std::mutex> guard(lock);
-      ++done;
-      if (progress) progress(done, static_cast<int>(rows.size()));
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < threads; ++k) pool.emplace_back(work);
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+      },
+      progress);
   return rows;
 }
 

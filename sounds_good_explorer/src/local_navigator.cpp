@@ -63,11 +63,30 @@ void LocalNavigator::OnRanges(const std::vector<RangeReading>& readings, double 
   map_.MarkFree(pose_.position(), options_.planner.robot_radius, time);
 }
 
-bool LocalNavigator::PlanTo(const std::optional<Eigen::Vector2d>& goal, double time) {
+bool LocalNavigator::PlanTo(const std::optional<Eigen::Vector2d>& goal, double time,
+                            const std::vector<Eigen::Vector2d>& keep_out, double keep_out_radius) {
   last_plan_ = time;
   plan_.clear();
   if (!goal) return false;
-  const Plan plan = MakePlan(map_, map_.CellOf(pose_.position()), GoalCell(*goal), options_.planner);
+  const Eigen::Vector2i start = map_.CellOf(pose_.position());
+  Plan plan;
+  if (keep_out.empty() || !(keep_out_radius > 0.0)) {
+    plan = MakePlan(map_, start, GoalCell(*goal), options_.planner);
+  } else {
+    LocalMap walled = map_;
+    const int reach = static_cast<int>(std::ceil(keep_out_radius / map_.resolution()));
+    for (const Eigen::Vector2d& centre : keep_out) {
+      const Eigen::Vector2i c = map_.CellOf(centre);
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const Eigen::Vector2i cell = c + Eigen::Vector2i(dx, dy);
+          if (walled.Inside(cell) && cell != start &&
+              (map_.CentreOf(cell) - centre).norm() <= keep_out_radius)
+            walled.Set(cell, CellState::kOccupied, time);
+        }
+    }
+    plan = MakePlan(walled, start, GoalCell(*goal), options_.planner);
+  }
   ++plans_;
   plan_.reserve(plan.cells.size());
   for (const Eigen::Vector2i& cell : plan.cells) plan_.push_back(map_.CentreOf(cell));

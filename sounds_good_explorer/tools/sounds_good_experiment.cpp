@@ -29,6 +29,7 @@
 #include "sounds_good_explorer/configurations.h"
 #include "sounds_good_explorer/experiment.h"
 #include "sounds_good_explorer/experiment_report.h"
+#include "tool_args/progress_bar.h"
 #include "tool_args/tool_args.h"
 #include "world_sim/world_file.h"
 
@@ -57,26 +58,6 @@ void WriteText(const std::string& path, const std::string& text) {
   out << text;
   if (!out) throw std::runtime_error(path + ": cannot write");
 }
-
-// One line on stderr, redrawn in place: a bar, the count and the time left.
-class ProgressBar {
- public:
-  ProgressBar() : start_(std::chrono::steady_clock::now()) {}
-  void operator()(int done, int total) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const int width = 40, filled = width * done / total;
-    const double left = done > 0 ? elapsed * (total - done) / done : 0.0;
-    std::fprintf(stderr, "\r[%s%s] %d/%d trials, %.0f s elapsed, ~%.0f s left ",
-                 std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done,
-                 total, elapsed, left);
-    if (done == total) std::fprintf(stderr, "\n");
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-};
-
 
 struct Setup {
   grid::OccupancyMap map;
@@ -181,7 +162,7 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
   const audio_propagation::PropagationModel model(setup.map, audio);
   std::fprintf(stderr, "sounds_good_experiment: %d configurations x %zu modes x %d trials on %s\n",
                config_count, options.modes.size(), options.trials, setup.map_file.c_str());
-  ProgressBar bar;
+  multirobot_audio::tools::ProgressBar bar;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<TrialRow> rows = RunExperiment(setup.map, setup.configs, model, options, bar);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

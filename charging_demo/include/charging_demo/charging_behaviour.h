@@ -18,8 +18,12 @@ struct ChargingOptions {
   double low_battery = 0.3;      // below this the robot goes to charge
   double full_battery = 0.98;    // charging ends here
   double wait_distance = 1.0;    // m from the charger where the robot stops and asks for the lock
-  double arrive_tolerance = 0.25;  // m: this close to the waiting point counts as there
+  double arrive_tolerance = 0.25;  // m: this close to the waiting ring counts as there
   double undock_distance = 1.0;  // m from the charger before the lock is released
+  // Waiting robots can hem a charger in (in a corridor, on both sides): after this long backing
+  // away, being undock_min_distance off the charger is enough to release the lock.
+  double undock_timeout = 30.0;      // s
+  double undock_min_distance = 0.5;  // m
   // Policy for a lock that does not come: after waiting this long the robot withdraws its
   // request and looks for another charger, avoiding this one for `avoid_time`.
   double lock_timeout = 600.0;   // s
@@ -27,7 +31,18 @@ struct ChargingOptions {
   // Docking that does not end docked within this time (someone in the way, odometry off) backs
   // out to the waiting point, still holding the lock, and tries again.
   double dock_timeout = 60.0;    // s
-  double same_charger = 0.5;     // m: sightings this close together are one charger
+  int max_redocks = 3;           // dock timeouts in a row before giving up as after lock_timeout
+  // Navigation is local (a few metres of map), so a charger remembered far away may be out of
+  // its reach round walls: an approach that has not come 0.5 m closer for this long gives up
+  // on that charger as after lock_timeout, and the robot searches again.
+  double approach_timeout = 90.0;  // s
+  double same_charger = 1.0;     // m: sightings this close together are one charger
+  // Odometry drifts, so a charger remembered long ago may not be where memory says. A
+  // remembered charger the robot has come within `recheck_distance` of, without seeing it for
+  // `recheck_time`, is forgotten (the camera would have seen it there). Chargers stay in
+  // memory while the robot waits at, docks at, charges at or leaves one.
+  double recheck_distance = 2.0;  // m: within camera range
+  double recheck_time = 5.0;      // s
 };
 
 // Throws std::invalid_argument naming the field when an option is impossible (no charger ids,
@@ -90,9 +105,13 @@ class ChargingBehaviour {
   Phase phase() const { return phase_; }
   double phase_since() const { return phase_since_; }
   std::optional<Eigen::Vector2d> charger() const { return charger_; }  // the one in use
+  // Every charger remembered, odom frame (at its latest sighting).
+  std::vector<Eigen::Vector2d> known_chargers() const;
   std::uint64_t charges() const { return charges_; }
-  std::uint64_t give_ups() const { return give_ups_; }   // lock timeouts
+  // Chargers given up on: lock timeouts, failed dockings, approaches that made no progress.
+  std::uint64_t give_ups() const { return give_ups_; }
   std::uint64_t redocks() const { return redocks_; }     // dock timeouts
+  std::uint64_t forgotten() const { return forgotten_; }  // remembered chargers not found again
 
  private:
   void Enter(Phase phase, double time);
@@ -103,12 +122,24 @@ class ChargingBehaviour {
   ChargingOptions options_;
   Phase phase_ = Phase::kDuty;
   double phase_since_ = 0.0;
-  std::vector<Eigen::Vector2d> known_;                 // chargers seen, odom frame
+  void See(const std::vector<ChargerSighting>& sightings, const grid::Pose2D& odom, double time);
+  void ForgetUnseen(const Eigen::Vector2d& robot, double time);
+  void GiveUp(double time);
+
+  struct Known {
+    Eigen::Vector2d position;  // odom frame, at the latest sighting
+    double seen = 0.0;         // s, latest sighting
+    double near_since = -1.0;  // s, since when the robot has been within recheck_distance (< 0: not)
+  };
+  std::vector<Known> known_;
   std::vector<std::pair<Eigen::Vector2d, double>> avoid_;  // charger, until when
   std::optional<Eigen::Vector2d> charger_;
-  Eigen::Vector2d waiting_point_{0.0, 0.0};
+  double charger_seen_ = 0.0;  // s, latest sighting of the charger in use
   bool retry_dock_ = false;  // backing out after a dock timeout, to try again
-  std::uint64_t charges_ = 0, give_ups_ = 0, redocks_ = 0;
+  int redocks_in_row_ = 0;
+  double approach_best_ = 0.0;      // m, closest the approach has come to the charger
+  double approach_improved_ = 0.0;  // s, when it last came 0.5 m closer
+  std::uint64_t charges_ = 0, give_ups_ = 0, redocks_ = 0, forgotten_ = 0;
 };
 
 }  // namespace charging_demo

@@ -65,8 +65,11 @@ class LocalNavigator {
   void Expire(double time) { map_.Expire(time); }
 
   // Plans from the robot to `goal` (odom frame); false, with no plan, when the local map walls
-  // it off or there is no goal. Remembers the time for ReplanDue() either way.
-  bool PlanTo(const std::optional<Eigen::Vector2d>& goal, double time);
+  // it off or there is no goal. Remembers the time for ReplanDue() either way. Discs of
+  // `keep_out_radius` around `keep_out` (odom frame) are planned round as if they were walls:
+  // places the robot must not cross, such as chargers other robots may be using.
+  bool PlanTo(const std::optional<Eigen::Vector2d>& goal, double time,
+              const std::vector<Eigen::Vector2d>& keep_out = {}, double keep_out_radius = 0.0);
   // The local-map cell a goal is planned to: its own, or the nearest on the map's edge.
   Eigen::Vector2i GoalCell(const Eigen::Vector2d& goal) const;
   bool ReplanDue(double time) const { return time - last_plan_ >= options_.motion.replan_period; }

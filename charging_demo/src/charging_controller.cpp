@@ -1,0 +1,157 @@
+#include "charging_demo/charging_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "charging_demo/keep_out.h"
+#include "sounds_good_explorer/option_checks.h"
+
+namespace charging_demo {
+
+namespace {
+
+// A new target this far from the planned one is planned for at once.
+constexpr double kRetarget = 0.1;
+// m/s when reversing off a charger, and the room it keeps behind.
+constexpr double kUndockSpeed = 0.15;
+constexpr double kRearGap = 0.1;
+// Longest gap between updates fed to the wanderer's timers (a paused simulation, a late call).
+constexpr double kMaxStep = 0.5;
+
+}  // namespace
+
+void ValidateOptions(const ControllerOptions& o) {
+  ValidateOptions(o.charging);
+  sounds_good_explorer::ValidateOptions(o.navigation);
+  sounds_good_explorer::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
+  if (!(o.keep_out < o.charging.wait_distance))
+    throw std::invalid_argument("charging keep_out must be below wait_distance (" +
+                                std::to_string(o.charging.wait_distance) + " m), got " +
+                                std::to_string(o.keep_out));
+}
+
+ChargingController::ChargingController(const ControllerOptions& options)
+    : options_((ValidateOptions(options), options)),
+      behaviour_(options.charging),
+      nav_(options.navigation),
+      wanderer_(options.wander, options.seed),
+      rng_(options.seed ^ 0x5bd1e995u) {}
+
+void ChargingController::OnOdometry(const grid::Pose2D& odom, double time) {
+  nav_.OnOdometry(odom, time);
+}
+
+void ChargingController::OnRanges(const std::vector<sounds_good_explorer::RangeReading>& readings,
+                                  double reach, double time) {
+  nav_.OnRanges(readings, reach, time);
+  ranges_ = readings;
+}
+
+void ChargingController::OnSightings(const std::vector<ChargerSighting>& sightings) {
+  sightings_.insert(sightings_.end(), sightings.begin(), sightings.end());
+}
+
+void ChargingController::OnBattery(double level, bool docked) {
+  battery_ = level;
+  docked_ = docked;
+}
+
+ControllerOutput ChargingController::Update(local_mutex::State lock, double time) {
+  const double dt = updated_ ? std::clamp(time - last_update_, 0.0, kMaxStep) : 0.0;
+  last_update_ = time;
+  updated_ = true;
+  nav_.Expire(time);
+
+  ChargingInputs in;
+  in.odom = nav_.pose();
+  in.battery = battery_;
+  in.docked = docked_;
+  in.sightings.swap(sightings_);
+  in.lock = lock;
+  in.time = time;
+  const ChargingCommand cmd = behaviour_.Update(in);
+  sightings_.clear();
+
+  ControllerOutput out;
+  out.want_lock = cmd.want_lock;
+  if (!nav_.have_pose()) return out;
+  sounds_good_explorer::Velocity velocity;
+  switch (cmd.motion) {
+    case ChargingCommand::Motion::kDuty:
+      velocity = Wander(dt);
+      break;
+    case ChargingCommand::Motion::kStop:
+      nav_.Hold(time);
+      planned_for_.reset();
+      break;
+    case ChargingCommand::Motion::kGoTo:
+      velocity = GoTo(cmd.target, time);
+      break;
+    case ChargingCommand::Motion::kBackAway:
+      velocity = BackAway(cmd.target, time);
+      break;
+  }
+  out.v = velocity.v;
+  out.w = velocity.w;
+  return out;
+}
+
+sounds_good_explorer::Velocity ChargingController::Wander(double dt) {
+  planned_for_.reset();
+  nav_.ClearPlan();
+  const std::vector<sounds_good_explorer::RangeReading> seen =
+      KeepOutRanges(ranges_, nav_.pose(), behaviour_.known_chargers(), options_.keep_out);
+  std::vector<float> ring(seen.size());
+  std::transform(seen.begin(), seen.end(), ring.begin(),
+                 [](const sounds_good_explorer::RangeReading& r) { return static_cast<float>(r.range); });
+  const world_sim::VelocityCommand c = wanderer_.Update(ring, dt);
+  return {c.v, c.w};
+}
+
+sounds_good_explorer::Velocity ChargingController::BackAway(const Eigen::Vector2d& charger,
+                                                          double time) {
+  planned_for_.reset();
+  nav_.Hold(time);
+  const sounds_good_explorer::MotionOptions& m = options_.navigation.motion;
+  const grid::Pose2D& pose = nav_.pose();
+  const Eigen::Vector2d to = charger - pose.position();
+  // Face the charger (as when docked) and reverse, as a robot leaves a dock; stop when
+  // something is close behind.
+  const double error =
+      to.norm() > 1e-6 ? grid::NormalizeAngle(std::atan2(to.y(), to.x()) - pose.yaw) : 0.0;
+  sounds_good_explorer::Velocity out;
+  out.w = std::clamp(m.turn_gain * error, -m.max_turn_rate, m.max_turn_rate);
+  double behind = std::numeric_limits<double>::infinity();
+  for (const sounds_good_explorer::RangeReading& r : ranges_)
+    if (std::abs(grid::NormalizeAngle(r.bearing)) >= 2.0 * M_PI / 3.0 && std::isfinite(r.range))
+      behind = std::min(behind, r.range);
+  if (std::abs(error) < M_PI / 3.0 && behind > options_.navigation.planner.robot_radius + kRearGap)
+    out.v = -kUndockSpeed * std::cos(error);
+  return out;
+}
+
+sounds_good_explorer::Velocity ChargingController::GoTo(const Eigen::Vector2d& target, double time) {
+  if (nav_.BackingOff(time)) return nav_.BackoffCommand();
+  if (!planned_for_ || (*planned_for_ - target).norm() > kRetarget || nav_.ReplanDue(time)) {
+    planned_for_ = target;
+    // Round every charger but the one in use: never across a charger someone may be docked at.
+    std::vector<Eigen::Vector2d> others;
+    const std::optional<Eigen::Vector2d> in_use = behaviour_.charger();
+    for (const Eigen::Vector2d& c : behaviour_.known_chargers())
+      if (!in_use || (c - *in_use).norm() >= options_.charging.same_charger) others.push_back(c);
+    nav_.PlanTo(target, time, others, options_.keep_out);
+  }
+  const sounds_good_explorer::LocalNavigator::Steering steering = nav_.Steer(time);
+  if (steering.stuck) {
+    planned_for_.reset();
+    const double turn = (std::bernoulli_distribution(0.5)(rng_) ? 0.5 : -0.5) *
+                        options_.navigation.motion.max_turn_rate;
+    nav_.StartBackoff(time, turn);
+  }
+  return steering.command;
+}
+
+}  // namespace charging_demo
