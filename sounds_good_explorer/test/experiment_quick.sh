@@ -7,7 +7,7 @@ tool=$1
 maps=$2
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
+source "$(dirname "$0")/../../test/tool_checks.sh"
 
 "$tool" --quick --out "$out/run" >"$out/stdout" 2>"$out/stderr" || { cat "$out/stderr"; fail "--quick exited $?"; }
 cat "$out/stdout"
@@ -33,16 +33,7 @@ done
 "$tool" --worlds "$out/run/configs/config_02.yaml" --trials 1 --jobs 2 --modes bidirectional \
   --out "$out/replay" >/dev/null 2>&1 || fail "replaying a saved configuration failed"
 
-# Bad input: a clear message and exit status 1.
-expect_error() {
-  local words=$1
-  shift
-  local status=0
-  "$tool" "$@" >"$out/err.out" 2>"$out/err" || status=$?
-  [ "$status" -ne 0 ] || fail "$* succeeded"
-  [ "$status" -eq 1 ] || fail "$* exited with $status, expected 1"
-  grep -q -- "$words" "$out/err" || { cat "$out/err"; fail "$* did not say '$words'"; }
-}
+# Bad input: a clear message and exit status 1 (expect_error).
 expect_error "expected none, bidirectional or omni, got 'loud'" --quick --modes loud --out "$out/x"
 expect_error "--robots: expected a whole number from 1" --quick --robots 0 --out "$out/x"
 expect_error "--jobs: expected a whole number from 1" --quick --jobs 0 --out "$out/x"
