@@ -240,8 +240,10 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
       [[fallthrough]];
     case Phase::kUndock: {
       const double distance = (robot - *charger_).norm();
+      // Off the charger by distance, or by its contacts (odometry may be off, or something
+      // behind stops the reversing): enough once undock_timeout has passed.
       const bool hemmed_in = in.time - phase_since_ > options_.undock_timeout &&
-                             distance >= options_.undock_min_distance;
+                             (distance >= options_.undock_min_distance || !in.docked);
       if (distance < options_.undock_distance && !hemmed_in) {
         cmd.motion = ChargingCommand::Motion::kBackAway;
         cmd.target = *charger_;

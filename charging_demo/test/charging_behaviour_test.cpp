@@ -227,8 +227,10 @@ TEST(ChargingBehaviour, HemmedInAfterChargingReleasesOnceOffTheCharger) {
   // Waiting robots leave no room for a full metre: 0.6 m off is enough once the timeout passes.
   ChargingCommand c = b.Update(At(2.4, 0.0, 0.99, 30.0, State::kHeld));
   EXPECT_EQ(c.motion, Motion::kBackAway);
-  c = b.Update(At(2.8, 0.0, 0.99, 50.0, State::kHeld));  // 0.2 m off: not yet, even after it
-  EXPECT_EQ(b.phase(), Phase::kUndock);
+  ChargingInputs still_on = At(2.8, 0.0, 0.99, 50.0, State::kHeld);  // 0.2 m off and docked
+  still_on.docked = true;
+  c = b.Update(still_on);
+  EXPECT_EQ(b.phase(), Phase::kUndock) << "released while still on the charger";
   c = b.Update(At(2.4, 0.0, 0.99, 52.0, State::kHeld));
   EXPECT_EQ(b.phase(), Phase::kDuty);
   EXPECT_FALSE(c.want_lock);

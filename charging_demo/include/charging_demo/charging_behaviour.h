@@ -21,7 +21,8 @@ struct ChargingOptions {
   double arrive_tolerance = 0.25;  // m: this close to the waiting ring counts as there
   double undock_distance = 1.0;  // m from the charger before the lock is released
   // Waiting robots can hem a charger in (in a corridor, on both sides): after this long backing
-  // away, being undock_min_distance off the charger is enough to release the lock.
+  // away, being undock_min_distance off the charger, or no longer docked, is enough to release
+  // the lock.
   double undock_timeout = 30.0;      // s
   double undock_min_distance = 0.5;  // m
   // Policy for a lock that does not come: after waiting this long the robot withdraws its
