@@ -79,8 +79,8 @@ std::optional<Eigen::Vector2d> ChargingBehaviour::ChooseCharger(const Eigen::Vec
   std::optional<Eigen::Vector2d> best;
   double best_distance = std::numeric_limits<double>::infinity();
   for (const Known& k : known_) {
-    const bool avoided = std::any_of(avoid_.begin(), avoid_.end(), [&](const auto& a) {
-      return a.second > time && (a.first - k.position).norm() < options_.same_charger;
+    const bool avoided = std::any_of(avoid_.begin(), avoid_.end(), [&](const Avoided& a) {
+      return a.until > time && (a.position - k.position).norm() < options_.same_charger;
     });
     if (avoided) continue;
     const double d = (k.position - robot).norm();
@@ -120,8 +120,9 @@ void ChargingBehaviour::See(const std::vector<ChargerSighting>& sightings, const
 }
 
 void ChargingBehaviour::ForgetUnseen(const Eigen::Vector2d& robot, double time) {
-  const bool in_use = phase_ == Phase::kWait || phase_ == Phase::kDock || phase_ == Phase::kCharge ||
-                      phase_ == Phase::kUndock;
+  // Charging and leaving, the charger is where the robot is; waiting and docking, it must
+  // still be in sight (a charger remembered through a wall is no charger to wait at).
+  const bool in_use = phase_ == Phase::kCharge || phase_ == Phase::kUndock;
   auto gone = [&](const Known& k) {
     if (in_use && charger_ && (k.position - *charger_).norm() < options_.same_charger) return false;
     return k.near_since >= 0.0 && time - std::max(k.seen, k.near_since) > options_.recheck_time;
@@ -134,7 +135,9 @@ void ChargingBehaviour::ForgetUnseen(const Eigen::Vector2d& robot, double time) 
     ++forgotten_;
     if (charger_ && (k.position - *charger_).norm() < options_.same_charger) {
       charger_.reset();
-      if (phase_ == Phase::kApproach) Enter(Phase::kSeek, time);
+      retry_dock_ = false;
+      redocks_in_row_ = 0;
+      Enter(Phase::kSeek, time);  // from approach, wait or dock: the lock is let go
     }
   }
   known_.erase(std::remove_if(known_.begin(), known_.end(), gone), known_.end());
@@ -142,7 +145,7 @@ void ChargingBehaviour::ForgetUnseen(const Eigen::Vector2d& robot, double time) 
 
 void ChargingBehaviour::GiveUp(double time) {
   ++give_ups_;
-  avoid_.emplace_back(*charger_, time + options_.avoid_time);
+  avoid_.push_back({*charger_, time + options_.avoid_time});
   charger_.reset();
   retry_dock_ = false;
   redocks_in_row_ = 0;
@@ -154,7 +157,7 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
   See(in.sightings, in.odom, in.time);
   ForgetUnseen(robot, in.time);
   avoid_.erase(std::remove_if(avoid_.begin(), avoid_.end(),
-                              [&](const auto& a) { return a.second <= in.time; }),
+                              [&](const Avoided& a) { return a.until <= in.time; }),
                avoid_.end());
 
   ChargingCommand cmd;

@@ -18,6 +18,8 @@ constexpr double kRetarget = 0.1;
 // m/s when reversing off a charger, and the room it keeps behind.
 constexpr double kUndockSpeed = 0.15;
 constexpr double kRearGap = 0.1;
+// m: a search goal this close is reached.
+constexpr double kSearchReached = 0.5;
 // Longest gap between updates fed to the wanderer's timers (a paused simulation, a late call).
 constexpr double kMaxStep = 0.5;
 
@@ -25,6 +27,7 @@ constexpr double kMaxStep = 0.5;
 
 void ValidateOptions(const ControllerOptions& o) {
   ValidateOptions(o.charging);
+  ValidateOptions(o.search);
   sounds_good_explorer::ValidateOptions(o.navigation);
   sounds_good_explorer::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
   if (!(o.keep_out < o.charging.wait_distance))
@@ -38,6 +41,7 @@ ChargingController::ChargingController(const ControllerOptions& options)
       behaviour_(options.charging),
       nav_(options.navigation),
       wanderer_(options.wander, options.seed),
+      search_(options.search),
       rng_(options.seed ^ 0x5bd1e995u) {}
 
 void ChargingController::OnOdometry(const grid::Pose2D& odom, double time) {
@@ -74,6 +78,8 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   in.time = time;
   const ChargingCommand cmd = behaviour_.Update(in);
   sightings_.clear();
+  // Wherever the robot goes it looks for chargers: time spent anywhere is time spent searching.
+  if (nav_.have_pose()) search_.Visit(nav_.pose().position(), dt);
 
   ControllerOutput out;
   out.want_lock = cmd.want_lock;
@@ -81,7 +87,7 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   sounds_good_explorer::Velocity velocity;
   switch (cmd.motion) {
     case ChargingCommand::Motion::kDuty:
-      velocity = Wander(dt);
+      velocity = behaviour_.phase() == Phase::kSeek ? Search(time) : Wander(dt);
       break;
     case ChargingCommand::Motion::kStop:
       nav_.Hold(time);
@@ -99,7 +105,27 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   return out;
 }
 
+sounds_good_explorer::Velocity ChargingController::Search(double time) {
+  const Eigen::Vector2d here = nav_.pose().position();
+  if (search_goal_ && ((*search_goal_ - here).norm() < kSearchReached ||
+                       time - search_since_ > search_.options().hold))
+    search_goal_.reset();
+  if (!search_goal_) {
+    search_goal_ = search_.ChooseGoal(here, nav_.map(), rng_, search_failed_);
+    search_since_ = time;
+    search_failed_.reset();
+  }
+  const sounds_good_explorer::Velocity velocity = GoTo(*search_goal_, time);
+  if (!nav_.BackingOff(time) && nav_.plan().size() >= 2) return velocity;
+  // Walled off, or stuck and backing off: another way next time.
+  const Eigen::Vector2d way = *search_goal_ - here;
+  search_failed_ = std::atan2(way.y(), way.x());
+  search_goal_.reset();
+  return velocity;
+}
+
 sounds_good_explorer::Velocity ChargingController::Wander(double dt) {
+  search_goal_.reset();
   planned_for_.reset();
   nav_.ClearPlan();
   const std::vector<sounds_good_explorer::RangeReading> seen =

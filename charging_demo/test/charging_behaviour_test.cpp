@@ -26,6 +26,14 @@ ChargingInputs At(double x, double y, double battery, double time, State lock = 
   return in;
 }
 
+// The inputs with the charger at (3, 0) in sight (the robot faces +x), as the camera reports it
+// every frame while it is in view.
+ChargingInputs Seeing(ChargingInputs in) {
+  const double dx = 3.0 - in.odom.x, dy = 0.0 - in.odom.y;
+  in.sightings.push_back({100, std::hypot(dx, dy), std::atan2(dy, dx) - in.odom.yaw});
+  return in;
+}
+
 TEST(ChargingBehaviour, FullCycleDutyToChargeAndBack) {
   ChargingBehaviour b(Options());
   ChargingCommand c = b.Update(At(0, 0, 0.5, 0.0));
@@ -53,17 +61,17 @@ TEST(ChargingBehaviour, FullCycleDutyToChargeAndBack) {
   EXPECT_EQ(c.motion, Motion::kStop);
   EXPECT_TRUE(c.want_lock);
   for (State s : {State::kWanted, State::kSilent, State::kWanted}) {
-    c = b.Update(At(1.9, 0.0, 0.24, 30.0, s));
+    c = b.Update(Seeing(At(1.9, 0.0, 0.24, 30.0, s)));
     EXPECT_EQ(c.motion, Motion::kStop) << "moved while the lock was only wanted";
     EXPECT_TRUE(c.want_lock);
   }
 
-  c = b.Update(At(1.9, 0.0, 0.23, 50.0, State::kHeld));
+  c = b.Update(Seeing(At(1.9, 0.0, 0.23, 50.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDock);
   EXPECT_EQ(c.motion, Motion::kGoTo);
   EXPECT_NEAR(c.target.x(), 3.0, 1e-9);
 
-  ChargingInputs docked = At(2.95, 0.0, 0.23, 60.0, State::kHeld);
+  ChargingInputs docked = Seeing(At(2.95, 0.0, 0.23, 60.0, State::kHeld));
   docked.docked = true;
   c = b.Update(docked);
   EXPECT_EQ(b.phase(), Phase::kCharge);
@@ -78,7 +86,7 @@ TEST(ChargingBehaviour, FullCycleDutyToChargeAndBack) {
   EXPECT_EQ(c.motion, Motion::kBackAway);
   EXPECT_TRUE(c.want_lock);  // released only once away from the charger
 
-  c = b.Update(At(1.9, 0.0, 0.99, 610.0, State::kHeld));
+  c = b.Update(Seeing(At(1.9, 0.0, 0.99, 610.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDuty);
   EXPECT_EQ(c.motion, Motion::kDuty);
   EXPECT_FALSE(c.want_lock);
@@ -90,7 +98,7 @@ ChargingBehaviour Waiting(const ChargingOptions& o) {
   ChargingInputs in = At(0, 0, 0.2, 0.0);
   in.sightings = {{100, 3.0, 0.0}};
   b.Update(in);
-  b.Update(At(2.0, 0.0, 0.2, 5.0, State::kWanted));
+  b.Update(Seeing(At(2.0, 0.0, 0.2, 5.0, State::kWanted)));
   EXPECT_EQ(b.phase(), Phase::kWait);
   return b;
 }
@@ -100,13 +108,13 @@ TEST(ChargingBehaviour, GivesUpOnALockThatNeverComesAndAvoidsThatCharger) {
   o.lock_timeout = 100.0;
   o.avoid_time = 200.0;
   ChargingBehaviour b = Waiting(o);
-  ChargingCommand c = b.Update(At(2.0, 0.0, 0.2, 104.0, State::kWanted));
+  ChargingCommand c = b.Update(Seeing(At(2.0, 0.0, 0.2, 104.0, State::kWanted)));
   EXPECT_EQ(b.phase(), Phase::kWait);
-  c = b.Update(At(2.0, 0.0, 0.2, 106.0, State::kWanted));
+  c = b.Update(Seeing(At(2.0, 0.0, 0.2, 106.0, State::kWanted)));
   EXPECT_EQ(b.phase(), Phase::kSeek);
   EXPECT_FALSE(c.want_lock);  // the request is withdrawn
   EXPECT_EQ(b.give_ups(), 1u);
-  c = b.Update(At(2.0, 0.0, 0.2, 150.0));
+  c = b.Update(Seeing(At(2.0, 0.0, 0.2, 150.0)));
   EXPECT_EQ(b.phase(), Phase::kSeek);  // the only known charger is avoided
   ChargingInputs in = At(2.0, 0.0, 0.2, 160.0);
   in.sightings = {{101, 4.0, M_PI / 2}};  // another charger, 4 m to the left
@@ -118,14 +126,14 @@ TEST(ChargingBehaviour, GivesUpOnALockThatNeverComesAndAvoidsThatCharger) {
 
 TEST(ChargingBehaviour, NeverDocksWithoutTheLock) {
   ChargingBehaviour b = Waiting(Options());
-  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
+  b.Update(Seeing(At(2.0, 0.0, 0.2, 10.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDock);
   // The lock is not held any more (lost in a noise storm): stand still and ask again.
-  ChargingCommand c = b.Update(At(2.3, 0.0, 0.2, 11.0, State::kWanted));
+  ChargingCommand c = b.Update(Seeing(At(2.3, 0.0, 0.2, 11.0, State::kWanted)));
   EXPECT_EQ(b.phase(), Phase::kWait);
   EXPECT_EQ(c.motion, Motion::kStop);
   EXPECT_TRUE(c.want_lock);
-  c = b.Update(At(2.3, 0.0, 0.2, 12.0, State::kHeld));
+  c = b.Update(Seeing(At(2.3, 0.0, 0.2, 12.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDock);
   EXPECT_EQ(c.motion, Motion::kGoTo);
 }
@@ -134,13 +142,13 @@ TEST(ChargingBehaviour, ADockThatTakesTooLongBacksOutAndTriesAgainHoldingTheLock
   ChargingOptions o = Options();
   o.dock_timeout = 30.0;
   ChargingBehaviour b = Waiting(o);
-  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
-  ChargingCommand c = b.Update(At(2.8, 0.0, 0.2, 41.0, State::kHeld));  // not docked after 31 s
+  b.Update(Seeing(At(2.0, 0.0, 0.2, 10.0, State::kHeld)));
+  ChargingCommand c = b.Update(Seeing(At(2.8, 0.0, 0.2, 41.0, State::kHeld)));  // not docked after 31 s
   EXPECT_EQ(b.phase(), Phase::kUndock);
   EXPECT_EQ(c.motion, Motion::kBackAway);
   EXPECT_TRUE(c.want_lock);
   EXPECT_EQ(b.redocks(), 1u);
-  c = b.Update(At(1.8, 0.0, 0.2, 50.0, State::kHeld));
+  c = b.Update(Seeing(At(1.8, 0.0, 0.2, 50.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDock);
   EXPECT_EQ(c.motion, Motion::kGoTo);
   EXPECT_TRUE(c.want_lock);
@@ -151,13 +159,13 @@ TEST(ChargingBehaviour, GivesUpAfterMaxRedocksInARow) {
   o.dock_timeout = 30.0;
   o.max_redocks = 1;
   ChargingBehaviour b = Waiting(o);
-  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
-  b.Update(At(2.8, 0.0, 0.2, 41.0, State::kHeld));    // first timeout: back out, retry
-  b.Update(At(1.8, 0.0, 0.2, 50.0, State::kHeld));
+  b.Update(Seeing(At(2.0, 0.0, 0.2, 10.0, State::kHeld)));
+  b.Update(Seeing(At(2.8, 0.0, 0.2, 41.0, State::kHeld)));    // first timeout: back out, retry
+  b.Update(Seeing(At(1.8, 0.0, 0.2, 50.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDock);
-  b.Update(At(2.8, 0.0, 0.2, 81.0, State::kHeld));    // second: back out for good
+  b.Update(Seeing(At(2.8, 0.0, 0.2, 81.0, State::kHeld)));    // second: back out for good
   EXPECT_EQ(b.phase(), Phase::kUndock);
-  ChargingCommand c = b.Update(At(1.8, 0.0, 0.2, 90.0, State::kHeld));
+  ChargingCommand c = b.Update(Seeing(At(1.8, 0.0, 0.2, 90.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kSeek);
   EXPECT_FALSE(c.want_lock);  // released once clear of the charger
   EXPECT_EQ(b.redocks(), 2u);
@@ -181,6 +189,16 @@ TEST(ChargingBehaviour, ForgetsARememberedChargerThatIsNotThere) {
   EXPECT_EQ(c.motion, Motion::kDuty);
   EXPECT_TRUE(b.known_chargers().empty());
   EXPECT_EQ(b.forgotten(), 1u);
+}
+
+TEST(ChargingBehaviour, LetsGoOfTheLockWhenTheChargerWaitedAtIsNotInSight) {
+  ChargingBehaviour b = Waiting(Options());  // charger seen at t = 0, waiting since t = 5
+  ChargingCommand c = b.Update(At(2.0, 0.0, 0.2, 5.5, State::kHeld));
+  EXPECT_EQ(b.phase(), Phase::kDock);
+  c = b.Update(At(2.1, 0.0, 0.2, 11.0, State::kHeld));  // not seen for 11 s, 0.9 m away
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+  EXPECT_FALSE(c.want_lock);
+  EXPECT_TRUE(b.known_chargers().empty());
 }
 
 TEST(ChargingBehaviour, TheChargerInUseFollowsItsSightings) {
@@ -217,21 +235,21 @@ TEST(ChargingBehaviour, HemmedInAfterChargingReleasesOnceOffTheCharger) {
   ChargingOptions o = Options();
   o.undock_timeout = 20.0;
   ChargingBehaviour b = Waiting(o);
-  b.Update(At(2.0, 0.0, 0.2, 10.0, State::kHeld));
-  ChargingInputs docked = At(3.0, 0.0, 0.99, 20.0, State::kHeld);
+  b.Update(Seeing(At(2.0, 0.0, 0.2, 10.0, State::kHeld)));
+  ChargingInputs docked = Seeing(At(3.0, 0.0, 0.99, 20.0, State::kHeld));
   docked.docked = true;
   b.Update(docked);
   docked.time = 21.0;
   b.Update(docked);
   EXPECT_EQ(b.phase(), Phase::kUndock);
   // Waiting robots leave no room for a full metre: 0.6 m off is enough once the timeout passes.
-  ChargingCommand c = b.Update(At(2.4, 0.0, 0.99, 30.0, State::kHeld));
+  ChargingCommand c = b.Update(Seeing(At(2.4, 0.0, 0.99, 30.0, State::kHeld)));
   EXPECT_EQ(c.motion, Motion::kBackAway);
-  ChargingInputs still_on = At(2.8, 0.0, 0.99, 50.0, State::kHeld);  // 0.2 m off and docked
+  ChargingInputs still_on = Seeing(At(2.8, 0.0, 0.99, 50.0, State::kHeld));  // 0.2 m off and docked
   still_on.docked = true;
   c = b.Update(still_on);
   EXPECT_EQ(b.phase(), Phase::kUndock) << "released while still on the charger";
-  c = b.Update(At(2.4, 0.0, 0.99, 52.0, State::kHeld));
+  c = b.Update(Seeing(At(2.4, 0.0, 0.99, 52.0, State::kHeld)));
   EXPECT_EQ(b.phase(), Phase::kDuty);
   EXPECT_FALSE(c.want_lock);
 }

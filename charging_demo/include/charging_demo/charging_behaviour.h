@@ -40,8 +40,9 @@ struct ChargingOptions {
   double same_charger = 1.0;     // m: sightings this close together are one charger
   // Odometry drifts, so a charger remembered long ago may not be where memory says. A
   // remembered charger the robot has come within `recheck_distance` of, without seeing it for
-  // `recheck_time`, is forgotten (the camera would have seen it there). Chargers stay in
-  // memory while the robot waits at, docks at, charges at or leaves one.
+  // `recheck_time`, is forgotten (the camera would have seen it there); if it was the one the
+  // robot was approaching, waiting at or docking at, the robot lets the lock go and searches
+  // again. The charger it is charging at or leaving stays in memory.
   double recheck_distance = 2.0;  // m: within camera range
   double recheck_time = 5.0;      // s
 };
@@ -125,6 +126,7 @@ class ChargingBehaviour {
   double phase_since_ = 0.0;
   void See(const std::vector<ChargerSighting>& sightings, const grid::Pose2D& odom, double time);
   void ForgetUnseen(const Eigen::Vector2d& robot, double time);
+  // Withdraws from the charger in use and avoids it for avoid_time.
   void GiveUp(double time);
 
   struct Known {
@@ -133,7 +135,11 @@ class ChargingBehaviour {
     double near_since = -1.0;  // s, since when the robot has been within recheck_distance (< 0: not)
   };
   std::vector<Known> known_;
-  std::vector<std::pair<Eigen::Vector2d, double>> avoid_;  // charger, until when
+  struct Avoided {
+    Eigen::Vector2d position;  // odom frame
+    double until = 0.0;        // s
+  };
+  std::vector<Avoided> avoid_;
   std::optional<Eigen::Vector2d> charger_;
   double charger_seen_ = 0.0;  // s, latest sighting of the charger in use
   bool retry_dock_ = false;  // backing out after a dock timeout, to try again

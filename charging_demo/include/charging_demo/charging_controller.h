@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "charging_demo/charger_search.h"
 #include "charging_demo/charging_behaviour.h"
 #include "grid/pose2d.h"
 #include "local_mutex/local_mutex.h"
@@ -20,8 +21,10 @@ struct ControllerOptions {
   // Driving to the waiting point, onto the charger and away from it: the explorer's local-map
   // navigation (thesis section 3.3).
   sounds_good_explorer::NavigatorOptions navigation;
-  // The normal duty, and the search for a charger: random wandering.
+  // The normal duty: random wandering.
   world_sim::WanderOptions wander;
+  // The search for a charger when none is known: towards the least visited surroundings.
+  SearchOptions search;
   // m: robots not docking keep this far from every charger they know, so that wandering never
   // takes them over a charger another robot holds (the waiting ring is farther out).
   double keep_out = 0.6;
@@ -59,8 +62,10 @@ class ChargingController {
   double battery() const { return battery_; }
 
  private:
-  // The duty (and the search): wandering, kept off every known charger.
+  // The duty: wandering, kept off every known charger.
   sounds_good_explorer::Velocity Wander(double dt);
+  // The search: goal after goal towards the least visited surroundings.
+  sounds_good_explorer::Velocity Search(double time);
   sounds_good_explorer::Velocity GoTo(const Eigen::Vector2d& target, double time);
   // Reverses off the charger, facing it.
   sounds_good_explorer::Velocity BackAway(const Eigen::Vector2d& charger, double time);
@@ -77,6 +82,10 @@ class ChargingController {
   double last_update_ = 0.0;
   bool updated_ = false;
   std::optional<Eigen::Vector2d> planned_for_;  // the target of the current plan
+  ChargerSearch search_;
+  std::optional<Eigen::Vector2d> search_goal_;  // odom frame
+  double search_since_ = 0.0;                   // s, when the goal was chosen
+  std::optional<double> search_failed_;         // rad, direction of the last goal that failed
 };
 
 }  // namespace charging_demo
