@@ -8,9 +8,10 @@ add_message_files(DIRECTORY msg FILES
   FiducialArray.msg
   Job.msg
   LockState.msg
+  ChargingState.msg
 )
 add_action_files(DIRECTORY action FILES AcquireLock.action)
-generate_messages(DEPENDENCIES std_msgs actionlib_msgs)
+generate_messages(DEPENDENCIES std_msgs geometry_msgs actionlib_msgs)
 
 catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sensor_msgs nav_msgs
                visualization_msgs rosgraph_msgs tf2_msgs diagnostic_msgs actionlib actionlib_msgs std_srvs)
@@ -35,6 +36,9 @@ add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 add_library(sounds_good_ros STATIC src/sounds_good_conversions.cpp src/sounds_good_explorer_ros.cpp
             src/task_monitor_ros.cpp)
 target_link_libraries(sounds_good_ros PUBLIC multirobot_audio_ros sounds_good_explorer)
+# The charging robots' bridges; they share the explorer's range conversion.
+add_library(charging_ros STATIC src/charging_conversions.cpp src/charging_demo_ros.cpp)
+target_link_libraries(charging_ros PUBLIC sounds_good_ros charging_demo)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
 function(multirobot_audio_node target name source)
@@ -53,6 +57,8 @@ multirobot_audio_node(sounds_good_explorer_node sounds_good_explorer src/sounds_
 multirobot_audio_node(task_monitor_node task_monitor src/task_monitor_node.cpp)
 target_link_libraries(sounds_good_explorer_node sounds_good_ros)
 target_link_libraries(task_monitor_node sounds_good_ros)
+multirobot_audio_node(charging_demo_node charging_demo src/charging_demo_node.cpp)
+target_link_libraries(charging_demo_node charging_ros)
 
 install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 
@@ -64,6 +70,8 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(conversions_test multirobot_audio_ros)
   catkin_add_gtest(sounds_good_conversions_test test/sounds_good_conversions_test.cpp)
   target_link_libraries(sounds_good_conversions_test sounds_good_ros)
+  catkin_add_gtest(charging_conversions_test test/charging_conversions_test.cpp)
+  target_link_libraries(charging_conversions_test charging_ros)
 
   add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp test/rostest_main.cpp)
   target_link_libraries(world_sim_rostest multirobot_audio_ros)
@@ -90,6 +98,12 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(sounds_good_rostest multirobot_audio_ros)
   add_dependencies(sounds_good_rostest world_sim_node audio_propagation_node sounds_good_explorer_node
                    task_monitor_node)
+
+  # Three charging robots share one charger in the test room at 10x: each docks in turn.
+  add_rostest_gtest(charging_demo_rostest test/charging_demo.test test/charging_demo_rostest.cpp test/lock_watch.cpp
+                    test/rostest_main.cpp)
+  target_link_libraries(charging_demo_rostest multirobot_audio_ros)
+  add_dependencies(charging_demo_rostest world_sim_node audio_propagation_node local_mutex_node charging_demo_node)
 
   # Over the air: built like rostest nodes, but each run by test/nava_air.sh, which starts the
   # PulseAudio server the test needs, runs the given .test file and stops the server.
@@ -122,6 +136,12 @@ if(MULTIROBOT_AUDIO_TESTS)
                            DEPENDENCIES world_sim_node audio_propagation_node sounds_good_explorer_node task_monitor_node)
   roslaunch_add_file_check(launch/include/sounds_good_team.launch count:=2 mode:=bidirectional
                            DEPENDENCIES sounds_good_explorer_node)
+  roslaunch_add_file_check(launch/charging_sim.launch
+                           DEPENDENCIES world_sim_node audio_propagation_node local_mutex_node charging_demo_node)
+  roslaunch_add_file_check(launch/include/charging_team.launch count:=2 chargers:=100
+                           DEPENDENCIES local_mutex_node charging_demo_node)
+  roslaunch_add_file_check(launch/charging_robot.launch robot_id:=11 chargers:=100
+                           DEPENDENCIES nava_modem_node local_mutex_node charging_demo_node)
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
   endforeach()

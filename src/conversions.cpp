@@ -19,6 +19,10 @@ double FromQuaternionYaw(const geometry_msgs::Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
 }
 
+grid::Pose2D FromPose(const geometry_msgs::Pose& pose) {
+  return {pose.position.x, pose.position.y, FromQuaternionYaw(pose.orientation)};
+}
+
 nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
                                         const ros::Time& stamp) {
   nav_msgs::OccupancyGrid msg;
@@ -123,6 +127,20 @@ sensor_msgs::BatteryState ToBatteryState(double level, bool docked,
     msg.power_supply_status = sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_DISCHARGING;
   }
   return msg;
+}
+
+BatteryReading FromBatteryState(const sensor_msgs::BatteryState& msg) {
+  BatteryReading out;
+  if (std::isfinite(msg.percentage)) {
+    out.level = msg.percentage;
+  } else if (std::isfinite(msg.charge) && std::isfinite(msg.capacity) && msg.capacity > 0.0f) {
+    out.level = msg.charge / msg.capacity;
+  } else {
+    out.level = std::numeric_limits<double>::quiet_NaN();
+  }
+  out.docked = msg.power_supply_status == sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_CHARGING ||
+               msg.power_supply_status == sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_FULL;
+  return out;
 }
 
 multirobot_audio::FiducialArray ToFiducialArray(

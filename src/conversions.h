@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <multirobot_audio/FiducialArray.h>
@@ -23,6 +24,8 @@ namespace multirobot_audio {
 
 geometry_msgs::Quaternion ToYawQuaternion(double yaw);
 double FromQuaternionYaw(const geometry_msgs::Quaternion& q);
+// A pose in the plane: x, y and the yaw of its orientation.
+grid::Pose2D FromPose(const geometry_msgs::Pose& pose);
 
 // Occupied -> 100, free -> 0, unknown -> -1; same cell order (row 0 at the origin).
 nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
@@ -45,6 +48,15 @@ geometry_msgs::TransformStamped ToTransform(const grid::Pose2D& pose, const std:
 sensor_msgs::BatteryState ToBatteryState(double level, bool docked,
                                          const world_sim::BatteryModel& model,
                                          const std::string& frame, const ros::Time& stamp);
+
+// What a controller needs of a battery: its level (0 to 1; NaN when the message gives neither
+// a percentage nor a charge and capacity) and whether a charger is feeding it (status CHARGING,
+// or FULL, which world_sim reports for a full battery still docked).
+struct BatteryReading {
+  double level = 0.0;
+  bool docked = false;
+};
+BatteryReading FromBatteryState(const sensor_msgs::BatteryState& msg);
 
 multirobot_audio::FiducialArray ToFiducialArray(
     const std::vector<world_sim::FiducialSighting>& seen, const std::string& frame,

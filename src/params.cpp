@@ -56,6 +56,13 @@ std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
   return value;
 }
 
+bool BoolParam(const ros::NodeHandle& pnh, const std::string& name, bool fallback) {
+  if (!pnh.hasParam(name)) return fallback;
+  bool value = false;
+  if (!pnh.getParam(name, value)) throw ParamError(Name(pnh, name) + ": expected true or false");
+  return value;
+}
+
 std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name) {
   const std::string value = StringParam(pnh, name, "");
   if (value.empty()) throw Missing(pnh, name);
@@ -65,6 +72,31 @@ std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& n
 int RequiredIntParam(const ros::NodeHandle& pnh, const std::string& name, int lo, int hi) {
   if (!pnh.hasParam(name)) throw Missing(pnh, name);
   return IntParam(pnh, name, lo, lo, hi);
+}
+
+std::vector<int> RequiredIntListParam(const ros::NodeHandle& pnh, const std::string& name, int lo,
+                                      int hi) {
+  if (!pnh.hasParam(name)) throw Missing(pnh, name);
+  XmlRpc::XmlRpcValue value;
+  pnh.getParam(name, value);
+  const std::string expected = "expected a non-empty list of whole numbers in [" + std::to_string(lo) + ", " +
+                               std::to_string(hi) + "], such as [100, 101]";
+  std::vector<int> out;
+  auto add = [&](XmlRpc::XmlRpcValue& item) {
+    if (item.getType() != XmlRpc::XmlRpcValue::TypeInt) throw ParamError(Name(pnh, name) + ": " + expected);
+    const int v = static_cast<int>(item);
+    if (v < lo || v > hi) {
+      throw ParamError(Name(pnh, name) + ": " + expected + "; got " + std::to_string(v));
+    }
+    out.push_back(v);
+  };
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+    for (int i = 0; i < value.size(); ++i) add(value[i]);
+  } else {
+    add(value);
+  }
+  if (out.empty()) throw ParamError(Name(pnh, name) + ": " + expected + "; got an empty list");
+  return out;
 }
 
 }  // namespace multirobot_audio

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <cstdint>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <ros/node_handle.h>
 
@@ -20,9 +23,14 @@ double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double f
 int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, int lo, int hi);
 std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
                         const std::string& fallback);
+bool BoolParam(const ros::NodeHandle& pnh, const std::string& name, bool fallback);
 // Throws when the parameter is unset or empty.
 std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name);
 // Throws when the parameter is unset, as IntParam does for a bad value.
 int RequiredIntParam(const ros::NodeHandle& pnh, const std::string& name, int lo, int hi);
+// A required, non-empty list of whole numbers in [lo, hi] (such as fiducial ids: [100, 101]);
+// a single number is taken as a list of one. Throws when unset, empty, or of the wrong type.
+std::vector<int> RequiredIntListParam(const ros::NodeHandle& pnh, const std::string& name, int lo,
+                                      int hi);
 
 }  // namespace multirobot_audio

@@ -6,6 +6,15 @@
 
 namespace multirobot_audio {
 
+std::vector<sounds_good_explorer::RangeReading> ToRangeReadings(const sensor_msgs::LaserScan& scan) {
+  std::vector<sounds_good_explorer::RangeReading> readings(scan.ranges.size());
+  for (std::size_t k = 0; k < readings.size(); ++k) {
+    readings[k].bearing = scan.angle_min + static_cast<double>(k) * static_cast<double>(scan.angle_increment);
+    readings[k].range = scan.ranges[k];
+  }
+  return readings;
+}
+
 nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& map,
                                         const std::string& frame, const ros::Time& stamp) {
   // Cell (0, 0) spans [origin, origin + 1) odom cells: its lower-left corner is the grid's

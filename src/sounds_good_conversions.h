@@ -7,11 +7,19 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
 #include <ros/time.h>
+#include <sensor_msgs/LaserScan.h>
 
 #include "sounds_good_explorer/local_map.h"
+#include "sounds_good_explorer/local_navigator.h"
 
-// Pure conversions of the Sounds Good explorer's state to ROS messages, for rviz.
+// Pure conversions between ROS messages and what the local-map navigation uses (shared by the
+// Sounds Good explorer and the charging robots), and of the explorer's state for rviz.
 namespace multirobot_audio {
+
+// A ring of rangers as range readings: reading k's bearing is angle_min + k * angle_increment
+// (robot frame), its range is as given (measured from the robot's centre, as world_sim's IR
+// ring is; +inf or NaN for nothing in reach). The rangers' reach is the scan's range_max.
+std::vector<sounds_good_explorer::RangeReading> ToRangeReadings(const sensor_msgs::LaserScan& scan);
 
 // The local map in its odom frame: occupied -> 100, free -> 0, unknown -> -1; cell (0, 0)'s
 // lower-left corner at origin() * resolution.

@@ -102,20 +102,13 @@ SoundsGoodExplorerRos::~SoundsGoodExplorerRos() {
 void SoundsGoodExplorerRos::OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
   odom_frame_ = msg->header.frame_id;
   base_frame_ = msg->child_frame_id;
-  const grid::Pose2D pose{msg->pose.pose.position.x, msg->pose.pose.position.y,
-                          FromQuaternionYaw(msg->pose.pose.orientation)};
-  explorer_.OnOdometry(pose, msg->header.stamp.toSec());
+  explorer_.OnOdometry(FromPose(msg->pose.pose), msg->header.stamp.toSec());
 }
 
 void SoundsGoodExplorerRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& msg) {
   // Ranges are measured from the robot's centre (world_sim's IR ring, as the explorer wants);
   // range_max is how far the rangers reach from there.
-  std::vector<sg::RangeReading> readings(msg->ranges.size());
-  for (std::size_t k = 0; k < readings.size(); ++k) {
-    readings[k].bearing = msg->angle_min + k * static_cast<double>(msg->angle_increment);
-    readings[k].range = msg->ranges[k];
-  }
-  explorer_.OnRanges(readings, msg->range_max, msg->header.stamp.toSec());
+  explorer_.OnRanges(ToRangeReadings(*msg), msg->range_max, msg->header.stamp.toSec());
 }
 
 void SoundsGoodExplorerRos::OnFiducials(const multirobot_audio::FiducialArray::ConstPtr& msg) {

@@ -1,6 +1,7 @@
 #include "conversions.h"
 
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,42 @@ TEST(Conversions, BatteryStatus) {
   const auto full = ToBatteryState(1.0, true, m, "b", ros::Time(1.0));
   EXPECT_EQ(full.power_supply_status, sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_FULL);
   EXPECT_FLOAT_EQ(full.voltage, static_cast<float>(m.full_voltage));
+}
+
+TEST(Conversions, BatteryReadingUndoesWorldSimsBatteryState) {
+  const world_sim::BatteryModel m;
+  for (const bool docked : {false, true}) {
+    for (const double level : {0.0, 0.31, 1.0}) {
+      const BatteryReading r = FromBatteryState(ToBatteryState(level, docked, m, "b", ros::Time(1.0)));
+      EXPECT_NEAR(r.level, level, 1e-6);
+      EXPECT_EQ(r.docked, docked) << "level " << level;
+    }
+  }
+}
+
+TEST(Conversions, BatteryReadingFromChargeWithoutPercentage) {
+  sensor_msgs::BatteryState msg;
+  msg.percentage = std::numeric_limits<float>::quiet_NaN();
+  msg.charge = 1.5f;
+  msg.capacity = 3.0f;
+  msg.power_supply_status = sensor_msgs::BatteryState::POWER_SUPPLY_STATUS_NOT_CHARGING;
+  const BatteryReading r = FromBatteryState(msg);
+  EXPECT_NEAR(r.level, 0.5, 1e-9);
+  EXPECT_FALSE(r.docked);
+  msg.capacity = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(FromBatteryState(msg).level));
+}
+
+TEST(Conversions, PoseInThePlane) {
+  geometry_msgs::Pose pose;
+  pose.position.x = 1.5;
+  pose.position.y = -2.0;
+  pose.position.z = 0.3;
+  pose.orientation = ToYawQuaternion(2.5);
+  const grid::Pose2D p = FromPose(pose);
+  EXPECT_DOUBLE_EQ(p.x, 1.5);
+  EXPECT_DOUBLE_EQ(p.y, -2.0);
+  EXPECT_NEAR(p.yaw, 2.5, 1e-12);
 }
 
 TEST(Conversions, FiducialArray) {

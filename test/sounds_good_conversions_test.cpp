@@ -1,6 +1,8 @@
 #include "sounds_good_conversions.h"
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -40,6 +42,25 @@ TEST(SoundsGoodConversions, PathPosesFaceTheNextPoint) {
   EXPECT_NEAR(FromQuaternionYaw(path.poses[2].pose.orientation), M_PI / 2, 1e-9);
   EXPECT_DOUBLE_EQ(path.poses[2].pose.position.y, 1.0);
   EXPECT_TRUE(ToPath({}, "odom", ros::Time(1.0)).poses.empty());
+}
+
+TEST(SoundsGoodConversions, WorldSimsRingAsRangeReadings) {
+  // The scan world_sim publishes: ranger 0 ahead, counter-clockwise, nothing in reach as +inf.
+  world_sim::RobotModel model;
+  model.ir_count = 8;
+  std::vector<float> ring(8, std::numeric_limits<float>::infinity());
+  ring[0] = 0.5f;
+  ring[2] = 1.0f;
+  const sensor_msgs::LaserScan scan = ToLaserScan(ring, model, "robot_0/base_link", ros::Time(2.0));
+  const std::vector<sounds_good_explorer::RangeReading> r = ToRangeReadings(scan);
+  ASSERT_EQ(r.size(), 8u);
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    EXPECT_NEAR(grid::NormalizeAngle(r[k].bearing - k * M_PI / 4), 0.0, 1e-6) << "ranger " << k;
+  }
+  EXPECT_DOUBLE_EQ(r[0].range, 0.5);
+  EXPECT_DOUBLE_EQ(r[2].range, 1.0);  // to the left
+  EXPECT_TRUE(std::isinf(r[1].range));
+  EXPECT_TRUE(ToRangeReadings(sensor_msgs::LaserScan()).empty());
 }
 
 }  // namespace

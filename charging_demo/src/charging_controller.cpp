@@ -41,8 +41,8 @@ ChargingController::ChargingController(const ControllerOptions& options)
       behaviour_(options.charging),
       nav_(options.navigation),
       wanderer_(options.wander, options.seed),
-      search_(options.search),
-      rng_(options.seed ^ 0x5bd1e995u) {}
+      rng_(options.seed ^ 0x5bd1e995u),
+      search_(options.search) {}
 
 void ChargingController::OnOdometry(const grid::Pose2D& odom, double time) {
   nav_.OnOdometry(odom, time);

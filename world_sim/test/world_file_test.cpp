@@ -1,7 +1,10 @@
 #include "world_sim/world_file.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -114,9 +117,21 @@ TEST_F(WorldFileTest, SavedWorldLoadsBackTheSame) {
 }
 
 TEST_F(WorldFileTest, ShippedWorldsLoad) {
+  // Every world shipped in maps/ (world files end in _world.yaml; the other YAML files there are
+  // maps), so that a new one cannot be left out.
+  std::vector<std::string> names;
+  for (const fs::directory_entry& e : fs::directory_iterator(PROJECT_MAPS_DIR)) {
+    const std::string name = e.path().filename().string();
+    const std::string suffix = "_world.yaml";
+    if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      names.push_back(name);
+  }
   for (const char* name : {"office_world.yaml", "test_room_world.yaml", "test_room_audio_world.yaml",
-                           "mutex_world.yaml", "sounds_good_world.yaml",
-                           "test_room_sounds_good_world.yaml"}) {
+                           "mutex_world.yaml", "sounds_good_world.yaml", "test_room_sounds_good_world.yaml",
+                           "charging_world.yaml", "test_charging_world.yaml"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name << " is not in " << PROJECT_MAPS_DIR;
+  }
+  for (const std::string& name : names) {
     const LoadedWorld w = LoadWorldFile(std::string(PROJECT_MAPS_DIR) + "/" + name);
     EXPECT_FALSE(w.config.robots.empty()) << name;
   }
