@@ -45,6 +45,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
     throw ParamError(pnh.resolveName("microphones") + ": expected a list of omni, bidirectional or none");
   }
   o.update_rate = NumberParam(pnh, "update_rate", o.update_rate, 1.0, 10000.0);
+  o.path_display_time = NumberParam(pnh, "path_display_time", o.path_display_time, 0.0, 3600.0);
   o.packet_bytes = IntParam(pnh, "packet_bytes", o.packet_bytes, 1, 1024);
   auto& m = o.model;
   m.source_level_db = NumberParam(pnh, "source_level_db", m.source_level_db, -1000.0, 1000.0);
@@ -212,7 +213,7 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
       m.action = visualization_msgs::Marker::ADD;
       m.pose.orientation.w = 1.0;
       m.scale.x = 0.04;
-      m.lifetime = ros::Duration(tx.duration);
+      m.lifetime = ros::Duration(std::max(tx.duration, options_.path_display_time));
       // Loud is red, barely audible is blue.
       const double span = options_.model.source_level_db - options_.model.threshold_db;
       const float loud = static_cast<float>(std::clamp((p.level_db - options_.model.threshold_db) / span, 0.0, 1.0));

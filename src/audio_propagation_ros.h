@@ -22,6 +22,9 @@ struct AudioPropagationOptions {
   std::vector<std::string> robots;  // ~robots: which robots to serve (default: all in the world)
   std::vector<std::string> microphones;  // ~microphones: per robot, overriding the world file
   double update_rate = 100.0;    // ~update_rate: Hz (simulated) of pose reads and channel steps
+  // ~path_display_time: s (simulated) each sound path stays drawn, at least; 0 = the
+  // transmission's own length (a 4-byte packet is about 0.4 s: a flicker in a sped-up run)
+  double path_display_time = 0.0;
   int packet_bytes = 4;          // ~packet_bytes: the payload every packet must have (Nava: 4)
   audio_propagation::PropagationOptions model;  // ~source_level_db, ~threshold_db, ~max_range, ~speed_of_sound, ~rule
   audio_propagation::ChannelOptions channel;    // ~capture_margin_db, ~bit_rate, ~direction_noise, ~seed
