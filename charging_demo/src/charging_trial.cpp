@@ -11,7 +11,7 @@
 
 #include "charging_demo/charging_world.h"
 #include "local_mutex/local_mutex.h"
-#include "world_sim/ir_rangers.h"
+#include "sounds_good_explorer/world_readings.h"
 
 namespace charging_demo {
 
@@ -109,17 +109,12 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
         }));
   }
 
-  const world_sim::RobotModel& body = team.model;
-  std::vector<double> bearings;
-  for (int k = 0; k < body.ir_count; ++k) bearings.push_back(world_sim::IrAngle(body, k));
-  const double reach = body.radius + body.ir_range;
-  std::vector<std::uint64_t> odom_seen(n, 0), scan_seen(n, 0), camera_seen(n, 0);
+  sounds_good_explorer::WorldReadings readings(team.model, n);
   std::vector<Tracker> trackers(n);
   std::vector<int> docked_at(team.chargers.size(), 0);
   const std::uint64_t control_every = world_sim::StepsPerPeriod(options.control_period, options.world.step);
   const std::uint64_t battery_every = world_sim::StepsPerPeriod(options.battery_period, options.world.step);
   const double dt = control_every * options.world.step;
-  std::vector<sounds_good_explorer::RangeReading> readings(bearings.size());
   std::vector<ChargerSighting> sightings;
 
   while (world.elapsed() < options.duration - 1e-9) {
@@ -157,17 +152,10 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
       // the others take it once their grab timers run out).
       if (result.robots[k].flat) continue;
       ChargingController& robot = robots[k];
-      if (s.odom_step != odom_seen[k]) {
-        odom_seen[k] = s.odom_step;
-        robot.OnOdometry(s.odom, now);
-      }
-      if (s.scan_step != scan_seen[k]) {
-        scan_seen[k] = s.scan_step;
-        for (std::size_t b = 0; b < bearings.size(); ++b) readings[b] = {bearings[b], s.scan[b]};
-        robot.OnRanges(readings, reach, now);
-      }
-      if (s.fiducials_step != camera_seen[k]) {
-        camera_seen[k] = s.fiducials_step;
+      const sounds_good_explorer::WorldReadings::Fresh fresh = readings.Take(k, s);
+      if (fresh.odom) robot.OnOdometry(s.odom, now);
+      if (fresh.ranges) robot.OnRanges(readings.ranges(), readings.reach(), now);
+      if (fresh.fiducials) {
         sightings.clear();
         for (const world_sim::FiducialSighting& f : s.fiducials) sightings.push_back({f.id, f.range, f.bearing});
         robot.OnSightings(sightings);

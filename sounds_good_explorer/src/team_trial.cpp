@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "world_sim/ir_rangers.h"
+#include "sounds_good_explorer/world_readings.h"
 
 namespace sounds_good_explorer {
 
@@ -60,16 +60,10 @@ TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldCo
     o.seed = (options.seed * 2654435761u) ^ (0x9E3779B9u * (static_cast<std::uint32_t>(k) + 1u));
     robots.emplace_back(o);
   }
-  const world_sim::RobotModel& body = team.model;
-  std::vector<double> bearings;
-  for (int k = 0; k < body.ir_count; ++k) bearings.push_back(world_sim::IrAngle(body, k));
-  const double reach = body.radius + body.ir_range;
-
-  std::vector<std::uint64_t> odom_seen(n, 0), scan_seen(n, 0), camera_seen(n, 0);
+  WorldReadings readings(team.model, n);
   const std::uint64_t control_every =
       world_sim::StepsPerPeriod(options.control_period, options.world.step);
   TrialResult result;
-  std::vector<RangeReading> readings(bearings.size());
   std::vector<MarkerSighting> sightings;
   while (static_cast<int>(result.jobs.size()) < options.jobs && world.elapsed() < options.time_cap) {
     world.Step();
@@ -87,17 +81,10 @@ TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldCo
     for (std::size_t k = 0; k < n; ++k) {
       const world_sim::RobotState& s = states[k];
       Explorer& robot = robots[k];
-      if (s.odom_step != odom_seen[k]) {
-        odom_seen[k] = s.odom_step;
-        robot.OnOdometry(s.odom, now);
-      }
-      if (s.scan_step != scan_seen[k]) {
-        scan_seen[k] = s.scan_step;
-        for (std::size_t b = 0; b < bearings.size(); ++b) readings[b] = {bearings[b], s.scan[b]};
-        robot.OnRanges(readings, reach, now);
-      }
-      if (s.fiducials_step != camera_seen[k]) {
-        camera_seen[k] = s.fiducials_step;
+      const WorldReadings::Fresh fresh = readings.Take(k, s);
+      if (fresh.odom) robot.OnOdometry(s.odom, now);
+      if (fresh.ranges) robot.OnRanges(readings.ranges(), readings.reach(), now);
+      if (fresh.fiducials) {
         sightings.clear();
         for (const world_sim::FiducialSighting& f : s.fiducials)
           sightings.push_back({f.id, f.range, f.bearing});
