@@ -33,7 +33,7 @@ target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem l
                       ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 # The Sounds Good team's bridges, apart so that only their nodes link the explorer.
-add_library(sounds_good_ros STATIC src/sounds_good_conversions.cpp src/sounds_good_explorer_ros.cpp
+add_library(sounds_good_ros STATIC src/navigation_params.cpp src/sounds_good_conversions.cpp src/sounds_good_explorer_ros.cpp
             src/task_monitor_ros.cpp)
 target_link_libraries(sounds_good_ros PUBLIC multirobot_audio_ros sounds_good_explorer)
 # The charging robots' bridges; they share the explorer's range conversion.

@@ -12,6 +12,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "navigation_params.h"
 #include "params.h"
 #include "sounds_good_conversions.h"
 
@@ -46,14 +47,6 @@ double FractionParam(const ros::NodeHandle& pnh, const std::string& name, double
   return v;
 }
 
-// A number in (0, hi].
-double PositiveParam(const ros::NodeHandle& pnh, const std::string& name, double fallback, double hi = kBig) {
-  const double v = NumberParam(pnh, name, fallback, -kBig, kBig);
-  if (v <= 0.0 || v > hi) {
-    throw ParamError(pnh.resolveName(name) + ": expected a number in (0, " + Number(hi) + "], got " + Number(v));
-  }
-  return v;
-}
 
 }  // namespace
 
@@ -83,26 +76,9 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   ch.recheck_distance = PositiveParam(pnh, "recheck_distance", ch.recheck_distance, 100.0);
   ch.recheck_time = PositiveParam(pnh, "recheck_time", ch.recheck_time);
 
-  // The local-map navigation; the names the sounds_good_explorer node uses for the same things.
+  // The local-map navigation, with the names the sounds_good_explorer node uses.
   sounds_good_explorer::NavigatorOptions& n = c.navigation;
-  n.map.size = IntParam(pnh, "local_map_size", n.map.size, 1, 10001);
-  n.map.resolution = PositiveParam(pnh, "resolution", n.map.resolution, 100.0);
-  n.map.expiry = PositiveParam(pnh, "expiry", n.map.expiry);
-  n.map.expiry_step = PositiveParam(pnh, "expiry_step", n.map.expiry_step);
-  n.clear_sectors = BoolParam(pnh, "clear_sectors", n.clear_sectors);
-  n.planner.robot_radius = PositiveParam(pnh, "robot_radius", n.planner.robot_radius, 100.0);
-  n.planner.risk_scale = NumberParam(pnh, "risk_scale", n.planner.risk_scale, 0.0, kBig);
-  n.planner.risk_decay = PositiveParam(pnh, "risk_decay", n.planner.risk_decay);
-  n.planner.grown_cost = NumberParam(pnh, "grown_cost", n.planner.grown_cost, 0.0, kBig);
-  n.motion.max_speed = PositiveParam(pnh, "max_speed", n.motion.max_speed, 100.0);
-  n.motion.max_turn_rate = PositiveParam(pnh, "max_turn_rate", n.motion.max_turn_rate, 100.0);
-  n.motion.turn_gain = PositiveParam(pnh, "turn_gain", n.motion.turn_gain, 1000.0);
-  n.motion.lookahead = PositiveParam(pnh, "lookahead", n.motion.lookahead, 100.0);
-  n.motion.goal_tolerance = PositiveParam(pnh, "goal_tolerance", n.motion.goal_tolerance, 100.0);
-  n.motion.goal_hold = NumberParam(pnh, "goal_hold", n.motion.goal_hold, 0.0, kBig);
-  n.motion.replan_period = PositiveParam(pnh, "replan_period", n.motion.replan_period);
-  n.motion.stuck_time = PositiveParam(pnh, "stuck_time", n.motion.stuck_time);
-  n.motion.backoff_time = PositiveParam(pnh, "backoff_time", n.motion.backoff_time);
+  ReadNavigationParams(pnh, n.map, n.clear_sectors, n.planner, n.motion);
 
   // The duty: wandering, with the wanderer node's names.
   world_sim::WanderOptions& w = c.wander;

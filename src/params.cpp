@@ -56,6 +56,17 @@ std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
   return value;
 }
 
+double PositiveParam(const ros::NodeHandle& pnh, const std::string& name, double fallback,
+                     double hi) {
+  const double value = NumberParam(pnh, name, fallback, -hi, hi);
+  if (!(value > 0.0)) {
+    std::ostringstream s;
+    s << Name(pnh, name) << ": expected a number in (0, " << hi << "], got " << value;
+    throw ParamError(s.str());
+  }
+  return value;
+}
+
 bool BoolParam(const ros::NodeHandle& pnh, const std::string& name, bool fallback) {
   if (!pnh.hasParam(name)) return fallback;
   bool value = false;

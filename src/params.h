@@ -24,6 +24,9 @@ int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, 
 std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
                         const std::string& fallback);
 bool BoolParam(const ros::NodeHandle& pnh, const std::string& name, bool fallback);
+// A number in (0, hi]: lengths, periods, rates.
+double PositiveParam(const ros::NodeHandle& pnh, const std::string& name, double fallback,
+                     double hi = 1e6);
 // Throws when the parameter is unset or empty.
 std::string RequiredStringParam(const ros::NodeHandle& pnh, const std::string& name);
 // Throws when the parameter is unset, as IntParam does for a bad value.

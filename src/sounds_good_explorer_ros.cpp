@@ -11,6 +11,7 @@
 #include <visualization_msgs/Marker.h>
 
 #include "conversions.h"
+#include "navigation_params.h"
 #include "params.h"
 #include "sounds_good_conversions.h"
 
@@ -44,11 +45,7 @@ SoundsGoodExplorerNodeOptions ReadSoundsGoodExplorerNodeOptions(const ros::NodeH
   e.task.marker_memory = NumberParam(pnh, "marker_memory", e.task.marker_memory, 0.0, 1e6);
   e.task.announce_window = NumberParam(pnh, "announce_window", e.task.announce_window, 0.0, 1e6);
   e.task.announce_period = NumberParam(pnh, "announce_period", e.task.announce_period, 0.0, 1e6);
-  e.map.size = IntParam(pnh, "local_map_size", e.map.size, 1, 10001);
-  e.map.resolution = NumberParam(pnh, "resolution", e.map.resolution, 0.0, 1e3);
-  e.map.expiry = NumberParam(pnh, "expiry", e.map.expiry, 0.0, 1e6);
-  e.planner.robot_radius = NumberParam(pnh, "robot_radius", e.planner.robot_radius, 0.0, 1e3);
-  e.motion.max_speed = NumberParam(pnh, "max_speed", e.motion.max_speed, 0.0, 1e3);
+  ReadNavigationParams(pnh, e.map, e.clear_sectors, e.planner, e.motion);
   e.frontier.audio_weight = NumberParam(pnh, "audio_weight", e.frontier.audio_weight, 0.0, 1e6);
   e.frontier.noise_std = NumberParam(pnh, "noise_std", e.frontier.noise_std, 0.0, 1e6);
   e.frontier.min_distance = NumberParam(pnh, "min_frontier_distance", e.frontier.min_distance, 0.0, 1e6);

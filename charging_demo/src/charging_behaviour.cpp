@@ -40,9 +40,7 @@ void ValidateOptions(const ChargingOptions& o) {
   RequireAbove("charging recheck_distance", o.recheck_distance, 0.0);
   RequireAbove("charging recheck_time", o.recheck_time, 0.0);
   RequireAbove("charging approach_timeout", o.approach_timeout, 0.0);
-  if (o.max_redocks < 0)
-    throw std::invalid_argument("charging max_redocks must be at least 0, got " +
-                                std::to_string(o.max_redocks));
+  RequireAtLeast("charging max_redocks", o.max_redocks, 0.0);
   RequireAtLeast("charging avoid_time (s)", o.avoid_time, 0.0);
 }
 
