@@ -77,12 +77,14 @@ NavaModemRos::~NavaModemRos() {
   const Counts& c = counts_;
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("nava_modem summary: sent %lu, heard %lu packets (%lu repaired) and noise %lu zero_byte, %lu one_byte, "
-              "%lu bad_crc; rejected %lu, queue drops %lu, xruns %lu\n",
+              "%lu bad_crc; rejected %lu, queue drops %lu; capture overruns %lu, playback underruns %lu, "
+              "packets cut %lu\n",
               static_cast<unsigned long>(c.sent), static_cast<unsigned long>(c.packets),
               static_cast<unsigned long>(c.repaired), static_cast<unsigned long>(c.zero_byte),
               static_cast<unsigned long>(c.one_byte), static_cast<unsigned long>(c.bad_crc),
               static_cast<unsigned long>(c.rejected), static_cast<unsigned long>(c.queue_drops),
-              static_cast<unsigned long>(c.xruns));
+              static_cast<unsigned long>(c.overruns), static_cast<unsigned long>(c.underruns),
+              static_cast<unsigned long>(c.packets_cut));
   std::fflush(stdout);
 }
 
@@ -136,7 +138,18 @@ void NavaModemRos::AudioLoop() {
       counts_.threshold_db = link_->mac().threshold_db();
       counts_.level_db = link_->level_db();
       counts_.sent = link_->packets_sent();
-      counts_.xruns = link_->xruns();
+      if (link_->packets_cut() != counts_.packets_cut || link_->overruns() != counts_.overruns) {
+        // Said as it happens: a garbled packet on the air is then explained in the log.
+        ROS_WARN_THROTTLE(1.0, "nava_modem: %s (capture overruns %lu, playback underruns %lu, packets cut %lu so far)",
+                          link_->packets_cut() != counts_.packets_cut
+                              ? "playback underrun while sending: the packet went out with a gap"
+                              : "capture overrun: audio was lost, a packet being heard may be lost",
+                          static_cast<unsigned long>(link_->overruns()), static_cast<unsigned long>(link_->underruns()),
+                          static_cast<unsigned long>(link_->packets_cut()));
+      }
+      counts_.overruns = link_->overruns();
+      counts_.underruns = link_->underruns();
+      counts_.packets_cut = link_->packets_cut();
       counts_.queue_drops = link_->mac().dropped();
       for (const nava_modem::RxEvent& e : events) {
         counts_.packets += e.kind == nava_modem::RxEvent::Kind::kPacket;
@@ -179,8 +192,8 @@ void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
 void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   std::lock_guard<std::mutex> lock(mutex_);
   const Counts& c = counts_;
-  if (c.xruns > 0 || c.queue_drops > 0) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "running; audio xruns or dropped packets");
+  if (c.overruns > 0 || c.packets_cut > 0 || c.queue_drops > 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "running; audio lost, packets cut or dropped");
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
   }
@@ -193,7 +206,9 @@ void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("noise zero_byte", c.zero_byte);
   status.add("noise one_byte", c.one_byte);
   status.add("noise bad_crc", c.bad_crc);
-  status.add("xruns", c.xruns);
+  status.add("capture overruns", c.overruns);
+  status.add("playback underruns", c.underruns);
+  status.add("packets cut by underruns", c.packets_cut);
   status.add("queue drops", c.queue_drops);
   status.add("rejected (wrong size)", c.rejected);
 }

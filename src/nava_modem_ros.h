@@ -41,7 +41,7 @@ class NavaModemRos {
     std::string state;
     double threshold_db = 0.0, level_db = 0.0;
     std::uint64_t sent = 0, packets = 0, zero_byte = 0, one_byte = 0, bad_crc = 0, repaired = 0;
-    std::uint64_t xruns = 0, queue_drops = 0, rejected = 0;
+    std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0, rejected = 0;
   };
   void OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
   void AudioLoop();

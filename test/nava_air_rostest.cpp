@@ -1,5 +1,7 @@
 // Over the air through ALSA: three nava_modem nodes and two jammers on one PulseAudio null sink
 // (see test/nava_air.test and test/nava_air.sh).
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -98,31 +100,55 @@ TEST(NavaAir, EveryRobotHearsEveryOther) {
   }
 }
 
-TEST(NavaAir, SimultaneousSendsAreSpreadApartByCsma) {
+// All three robots are asked to send at once; returns what went wrong ("" for nothing). The
+// jammers, idle here, listen to the whole exchange: all three packets must arrive whole, one
+// after the other, with no noise. (A sender itself can miss a packet that starts while it is
+// deaf to its own echo, so the senders are not the judges.)
+std::string SimultaneousExchange(std::uint8_t attempt) {
   air->Forget();
   std::vector<std::vector<std::uint8_t>> data;
-  for (std::size_t s = 0; s < kRobots.size(); ++s) data.push_back({0x20, static_cast<std::uint8_t>(s), 0x55, 0xAA});
+  for (std::size_t s = 0; s < kRobots.size(); ++s) data.push_back({0x20, static_cast<std::uint8_t>(s), attempt, 0xAA});
   for (std::size_t s = 0; s < kRobots.size(); ++s) air->Send(kRobots[s], data[s]);
-  // The jammers, idle here, listen to the whole exchange: all three packets arrive whole, one
-  // after the other. (A sender itself can miss a packet that starts while it is deaf to its own
-  // echo, so the senders are not the judges.)
+  std::string wrong;
   for (const std::string listener : {"jammer_a", "jammer_b"}) {
-    EXPECT_TRUE(WaitFor([&] {
+    const bool all = WaitFor([&] {
       for (const auto& d : data) {
         if (air->Packets(listener, d).empty()) return false;
       }
       return true;
-    }, 10.0)) << listener << " did not hear all three; it heard:" << air->Describe(listener);
+    }, 10.0);
     std::vector<double> ends;
     for (const auto& d : data) {
       for (const AudioReception& p : air->Packets(listener, d)) ends.push_back(p.header.stamp.toSec());
     }
     std::sort(ends.begin(), ends.end());
-    for (std::size_t k = 1; k < ends.size(); ++k) {
-      EXPECT_GE(ends[k] - ends[k - 1], kPacketSeconds * 0.9) << "overlapping packets heard by " << listener;
+    bool overlap = false;
+    for (std::size_t k = 1; k < ends.size(); ++k) overlap = overlap || ends[k] - ends[k - 1] < kPacketSeconds * 0.9;
+    if (!all || overlap || air->Noise(listener) > 0) {
+      wrong += "\n" + listener + (all ? "" : " did not hear all three;") + (overlap ? " heard overlapping packets;" : "") +
+               " it heard:" + air->Describe(listener);
     }
-    EXPECT_EQ(air->Noise(listener), 0) << listener << " heard noise:" << air->Describe(listener);
   }
+  return wrong;
+}
+
+// CSMA-CA spreads three simultaneous sends apart. The air is real time on a shared machine: a
+// stall of a sender's process can cut a packet it is playing (nava_modem warns "packets cut"),
+// which has nothing to do with the back-off, so the exchange may be tried three times. Without
+// back-off every try collides (checked with backoff_max_bits:=2, which gives all three robots
+// the same wait).
+TEST(NavaAir, SimultaneousSendsAreSpreadApartByCsma) {
+  std::string failures;
+  for (std::uint8_t attempt = 1; attempt <= 3; ++attempt) {
+    const std::string wrong = SimultaneousExchange(attempt);
+    if (wrong.empty()) {
+      if (!failures.empty()) std::fprintf(stderr, "nava_air_rostest: passed on try %d after:%s\n", attempt, failures.c_str());
+      return;
+    }
+    failures += "\ntry " + std::to_string(attempt) + ":" + wrong;
+    ros::WallDuration(1.0).sleep();  // let the air fall quiet before trying again
+  }
+  ADD_FAILURE() << "three tries of simultaneous sends all failed:" << failures;
 }
 
 TEST(NavaAir, AForcedCollisionIsReportedAsNoise) {

@@ -53,9 +53,10 @@ AlsaDevice::~AlsaDevice() {
 }
 
 // Moves `count` frames with `io` (snd_pcm_readi or snd_pcm_writei on `pcm`), recovering from
-// over- and underruns, which are counted.
+// over- and underruns, which are counted in `xruns`.
 template <typename Buffer, typename Io>
-void AlsaDevice::Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what) {
+void AlsaDevice::Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what,
+                          std::uint64_t& xruns) {
   while (count > 0) {
     const snd_pcm_sframes_t done = io(pcm, data, count);
     if (done > 0) {
@@ -64,7 +65,7 @@ void AlsaDevice::Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io
       continue;
     }
     if (done == -EAGAIN) continue;
-    ++xruns_;  // an overrun, an underrun or a suspend: recover and go on
+    ++xruns;  // an overrun, an underrun or a suspend: recover and go on
     if (snd_pcm_recover(pcm, static_cast<int>(done), 1) < 0) {
       throw std::runtime_error("ALSA device '" + options_.device + "': " + what + " failed: " +
                                snd_strerror(static_cast<int>(done)));
@@ -74,13 +75,14 @@ void AlsaDevice::Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io
 }
 
 bool AlsaDevice::Read(float* out, std::size_t count) {
-  Transfer(capture_, out, count, [](snd_pcm_t* p, float* d, std::size_t n) { return snd_pcm_readi(p, d, n); }, "capture");
+  Transfer(capture_, out, count, [](snd_pcm_t* p, float* d, std::size_t n) { return snd_pcm_readi(p, d, n); }, "capture",
+           overruns_);
   return true;
 }
 
 void AlsaDevice::Write(const float* in, std::size_t count) {
   Transfer(playback_, in, count, [](snd_pcm_t* p, const float* d, std::size_t n) { return snd_pcm_writei(p, d, n); },
-           "playback");
+           "playback", underruns_);
 }
 
 }  // namespace nava_modem

@@ -61,6 +61,7 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
   if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_.level_db())) {
     burst_ = modulator_.ModulatePacket(*packet);
     burst_at_ = 0;
+    burst_cut_ = false;
   }
   // Playback runs in step with capture: this tick's share of the burst, or silence.
   std::vector<float>& out = in_;
@@ -71,6 +72,15 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     burst_at_ += n;
   }
   Put(out.data(), count);
+  // Writes lag the burst by at most a block, so an underrun met while the MAC is sending
+  // falls inside the packet's sound (or a block after it): the packet went out with a gap.
+  if (device_.underruns() != underruns_seen_) {
+    underruns_seen_ = device_.underruns();
+    if ((before == MacState::kSending || mac_.state() == MacState::kSending) && !burst_cut_) {
+      burst_cut_ = true;
+      ++packets_cut_;
+    }
+  }
   return true;
 }
 

@@ -86,6 +86,49 @@ TEST(NavaLink, PlaysWhatItSendsAndIsDeafToItsOwnEcho) {
   EXPECT_TRUE(events.empty()) << "heard its own echo";
 }
 
+// Silence in, and an underrun reported by the device at chosen points of playback.
+class UnderrunningDevice : public AudioDevice {
+ public:
+  UnderrunningDevice(double rate, std::vector<std::size_t> underrun_at) : rate_(rate), at_(std::move(underrun_at)) {}
+  double sample_rate() const override { return rate_; }
+  bool Read(float* out, std::size_t count) override {
+    if (read_ + count > static_cast<std::size_t>(3.0 * rate_)) return false;
+    std::fill(out, out + count, 0.0f);
+    read_ += count;
+    return true;
+  }
+  void Write(const float*, std::size_t count) override {
+    for (std::size_t s : at_) underruns_ += s >= played_ && s < played_ + count;
+    played_ += count;
+  }
+  std::uint64_t overruns() const override { return 0; }
+  std::uint64_t underruns() const override { return underruns_; }
+
+ private:
+  double rate_;
+  std::vector<std::size_t> at_;
+  std::size_t read_ = 0, played_ = 0;
+  std::uint64_t underruns_ = 0;
+};
+
+TEST(NavaLink, CountsAPacketCutByAnUnderrunOnce) {
+  LinkOptions o = Quick();
+  o.mac.fixed_threshold_db = -40.0;
+  o.mac.backoff_min_bits = o.mac.backoff_max_bits = 0.0;
+  const double rate = o.modem.sample_rate;
+  // Two underruns in the middle of the packet (sent at once, 0.37 s long), one long after it.
+  UnderrunningDevice device(rate, {static_cast<std::size_t>(0.1 * rate), static_cast<std::size_t>(0.2 * rate),
+                                   static_cast<std::size_t>(2.0 * rate)});
+  NavaLink link(o, device);
+  ASSERT_TRUE(link.Send({1, 2, 3, 4}));
+  std::vector<RxEvent> events;
+  while (link.Tick(events)) {
+  }
+  EXPECT_EQ(link.packets_sent(), 1u);
+  EXPECT_EQ(link.underruns(), 3u);
+  EXPECT_EQ(link.packets_cut(), 1u);
+}
+
 TEST(NavaLink, RejectsADeviceAtAnotherRate) {
   LinkOptions o = Quick();
   const std::string file = TempWav("rate.wav");

@@ -27,16 +27,17 @@ class AlsaDevice : public AudioDevice {
   double sample_rate() const override { return options_.sample_rate; }
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
-  std::uint64_t xruns() const override { return xruns_; }
+  std::uint64_t overruns() const override { return overruns_; }
+  std::uint64_t underruns() const override { return underruns_; }
 
  private:
   template <typename Buffer, typename Io>
-  void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what);
+  void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what, std::uint64_t& xruns);
 
   AlsaOptions options_;
   snd_pcm_t* capture_ = nullptr;
   snd_pcm_t* playback_ = nullptr;
-  std::uint64_t xruns_ = 0;
+  std::uint64_t overruns_ = 0, underruns_ = 0;
 };
 
 }  // namespace nava_modem

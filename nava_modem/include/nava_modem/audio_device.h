@@ -17,8 +17,10 @@ class AudioDevice {
   virtual bool Read(float* out, std::size_t count) = 0;
   // Plays `count` samples, blocking while the device's buffer is full.
   virtual void Write(const float* in, std::size_t count) = 0;
-  // Overruns and underruns recovered from so far.
-  virtual std::uint64_t xruns() const = 0;
+  // Capture overruns (captured samples lost) and playback underruns (a gap in what was
+  // played) recovered from so far.
+  virtual std::uint64_t overruns() const = 0;
+  virtual std::uint64_t underruns() const = 0;
 };
 
 }  // namespace nava_modem

@@ -37,7 +37,11 @@ class NavaLink {
   bool carrier() const { return mac_.carrier(); }
   double time() const { return ticks_ * mac_.tick_seconds(); }  // s of audio run
   std::uint64_t packets_sent() const { return mac_.sent(); }
-  std::uint64_t xruns() const { return device_.xruns(); }
+  std::uint64_t overruns() const { return device_.overruns(); }
+  std::uint64_t underruns() const { return device_.underruns(); }
+  // Packets during whose sending the device reported a playback underrun: they went out with
+  // a gap, so listeners most likely heard noise.
+  std::uint64_t packets_cut() const { return packets_cut_; }
 
  private:
   LinkOptions options_;
@@ -57,6 +61,9 @@ class NavaLink {
   std::vector<float> in_, burst_;
   std::size_t burst_at_ = 0;
   bool threshold_shared_ = false;  // the receiver has the MAC's carrier threshold
+  std::uint64_t underruns_seen_ = 0;
+  std::uint64_t packets_cut_ = 0;
+  bool burst_cut_ = false;  // the packet being sent has been counted in packets_cut_
 };
 
 }  // namespace nava_modem

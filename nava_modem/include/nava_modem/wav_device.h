@@ -19,7 +19,8 @@ class WavDevice : public AudioDevice {
   double sample_rate() const override { return rate_; }
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
-  std::uint64_t xruns() const override { return 0; }
+  std::uint64_t overruns() const override { return 0; }
+  std::uint64_t underruns() const override { return 0; }
 
   const std::vector<float>& played() const { return played_; }
   void Save();
