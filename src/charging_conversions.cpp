@@ -113,6 +113,8 @@ multirobot_audio::ChargingState ToChargingState(const charging_demo::ChargingBeh
   msg.give_ups = behaviour.give_ups();
   msg.redocks = behaviour.redocks();
   msg.forgotten = behaviour.forgotten();
+  msg.retraces = status.retraces;
+  msg.retracing = status.retracing;
   msg.known_chargers = static_cast<std::uint32_t>(behaviour.known_chargers().size());
   if (const std::optional<Eigen::Vector2d> c = behaviour.charger()) {
     msg.has_charger = true;

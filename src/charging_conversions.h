@@ -36,6 +36,8 @@ struct ChargingStatus {
   bool want_lock = false;
   double battery = 0.0;
   bool docked = false;
+  bool retracing = false;     // going back along the trail to the charger
+  std::uint64_t retraces = 0;
 };
 
 // The behaviour's state at `time` (s of the robot's clock) as ~state; `odom_frame` is the

@@ -101,6 +101,11 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   se.hold = PositiveParam(pnh, "search_hold", se.hold);
 
   c.keep_out = PositiveParam(pnh, "keep_out", c.keep_out, 100.0);
+  // Going back along the trail to a charger the local map has lost the way to.
+  c.trail.spacing = PositiveParam(pnh, "trail_spacing", c.trail.spacing, 100.0);
+  c.trail.capacity = static_cast<std::size_t>(IntParam(pnh, "trail_capacity", static_cast<int>(c.trail.capacity), 2, kMaxInt));
+  c.retrace_after = PositiveParam(pnh, "retrace_after", c.retrace_after);
+  c.retrace_reach = PositiveParam(pnh, "retrace_reach", c.retrace_reach, 100.0);
   c.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", static_cast<int>(default_seed & 0x7fffffff), 0, kMaxInt));
   o.control_rate = NumberParam(pnh, "control_rate", o.control_rate, 0.1, 1000.0);
   o.state_rate = NumberParam(pnh, "state_rate", o.state_rate, 0.0, 1000.0);
@@ -317,7 +322,7 @@ void ChargingDemoRos::OnControl(const ros::TimerEvent& event) {
 
 void ChargingDemoRos::PublishState(const ros::Time& now) {
   const charging_demo::ChargingBehaviour& b = controller_.behaviour();
-  const ChargingStatus status{lock_, want_lock_, battery_, docked_};
+  const ChargingStatus status{lock_, want_lock_, battery_, docked_, controller_.retracing(), controller_.retraces()};
   state_pub_.publish(ToChargingState(b, status, now.toSec(), odom_frame_, now));
   if (markers_pub_.getNumSubscribers() > 0) {
     std::string label = nh_.getNamespace();

@@ -86,14 +86,17 @@ TEST(ChargingConversions, StateOfABehaviourAtRest) {
   EXPECT_FALSE(msg.has_charger);
   EXPECT_EQ(msg.known_chargers, 0u);
   EXPECT_EQ(msg.charges, 0u);
+  EXPECT_FALSE(msg.retracing);
 }
 
 TEST(ChargingConversions, StateNamesTheChargerInUseInTheOdomFrame) {
   const charging_demo::ChargingBehaviour b = Approaching();
   ASSERT_EQ(b.phase(), charging_demo::Phase::kApproach);
-  const ChargingStatus status{State::kWanted, true, 0.2, false};
+  const ChargingStatus status{State::kWanted, true, 0.2, false, true, 3};
   const multirobot_audio::ChargingState msg = ToChargingState(b, status, 12.5, "robot_1/odom", ros::Time(12.5));
   EXPECT_EQ(msg.phase, "approach");
+  EXPECT_TRUE(msg.retracing);
+  EXPECT_EQ(msg.retraces, 3u);
   EXPECT_DOUBLE_EQ(msg.phase_time, 2.5);
   EXPECT_EQ(msg.lock, multirobot_audio::LockState::WANTED);
   EXPECT_TRUE(msg.want_lock);

@@ -117,7 +117,9 @@ void ChargingBehaviour::See(const std::vector<ChargerSighting>& sightings, const
   }
 }
 
-void ChargingBehaviour::ForgetUnseen(const Eigen::Vector2d& robot, double time) {
+void ChargingBehaviour::ForgetUnseen(const ChargingInputs& in) {
+  const Eigen::Vector2d robot = in.odom.position();
+  const double time = in.time;
   // Charging and leaving, the charger is where the robot is; waiting and docking, it must
   // still be in sight (a charger remembered through a wall is no charger to wait at).
   const bool in_use = phase_ == Phase::kCharge || phase_ == Phase::kUndock;
@@ -126,7 +128,8 @@ void ChargingBehaviour::ForgetUnseen(const Eigen::Vector2d& robot, double time) 
     return k.near_since >= 0.0 && time - std::max(k.seen, k.near_since) > options_.recheck_time;
   };
   for (Known& k : known_) {
-    const bool near = (k.position - robot).norm() < options_.recheck_distance;
+    // Near and in view: a charger remembered behind a wall is not missing.
+    const bool near = (k.position - robot).norm() < options_.recheck_distance && (!in.in_view || in.in_view(k.position));
     if (!near) k.near_since = -1.0;
     else if (k.near_since < 0.0) k.near_since = time;
     if (!gone(k)) continue;
@@ -153,7 +156,7 @@ void ChargingBehaviour::GiveUp(double time) {
 ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
   const Eigen::Vector2d robot = in.odom.position();
   See(in.sightings, in.odom, in.time);
-  ForgetUnseen(robot, in.time);
+  ForgetUnseen(in);
   avoid_.erase(std::remove_if(avoid_.begin(), avoid_.end(),
                               [&](const Avoided& a) { return a.until <= in.time; }),
                avoid_.end());
@@ -175,7 +178,10 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
       [[fallthrough]];
     case Phase::kApproach: {
       const double distance = (robot - *charger_).norm();
-      if (distance < approach_best_ - kApproachProgress) {
+      if (in.making_way) {
+        approach_best_ = distance;  // progress is measured afresh from where that way leads
+        approach_improved_ = in.time;
+      } else if (distance < approach_best_ - kApproachProgress) {
         approach_best_ = distance;
         approach_improved_ = in.time;
       } else if (in.time - approach_improved_ > options_.approach_timeout) {
@@ -183,8 +189,11 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
         return cmd;
       }
       // Anywhere on the ring wait_distance from the charger will do: the target is the ring's
-      // nearest point, so robots arriving from different sides wait on different sides.
-      if (std::abs(distance - options_.wait_distance) > options_.arrive_tolerance) {
+      // nearest point, so robots arriving from different sides wait on different sides. But
+      // only in sight of it: on the ring behind a wall the robot is not there yet (and the
+      // navigation must find another way, or the approach times out).
+      if (std::abs(distance - options_.wait_distance) > options_.arrive_tolerance ||
+          in.time - charger_seen_ > options_.recheck_time) {
         cmd.motion = ChargingCommand::Motion::kGoTo;
         cmd.target = WaitingPoint(robot);
         return cmd;

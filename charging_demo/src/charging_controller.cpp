@@ -22,6 +22,10 @@ constexpr double kRearGap = 0.1;
 constexpr double kSearchReached = 0.5;
 // Longest gap between updates fed to the wanderer's timers (a paused simulation, a late call).
 constexpr double kMaxStep = 0.5;
+// m: a crumb this close is reached.
+constexpr double kCrumbReached = 0.3;
+// m the direct approach must come closer by to count as progress (the behaviour's measure).
+constexpr double kDirectProgress = 0.5;
 
 }  // namespace
 
@@ -30,6 +34,9 @@ void ValidateOptions(const ControllerOptions& o) {
   ValidateOptions(o.search);
   sounds_good_explorer::ValidateOptions(o.navigation);
   sounds_good_explorer::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
+  ValidateOptions(o.trail);
+  sounds_good_explorer::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
+  sounds_good_explorer::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
   if (!(o.keep_out < o.charging.wait_distance))
     throw std::invalid_argument("charging keep_out must be below wait_distance (" +
                                 std::to_string(o.charging.wait_distance) + " m), got " +
@@ -42,7 +49,8 @@ ChargingController::ChargingController(const ControllerOptions& options)
       nav_(options.navigation),
       wanderer_(options.wander, options.seed),
       rng_(options.seed ^ 0x5bd1e995u),
-      search_(options.search) {}
+      search_(options.search),
+      trail_(options.trail) {}
 
 void ChargingController::OnOdometry(const grid::Pose2D& odom, double time) {
   nav_.OnOdometry(odom, time);
@@ -76,10 +84,22 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   in.sightings.swap(sightings_);
   in.lock = lock;
   in.time = time;
+  // Going back along the trail counts as progress while it keeps getting further back.
+  in.making_way = retrace_.active && time - retrace_.moved_back < options_.retrace_after;
+  // In view: the local map shows open space up to the charger (or to a docked robot on it).
+  const sounds_good_explorer::LocalMap& map = nav_.map();
+  const Eigen::Vector2d here = nav_.pose().position();
+  in.in_view = [&map, here, this](const Eigen::Vector2d& p) {
+    return map.ClearView(here, p, options_.navigation.planner.robot_radius + map.resolution());
+  };
   const ChargingCommand cmd = behaviour_.Update(in);
   sightings_.clear();
   // Wherever the robot goes it looks for chargers: time spent anywhere is time spent searching.
-  if (nav_.have_pose()) search_.Visit(nav_.pose().position(), dt);
+  if (nav_.have_pose()) {
+    search_.Visit(nav_.pose().position(), dt);
+    trail_.Visit(nav_.pose().position(), time);
+  }
+  if (behaviour_.phase() != Phase::kApproach) retrace_.active = false;
 
   ControllerOutput out;
   out.want_lock = cmd.want_lock;
@@ -94,7 +114,7 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
       planned_for_.reset();
       break;
     case ChargingCommand::Motion::kGoTo:
-      velocity = GoTo(cmd.target, time);
+      velocity = behaviour_.phase() == Phase::kApproach ? Approach(cmd.target, time) : GoTo(cmd.target, time);
       break;
     case ChargingCommand::Motion::kBackAway:
       velocity = BackAway(cmd.target, time);
@@ -159,16 +179,84 @@ sounds_good_explorer::Velocity ChargingController::BackAway(const Eigen::Vector2
   return out;
 }
 
+std::vector<Eigen::Vector2d> ChargingController::OtherChargers() const {
+  std::vector<Eigen::Vector2d> others;
+  const std::optional<Eigen::Vector2d> in_use = behaviour_.charger();
+  for (const Eigen::Vector2d& c : behaviour_.known_chargers())
+    if (!in_use || (c - *in_use).norm() >= options_.charging.same_charger) others.push_back(c);
+  return others;
+}
+
+sounds_good_explorer::Velocity ChargingController::Approach(const Eigen::Vector2d& target, double time) {
+  const Eigen::Vector2d here = nav_.pose().position();
+  const Eigen::Vector2d charger = *behaviour_.charger();
+  const bool same = approach_charger_ && approach_since_ == behaviour_.phase_since() &&
+                    (*approach_charger_ - charger).norm() < options_.charging.same_charger;
+  approach_charger_ = charger;  // it follows the sightings
+  if (!same) {
+    approach_since_ = behaviour_.phase_since();
+    retrace_.active = false;
+    retraced_mark_.reset();
+    direct_best_ = std::numeric_limits<double>::infinity();
+    direct_improved_ = time;
+  }
+  if (!retrace_.active) {
+    const double distance = (target - here).norm();
+    if (distance < direct_best_ - kDirectProgress) {
+      direct_best_ = distance;
+      direct_improved_ = time;
+    } else if (time - direct_improved_ > options_.retrace_after && !StartRetrace(time)) {
+      direct_improved_ = time;  // the trail cannot help: keep trying directly
+    }
+    if (!retrace_.active) return GoTo(target, time);
+  }
+  if (nav_.ReplanDue(time) || !planned_for_) {
+    // One pass over the local map says which crumbs the robot could plan to from here.
+    const sounds_good_explorer::Grid<std::uint32_t> costs = nav_.CostsFromRobot(OtherChargers(), options_.keep_out);
+    const sounds_good_explorer::LocalMap& map = nav_.map();
+    const auto reachable = [&](const Eigen::Vector2d& p) {
+      const Eigen::Vector2i cell = map.CellOf(p);
+      return map.Inside(cell) && costs.at(cell) != sounds_good_explorer::kUnreachable;
+    };
+    const std::optional<std::uint64_t> back =
+        trail_.FurthestBack(retrace_.cursor, retrace_.mark, here, options_.retrace_reach, reachable);
+    if (back && *back < retrace_.cursor) {
+      retrace_.cursor = *back;
+      retrace_.moved_back = time;
+    }
+  }
+  const Eigen::Vector2d crumb = trail_.at(retrace_.cursor).position;
+  if (retrace_.cursor == retrace_.mark && (crumb - here).norm() < kCrumbReached) {
+    // Back where the charger was last seen: from here the way to it is direct.
+    retrace_.active = false;
+    retraced_mark_ = retrace_.mark;
+    direct_best_ = (target - here).norm();
+    direct_improved_ = time;
+    return GoTo(target, time);
+  }
+  return GoTo(crumb, time);
+}
+
+bool ChargingController::StartRetrace(double time) {
+  if (trail_.empty()) return false;
+  const std::optional<std::uint64_t> mark = trail_.LaidBy(behaviour_.charger_seen());
+  // Nothing to go back along: seen from here, from beyond the trail's memory, or retraced to.
+  if (!mark || *mark + 1 >= trail_.newest() || mark == retraced_mark_) return false;
+  retrace_.active = true;
+  retrace_.mark = *mark;
+  retrace_.cursor = trail_.newest();
+  retrace_.moved_back = time;
+  planned_for_.reset();
+  ++retraces_;
+  return true;
+}
+
 sounds_good_explorer::Velocity ChargingController::GoTo(const Eigen::Vector2d& target, double time) {
   if (nav_.BackingOff(time)) return nav_.BackoffCommand();
   if (!planned_for_ || (*planned_for_ - target).norm() > kRetarget || nav_.ReplanDue(time)) {
     planned_for_ = target;
     // Round every charger but the one in use: never across a charger someone may be docked at.
-    std::vector<Eigen::Vector2d> others;
-    const std::optional<Eigen::Vector2d> in_use = behaviour_.charger();
-    for (const Eigen::Vector2d& c : behaviour_.known_chargers())
-      if (!in_use || (c - *in_use).norm() >= options_.charging.same_charger) others.push_back(c);
-    nav_.PlanTo(target, time, others, options_.keep_out);
+    nav_.PlanTo(target, time, OtherChargers(), options_.keep_out);
   }
   const sounds_good_explorer::LocalNavigator::Steering steering = nav_.Steer(time);
   if (steering.stuck) {

@@ -195,6 +195,7 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
     record.charges = robots[k].behaviour().charges();
     record.give_ups = robots[k].behaviour().give_ups();
     record.redocks = robots[k].behaviour().redocks();
+    record.retraces = robots[k].retraces();
     record.lock = locks[k]->counters();
   }
   result.collisions = world.TotalCollisions();

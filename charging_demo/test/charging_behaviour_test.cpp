@@ -191,6 +191,34 @@ TEST(ChargingBehaviour, ForgetsARememberedChargerThatIsNotThere) {
   EXPECT_EQ(b.forgotten(), 1u);
 }
 
+// Behind a wall the remembered charger is out of view: being near it without seeing it is no
+// reason to forget it, and reaching the ring there is not arriving.
+TEST(ChargingBehaviour, OnTheRingBehindAWallIsNotThereYet) {
+  ChargingBehaviour b(Options());
+  ChargingInputs in = At(0, 0, 0.9, 0.0);
+  in.sightings = {{100, 3.0, 0.0}};  // charger at (3, 0)
+  b.Update(in);
+  const auto wall = [](const Eigen::Vector2d&) { return false; };
+  for (double t = 100.0; t <= 130.0; t += 1.0) {
+    in = At(3.0, 1.0, 0.2, t);  // on the ring, the charger unseen
+    in.in_view = wall;
+    const ChargingCommand c = b.Update(in);
+    EXPECT_EQ(b.phase(), Phase::kApproach) << t;
+    EXPECT_EQ(c.motion, Motion::kGoTo);
+    EXPECT_FALSE(c.want_lock);
+  }
+  EXPECT_EQ(b.known_chargers().size(), 1u);
+  EXPECT_EQ(b.forgotten(), 0u);
+  // In view and still unseen: it is not there after all.
+  in = At(3.0, 1.0, 0.2, 131.0);
+  in.in_view = [](const Eigen::Vector2d&) { return true; };
+  b.Update(in);
+  in.time = 137.0;
+  b.Update(in);
+  EXPECT_TRUE(b.known_chargers().empty());
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+}
+
 TEST(ChargingBehaviour, LetsGoOfTheLockWhenTheChargerWaitedAtIsNotInSight) {
   ChargingBehaviour b = Waiting(Options());  // charger seen at t = 0, waiting since t = 5
   ChargingCommand c = b.Update(At(2.0, 0.0, 0.2, 5.5, State::kHeld));

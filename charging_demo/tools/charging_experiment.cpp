@@ -59,25 +59,26 @@ struct Seeded {
 void WriteCsv(const fs::path& out, const std::vector<Seeded>& runs) {
   std::ofstream trials(out / "trials.csv"), robots(out / "robots.csv");
   trials << "seed,robots,chargers,hours,charges,double_dockings,robots_flat,utilisation,mean_wait_s,"
-            "give_ups,redocks,collisions,lock_packets,queue_overflows\n";
-  robots << "seed,robot,charges,give_ups,redocks,min_battery,flat,mean_wait_s,max_wait_s,mean_seek_s\n";
+            "give_ups,redocks,retraces,collisions,lock_packets,queue_overflows\n";
+  robots << "seed,robot,charges,give_ups,redocks,retraces,min_battery,flat,mean_wait_s,max_wait_s,mean_seek_s\n";
   for (const Seeded& run : runs) {
     const ChargingTrialResult& r = run.result;
-    std::uint64_t give_ups = 0, redocks = 0;
+    std::uint64_t give_ups = 0, redocks = 0, retraces = 0;
     for (std::size_t k = 0; k < r.robots.size(); ++k) {
       const RobotRecord& robot = r.robots[k];
       give_ups += robot.give_ups;
       redocks += robot.redocks;
+      retraces += robot.retraces;
       const double max_wait = robot.waits.empty() ? std::nan("")
                                                   : *std::max_element(robot.waits.begin(), robot.waits.end());
       robots << run.seed << ',' << k << ',' << robot.charges << ',' << robot.give_ups << ','
-             << robot.redocks << ',' << robot.min_battery << ',' << (robot.flat ? 1 : 0) << ','
+             << robot.redocks << ',' << robot.retraces << ',' << robot.min_battery << ',' << (robot.flat ? 1 : 0) << ','
              << Mean(robot.waits) << ',' << max_wait << ',' << Mean(robot.seeks) << '\n';
     }
     trials << run.seed << ',' << r.robots.size() << ',' << r.charger_busy.size() << ','
            << r.duration / 3600.0 << ',' << r.charges() << ',' << r.double_dockings << ','
            << r.flat_robots() << ',' << r.utilisation() << ',' << r.mean_wait() << ',' << give_ups
-           << ',' << redocks << ',' << r.collisions << ',' << r.packets_sent << ','
+           << ',' << redocks << ',' << retraces << ',' << r.collisions << ',' << r.packets_sent << ','
            << r.queue_overflows << '\n';
   }
   if (!trials || !robots) throw std::runtime_error((out / "trials.csv").string() + ": cannot write");

@@ -131,6 +131,19 @@ void LocalMap::AddRange(const grid::Pose2D& pose, double bearing, double range, 
   else Set(end, CellState::kFree, time);
 }
 
+bool LocalMap::ClearView(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double stop) const {
+  const Eigen::Vector2d way = to - from;
+  const double length = way.norm() - stop;
+  if (length <= 0.0) return true;
+  const Eigen::Vector2d dir = way.normalized();
+  // Half-cell steps, as for a beam.
+  for (double s = 0.0; s <= length; s += options_.resolution * 0.5) {
+    const Eigen::Vector2i cell = CellOf(from + dir * s);
+    if (!Inside(cell) || at(cell) != CellState::kFree) return false;
+  }
+  return true;
+}
+
 void LocalMap::MarkFree(const Eigen::Vector2d& centre, double radius, double time) {
   const Eigen::Vector2i lo = CellOf(centre - Eigen::Vector2d::Constant(radius));
   const Eigen::Vector2i hi = CellOf(centre + Eigen::Vector2d::Constant(radius));

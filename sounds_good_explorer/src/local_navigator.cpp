@@ -69,28 +69,37 @@ bool LocalNavigator::PlanTo(const std::optional<Eigen::Vector2d>& goal, double t
   plan_.clear();
   if (!goal) return false;
   const Eigen::Vector2i start = map_.CellOf(pose_.position());
-  Plan plan;
-  if (keep_out.empty() || !(keep_out_radius > 0.0)) {
-    plan = MakePlan(map_, start, GoalCell(*goal), options_.planner);
-  } else {
-    LocalMap walled = map_;
-    const int reach = static_cast<int>(std::ceil(keep_out_radius / map_.resolution()));
-    for (const Eigen::Vector2d& centre : keep_out) {
-      const Eigen::Vector2i c = map_.CellOf(centre);
-      for (int dy = -reach; dy <= reach; ++dy)
-        for (int dx = -reach; dx <= reach; ++dx) {
-          const Eigen::Vector2i cell = c + Eigen::Vector2i(dx, dy);
-          if (walled.Inside(cell) && cell != start &&
-              (map_.CentreOf(cell) - centre).norm() <= keep_out_radius)
-            walled.Set(cell, CellState::kOccupied, time);
-        }
-    }
-    plan = MakePlan(walled, start, GoalCell(*goal), options_.planner);
-  }
+  const Plan plan = keep_out.empty() || !(keep_out_radius > 0.0)
+                        ? MakePlan(map_, start, GoalCell(*goal), options_.planner)
+                        : MakePlan(WithKeepOut(keep_out, keep_out_radius), start, GoalCell(*goal), options_.planner);
   ++plans_;
   plan_.reserve(plan.cells.size());
   for (const Eigen::Vector2i& cell : plan.cells) plan_.push_back(map_.CentreOf(cell));
   return !plan_.empty();
+}
+
+LocalMap LocalNavigator::WithKeepOut(const std::vector<Eigen::Vector2d>& keep_out, double keep_out_radius) const {
+  LocalMap walled = map_;
+  if (!(keep_out_radius > 0.0)) return walled;
+  const Eigen::Vector2i start = map_.CellOf(pose_.position());
+  const int reach = static_cast<int>(std::ceil(keep_out_radius / map_.resolution()));
+  for (const Eigen::Vector2d& centre : keep_out) {
+    const Eigen::Vector2i c = map_.CellOf(centre);
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const Eigen::Vector2i cell = c + Eigen::Vector2i(dx, dy);
+        // A copy for one plan or pass: the time stamped on these cells is never looked at.
+        if (walled.Inside(cell) && cell != start && (map_.CentreOf(cell) - centre).norm() <= keep_out_radius)
+          walled.Set(cell, CellState::kOccupied, last_plan_);
+      }
+  }
+  return walled;
+}
+
+Grid<std::uint32_t> LocalNavigator::CostsFromRobot(const std::vector<Eigen::Vector2d>& keep_out,
+                                                   double keep_out_radius) const {
+  const LocalMap walled = WithKeepOut(keep_out, keep_out_radius);
+  return Wavefront(PlanningCosts(walled, options_.planner), walled.CellOf(pose_.position()));
 }
 
 Eigen::Vector2i LocalNavigator::GoalCell(const Eigen::Vector2d& goal) const {

@@ -164,13 +164,16 @@ std::vector<Eigen::Vector2i> SteepestDescent(const Grid<std::uint32_t>& potentia
   return path;
 }
 
-Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal,
-              const PlannerOptions& options) {
+Grid<std::uint32_t> PlanningCosts(const LocalMap& map, const PlannerOptions& options) {
   const int radius = static_cast<int>(std::ceil(options.robot_radius / map.resolution() - 1e-9));
   const Grid<std::uint8_t> grown = GrowObstacles(map, radius);
-  const Grid<std::uint32_t> costs = StepCosts(map, grown, ManhattanDistance(grown), options);
+  return StepCosts(map, grown, ManhattanDistance(grown), options);
+}
+
+Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal,
+              const PlannerOptions& options) {
   Plan plan;
-  plan.potential = Wavefront(costs, goal, start);
+  plan.potential = Wavefront(PlanningCosts(map, options), goal, start);
   plan.cells = SteepestDescent(plan.potential, start);
   return plan;
 }

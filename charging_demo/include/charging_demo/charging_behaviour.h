@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -39,10 +40,11 @@ struct ChargingOptions {
   double approach_timeout = 90.0;  // s
   double same_charger = 1.0;     // m: sightings this close together are one charger
   // Odometry drifts, so a charger remembered long ago may not be where memory says. A
-  // remembered charger the robot has come within `recheck_distance` of, without seeing it for
-  // `recheck_time`, is forgotten (the camera would have seen it there); if it was the one the
-  // robot was approaching, waiting at or docking at, the robot lets the lock go and searches
-  // again. The charger it is charging at or leaving stays in memory.
+  // remembered charger the robot has been within `recheck_distance` of, with it in view
+  // (ChargingInputs::in_view) but unseen for `recheck_time`, is forgotten (the camera would
+  // have seen it there); if it was the one the robot was approaching, waiting at or docking at,
+  // the robot lets the lock go and searches again. The charger it is charging at or leaving
+  // stays in memory.
   double recheck_distance = 2.0;  // m: within camera range
   double recheck_time = 5.0;      // s
 };
@@ -90,6 +92,13 @@ struct ChargingInputs {
   std::vector<ChargerSighting> sightings;  // every fiducial seen now (others are ignored)
   local_mutex::State lock = local_mutex::State::kReleased;
   double time = 0.0;          // s
+  // The caller's navigation is getting somewhere by a way of its own (going back the way it
+  // came, away from the charger for a while): the approach is making progress.
+  bool making_way = false;
+  // Whether the robot's camera could see a point (odom frame) from where it stands, as far as
+  // the caller knows (its local map shows open space to it). A remembered charger is only
+  // forgotten for going unseen while it is in view. Unset: anything within recheck_distance is.
+  std::function<bool(const Eigen::Vector2d&)> in_view;
 };
 
 // The charging behaviour of thesis section 7.2 (ROS-free): duty until the battery is low; find
@@ -107,6 +116,7 @@ class ChargingBehaviour {
   Phase phase() const { return phase_; }
   double phase_since() const { return phase_since_; }
   std::optional<Eigen::Vector2d> charger() const { return charger_; }  // the one in use
+  double charger_seen() const { return charger_seen_; }  // s, its latest sighting
   // Every charger remembered, odom frame (at its latest sighting).
   std::vector<Eigen::Vector2d> known_chargers() const;
   std::uint64_t charges() const { return charges_; }
@@ -125,7 +135,7 @@ class ChargingBehaviour {
   Phase phase_ = Phase::kDuty;
   double phase_since_ = 0.0;
   void See(const std::vector<ChargerSighting>& sightings, const grid::Pose2D& odom, double time);
-  void ForgetUnseen(const Eigen::Vector2d& robot, double time);
+  void ForgetUnseen(const ChargingInputs& in);
   // Withdraws from the charger in use and avoids it for avoid_time.
   void GiveUp(double time);
 

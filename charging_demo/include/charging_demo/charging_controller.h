@@ -9,6 +9,7 @@
 
 #include "charging_demo/charger_search.h"
 #include "charging_demo/charging_behaviour.h"
+#include "charging_demo/trail.h"
 #include "grid/pose2d.h"
 #include "local_mutex/local_mutex.h"
 #include "sounds_good_explorer/local_navigator.h"
@@ -28,6 +29,14 @@ struct ControllerOptions {
   // m: robots not docking keep this far from every charger they know, so that wandering never
   // takes them over a charger another robot holds (the waiting ring is farther out).
   double keep_out = 0.6;
+  // The way the robot came. An approach that has not come 0.5 m closer for `retrace_after`
+  // (the local map walls it off: the charger is in the corridor, the robot in a room whose door
+  // the map no longer shows) goes back along the trail to where the charger was last seen,
+  // cutting across to the crumb nearest that sighting among those within `retrace_reach` that
+  // the local map lets it plan to.
+  TrailOptions trail;
+  double retrace_after = 15.0;  // s
+  double retrace_reach = 2.5;   // m
   std::uint32_t seed = 1;
 };
 
@@ -59,6 +68,9 @@ class ChargingController {
 
   const ChargingBehaviour& behaviour() const { return behaviour_; }
   const sounds_good_explorer::LocalNavigator& navigator() const { return nav_; }
+  const Trail& trail() const { return trail_; }
+  bool retracing() const { return retrace_.active; }
+  std::uint64_t retraces() const { return retraces_; }  // approaches that went back along the trail
   double battery() const { return battery_; }
 
  private:
@@ -67,6 +79,12 @@ class ChargingController {
   // The search: goal after goal towards the least visited surroundings.
   sounds_good_explorer::Velocity Search(double time);
   sounds_good_explorer::Velocity GoTo(const Eigen::Vector2d& target, double time);
+  // To the waiting point: directly, or back along the trail when that makes no progress.
+  sounds_good_explorer::Velocity Approach(const Eigen::Vector2d& target, double time);
+  // Starts going back to the charger's latest sighting; false when the trail cannot help.
+  bool StartRetrace(double time);
+  // Every known charger but the one in use: planned round as walls.
+  std::vector<Eigen::Vector2d> OtherChargers() const;
   // Reverses off the charger, facing it.
   sounds_good_explorer::Velocity BackAway(const Eigen::Vector2d& charger, double time);
 
@@ -86,6 +104,20 @@ class ChargingController {
   std::optional<Eigen::Vector2d> search_goal_;  // odom frame
   double search_since_ = 0.0;                   // s, when the goal was chosen
   std::optional<double> search_failed_;         // rad, direction of the last goal that failed
+  Trail trail_;
+  // The approach under way: which one (its charger and start), and its direct progress.
+  std::optional<Eigen::Vector2d> approach_charger_;
+  double approach_since_ = -1.0;
+  double direct_best_ = 0.0, direct_improved_ = 0.0;
+  struct Retrace {
+    bool active = false;
+    std::uint64_t mark = 0;    // the crumb laid when the charger was last seen
+    std::uint64_t cursor = 0;  // the crumb being driven to; only ever goes back
+    double moved_back = 0.0;   // s, when the cursor last went back
+  };
+  Retrace retrace_;
+  std::optional<std::uint64_t> retraced_mark_;  // the last mark reached: not retraced again
+  std::uint64_t retraces_ = 0;
 };
 
 }  // namespace charging_demo

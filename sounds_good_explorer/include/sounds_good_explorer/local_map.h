@@ -41,6 +41,10 @@ class LocalMap {
   // sees all round, not only along its few beams.
   void AddRange(const grid::Pose2D& pose, double bearing, double range, double reach, double time,
                 double half_width = 0.0);
+  // Whether the map shows open space all the way from `from` to `stop` m short of `to`: every
+  // cell on the way known and free (unknown cells may hide a wall, and off the map nothing is
+  // known). Says whether a camera at `from` would see something at `to`.
+  bool ClearView(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double stop) const;
   // Marks a disc free (the robot's own body).
   void MarkFree(const Eigen::Vector2d& centre, double radius, double time);
   // Reverts cells last seen more than `expiry` s before `time` to unknown. The sweep over the

@@ -70,6 +70,11 @@ class LocalNavigator {
   // places the robot must not cross, such as chargers other robots may be using.
   bool PlanTo(const std::optional<Eigen::Vector2d>& goal, double time,
               const std::vector<Eigen::Vector2d>& keep_out = {}, double keep_out_radius = 0.0);
+  // Least planning cost from the robot to each local-map cell, kUnreachable where walls or the
+  // keep-out discs cut it off (unknown cells count as free, as when planning). One pass gives
+  // the caller every place it could plan to from here.
+  Grid<std::uint32_t> CostsFromRobot(const std::vector<Eigen::Vector2d>& keep_out = {},
+                                     double keep_out_radius = 0.0) const;
   // The local-map cell a goal is planned to: its own, or the nearest on the map's edge.
   Eigen::Vector2i GoalCell(const Eigen::Vector2d& goal) const;
   bool ReplanDue(double time) const { return time - last_plan_ >= options_.motion.replan_period; }
@@ -102,6 +107,9 @@ class LocalNavigator {
   std::uint64_t bad_scans() const { return bad_scans_; }
 
  private:
+  // The local map with the keep-out discs (but never the robot's own cell) made walls.
+  LocalMap WithKeepOut(const std::vector<Eigen::Vector2d>& keep_out, double keep_out_radius) const;
+
   NavigatorOptions options_;
   LocalMap map_;
   grid::Pose2D pose_;

@@ -65,6 +65,9 @@ struct Plan {
   Grid<std::uint32_t> potential;
 };
 
+// The cost of entering each cell of `map`: obstacles grown by the robot's radius, then StepCosts.
+Grid<std::uint32_t> PlanningCosts(const LocalMap& map, const PlannerOptions& options);
+
 // The whole chain, O(cells) per plan.
 Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal,
               const PlannerOptions& options);
