@@ -99,6 +99,16 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   se.goal_distance = PositiveParam(pnh, "search_goal_distance", se.goal_distance, 100.0);
   se.directions = IntParam(pnh, "search_directions", se.directions, 1, 3600);
   se.hold = PositiveParam(pnh, "search_hold", se.hold);
+  se.unreachable_penalty = NumberParam(pnh, "search_unreachable_penalty", se.unreachable_penalty, 0.0, 1e6);
+  // ...and after follow_after s of it, following walls.
+  c.follow_after = NumberParam(pnh, "follow_after", c.follow_after, 0.0, 1e6);
+  charging_demo::WallFollowOptions& wf = c.wall_follow;
+  wf.distance = PositiveParam(pnh, "wall_distance", wf.distance, 100.0);
+  wf.speed = PositiveParam(pnh, "wall_speed", wf.speed, 100.0);
+  wf.gain = PositiveParam(pnh, "wall_gain", wf.gain, 1000.0);
+  wf.turn_rate = PositiveParam(pnh, "wall_turn_rate", wf.turn_rate, 100.0);
+  wf.lost_range = PositiveParam(pnh, "wall_lost_range", wf.lost_range, 100.0);
+  wf.corner_radius = PositiveParam(pnh, "wall_corner_radius", wf.corner_radius, 100.0);
 
   c.keep_out = PositiveParam(pnh, "keep_out", c.keep_out, 100.0);
   // Going back along the trail to a charger the local map has lost the way to.

@@ -15,6 +15,7 @@ void ValidateOptions(const SearchOptions& o) {
   sounds_good_explorer::RequireAbove("search cell (m)", o.cell, 0.0);
   sounds_good_explorer::RequireAbove("search goal_distance (m)", o.goal_distance, 0.0);
   sounds_good_explorer::RequireAbove("search hold (s)", o.hold, 0.0);
+  sounds_good_explorer::RequireAtLeast("search unreachable_penalty (s)", o.unreachable_penalty, 0.0);
   if (o.directions < 1)
     throw std::invalid_argument("search directions must be at least 1, got " + std::to_string(o.directions));
 }
@@ -26,6 +27,8 @@ std::pair<int, int> ChargerSearch::CellOf(const Eigen::Vector2d& p) const {
 }
 
 void ChargerSearch::Visit(const Eigen::Vector2d& position, double dt) { visits_[CellOf(position)] += dt; }
+
+void ChargerSearch::MarkUnreachable(const Eigen::Vector2d& goal) { Visit(goal, options_.unreachable_penalty); }
 
 double ChargerSearch::Visits(const Eigen::Vector2d& position) const {
   const auto it = visits_.find(CellOf(position));

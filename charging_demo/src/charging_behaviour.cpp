@@ -102,6 +102,17 @@ void ChargingBehaviour::See(const std::vector<ChargerSighting>& sightings, const
     auto known = std::find_if(known_.begin(), known_.end(), [&](const Known& k) {
       return (k.position - p).norm() < options_.same_charger;
     });
+    if (known == known_.end()) {
+      // Odometry drifts: a charger remembered from long ago shows up further off than
+      // same_charger. The nearest unseen for recheck_time within recheck_distance is taken to be
+      // it, rather than remembering one charger twice (the copy, planned round as another
+      // charger, could wall the real one's waiting ring off).
+      double nearest = options_.recheck_distance;
+      for (auto k = known_.begin(); k != known_.end(); ++k) {
+        const double d = (k->position - p).norm();
+        if (d < nearest && time - k->seen > options_.recheck_time) nearest = d, known = k;
+      }
+    }
     if (known == known_.end()) known_.push_back({p, time, -1.0});
     else known->position = p, known->seen = time;  // the latest sighting: odometry drifts
     if (!charger_) continue;

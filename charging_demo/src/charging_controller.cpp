@@ -18,8 +18,20 @@ constexpr double kRetarget = 0.1;
 // m/s when reversing off a charger, and the room it keeps behind.
 constexpr double kUndockSpeed = 0.15;
 constexpr double kRearGap = 0.1;
-// m: a search goal this close is reached.
+// m: a search goal this close is reached; one that has not come this much closer within the
+// search's hold is taken to be out of reach.
 constexpr double kSearchReached = 0.5;
+constexpr double kSearchProgress = 1.0;
+// Following walls, back within kLoopDistance (m) of where it was at least kLoopMin (s) before,
+// going the same way (within kLoopHeading rad): it is going round an island, a pillar or a
+// stretch of wall between two doors. (Out of a room by the door it came in by, the robot passes
+// its way in going the other way, which is no loop.)
+constexpr double kLoopMin = 10.0;
+constexpr double kLoopDistance = 0.4;
+constexpr double kLoopHeading = M_PI / 4.0;
+// Following walls without getting kFollowProgress (m) anywhere for kFollowStuck (s): stuck.
+constexpr double kFollowProgress = 0.5;
+constexpr double kFollowStuck = 15.0;
 // Longest gap between updates fed to the wanderer's timers (a paused simulation, a late call).
 constexpr double kMaxStep = 0.5;
 // m: a crumb this close is reached.
@@ -35,6 +47,8 @@ void ValidateOptions(const ControllerOptions& o) {
   sounds_good_explorer::ValidateOptions(o.navigation);
   sounds_good_explorer::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
   ValidateOptions(o.trail);
+  ValidateOptions(o.wall_follow);
+  sounds_good_explorer::RequireAtLeast("charging follow_after (s)", o.follow_after, 0.0);
   sounds_good_explorer::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
   sounds_good_explorer::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
   if (!(o.keep_out < o.charging.wait_distance))
@@ -50,7 +64,8 @@ ChargingController::ChargingController(const ControllerOptions& options)
       wanderer_(options.wander, options.seed),
       rng_(options.seed ^ 0x5bd1e995u),
       search_(options.search),
-      trail_(options.trail) {}
+      trail_(options.trail),
+      follower_(options.wall_follow, options.seed % 2 ? Hand::kLeft : Hand::kRight) {}
 
 void ChargingController::OnOdometry(const grid::Pose2D& odom, double time) {
   nav_.OnOdometry(odom, time);
@@ -107,7 +122,7 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   sounds_good_explorer::Velocity velocity;
   switch (cmd.motion) {
     case ChargingCommand::Motion::kDuty:
-      velocity = behaviour_.phase() == Phase::kSeek ? Search(time) : Wander(dt);
+      velocity = behaviour_.phase() == Phase::kSeek ? Search(time, dt) : Wander(dt);
       break;
     case ChargingCommand::Motion::kStop:
       nav_.Hold(time);
@@ -125,19 +140,84 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   return out;
 }
 
-sounds_good_explorer::Velocity ChargingController::Search(double time) {
+sounds_good_explorer::Velocity ChargingController::Search(double time, double dt) {
   const Eigen::Vector2d here = nav_.pose().position();
-  if (search_goal_ && ((*search_goal_ - here).norm() < kSearchReached ||
-                       time - search_since_ > search_.options().hold))
+  if (time - behaviour_.phase_since() < options_.follow_after) {
+    following_ = false;
+    return SearchGoal(time);
+  }
+  // Long enough near by: follow walls, which leads out of rooms and into every other.
+  if (!following_) {
+    following_ = true;
+    escaping_ = false;
+    follower_.Reset();
+    follow_since_ = time;
+    loop_checked_ = time;
+    follow_progress_at_ = here;
+    follow_progress_time_ = time;
+  }
+  if (escaping_) {
+    // Round an island (a pillar, a robot): one search goal away from it, then walls again.
+    const sounds_good_explorer::Velocity velocity = SearchGoal(time);
+    if (goals_chosen_ == escape_goal_) return velocity;
+    escaping_ = false;
+    follower_.Reset();
+    follow_since_ = time;
+    follow_progress_at_ = here;
+    follow_progress_time_ = time;
+  }
+  if (time - loop_checked_ >= 1.0) {
+    loop_checked_ = time;
+    const std::optional<std::uint64_t> last = trail_.LaidBy(time - kLoopMin);
+    const std::optional<std::uint64_t> first = trail_.LaidBy(follow_since_);
+    const double heading = nav_.pose().yaw;
+    // Stuck (caught at the tip of a thin wall, against another robot) counts as a loop too.
+    if ((here - follow_progress_at_).norm() > kFollowProgress) {
+      follow_progress_at_ = here;
+      follow_progress_time_ = time;
+    }
+    escaping_ = time - follow_progress_time_ > kFollowStuck;
+    if (follower_.on_wall() && last && first) {
+      for (std::uint64_t i = *first + 1; i < *last && !escaping_; ++i) {
+        const Eigen::Vector2d way = trail_.at(i + 1).position - trail_.at(i).position;
+        escaping_ = (trail_.at(i).position - here).norm() < kLoopDistance &&
+                    std::abs(grid::NormalizeAngle(std::atan2(way.y(), way.x()) - heading)) < kLoopHeading;
+      }
+    }
+    if (escaping_) {
+      // Round the same way again: the other hand breaks the loop; one goal away first.
+      ++loops_;
+      follower_ = WallFollower(options_.wall_follow, follower_.hand() == Hand::kLeft ? Hand::kRight : Hand::kLeft);
+      search_goal_.reset();
+      const sounds_good_explorer::Velocity velocity = SearchGoal(time);
+      escape_goal_ = goals_chosen_;
+      return velocity;
+    }
+  }
+  planned_for_.reset();
+  nav_.ClearPlan();
+  return follower_.Update(KeepOutRanges(ranges_, nav_.pose(), behaviour_.known_chargers(), options_.keep_out), dt);
+}
+
+sounds_good_explorer::Velocity ChargingController::SearchGoal(double time) {
+  const Eigen::Vector2d here = nav_.pose().position();
+  if (search_goal_ && (*search_goal_ - here).norm() < kSearchReached) search_goal_.reset();
+  if (search_goal_ && time - search_since_ > search_.options().hold) {
+    // Hardly nearer after all that time: a wall (or the building's edge) is in the way.
+    if ((*search_goal_ - here).norm() > search_start_distance_ - kSearchProgress) search_.MarkUnreachable(*search_goal_);
     search_goal_.reset();
+  }
   if (!search_goal_) {
     search_goal_ = search_.ChooseGoal(here, nav_.map(), rng_, search_failed_);
+    ++goals_chosen_;
     search_since_ = time;
+    search_start_distance_ = (*search_goal_ - here).norm();
     search_failed_.reset();
   }
   const sounds_good_explorer::Velocity velocity = GoTo(*search_goal_, time);
   if (!nav_.BackingOff(time) && nav_.plan().size() >= 2) return velocity;
   // Walled off, or stuck and backing off: another way next time.
+  search_.MarkUnreachable(*search_goal_);
   const Eigen::Vector2d way = *search_goal_ - here;
   search_failed_ = std::atan2(way.y(), way.x());
   search_goal_.reset();

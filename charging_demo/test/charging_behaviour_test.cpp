@@ -124,6 +124,25 @@ TEST(ChargingBehaviour, GivesUpOnALockThatNeverComesAndAvoidsThatCharger) {
   EXPECT_NEAR(c.target.y(), 3.0, 1e-9);
 }
 
+// An approach that makes no progress for approach_timeout gives up: the charger is avoided for a
+// while, and kept in memory.
+TEST(ChargingBehaviour, AnApproachThatGetsNowhereGivesUp) {
+  ChargingBehaviour b(Options());
+  ChargingInputs in = At(0, 0, 0.9, 0.0);
+  in.sightings = {{100, 3.0, 0.0}};  // charger at (3, 0)
+  b.Update(in);
+  b.Update(At(0, 0, 0.2, 100.0));
+  ASSERT_EQ(b.phase(), Phase::kApproach);
+  for (double t = 101.0; t <= 190.0; t += 1.0) b.Update(At(0.0, 0.5, 0.2, t));  // stuck 3 m off
+  EXPECT_EQ(b.phase(), Phase::kApproach);
+  b.Update(At(0.0, 0.5, 0.2, 191.0));
+  EXPECT_EQ(b.phase(), Phase::kSeek);
+  EXPECT_EQ(b.give_ups(), 1u);
+  EXPECT_EQ(b.known_chargers().size(), 1u);
+  b.Update(At(0.0, 0.5, 0.2, 192.0));
+  EXPECT_EQ(b.phase(), Phase::kSeek);  // avoided: not approached again at once
+}
+
 TEST(ChargingBehaviour, NeverDocksWithoutTheLock) {
   ChargingBehaviour b = Waiting(Options());
   b.Update(Seeing(At(2.0, 0.0, 0.2, 10.0, State::kHeld)));
@@ -227,6 +246,24 @@ TEST(ChargingBehaviour, LetsGoOfTheLockWhenTheChargerWaitedAtIsNotInSight) {
   EXPECT_EQ(b.phase(), Phase::kSeek);
   EXPECT_FALSE(c.want_lock);
   EXPECT_TRUE(b.known_chargers().empty());
+}
+
+// Seen again long after, 1.5 m from where memory has it: the same charger, drifted, not a second.
+TEST(ChargingBehaviour, ADriftedChargerIsRememberedOnce) {
+  ChargingBehaviour b(Options());
+  ChargingInputs in = At(0, 0, 0.9, 0.0);
+  in.sightings = {{100, 3.0, 0.0}};
+  b.Update(in);
+  in = At(0, 0, 0.9, 600.0);
+  in.sightings = {{100, 4.5, 0.0}};
+  b.Update(in);
+  ASSERT_EQ(b.known_chargers().size(), 1u);
+  EXPECT_NEAR(b.known_chargers()[0].x(), 4.5, 1e-9);
+  // Two chargers seen together 1.5 m apart are two.
+  in.time = 601.0;
+  in.sightings = {{100, 4.5, 0.0}, {101, 6.0, 0.0}};
+  b.Update(in);
+  EXPECT_EQ(b.known_chargers().size(), 2u);
 }
 
 TEST(ChargingBehaviour, TheChargerInUseFollowsItsSightings) {

@@ -41,7 +41,7 @@ const char* kUsage =
     "charging_experiment [--map MAP.yaml | --world WORLD.yaml] [--robots 4] [--chargers 1]\n"
     "  [--hours 2] [--seeds 10] [--seed 1] [--out charging_results] [--timeline FILE.png]\n"
     "  [--hearing 15] [--spacing 12] [--low 0.3] [--full 0.98] [--wait-distance 1]\n"
-    "  [--lock-timeout 600] [--threads 0]";
+    "  [--lock-timeout 1500] [--threads 0]";
 
 double Mean(const std::vector<double>& values) {
   if (values.empty()) return std::nan("");

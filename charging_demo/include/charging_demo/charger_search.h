@@ -17,6 +17,9 @@ struct SearchOptions {
   double goal_distance = 4.0;  // m: how far ahead each goal is set
   int directions = 16;         // candidate goals, evenly spread round the robot
   double hold = 10.0;          // s a goal is kept before choosing again
+  // s of visits a goal the robot could not get to counts as: beyond a wall, outside the
+  // building, places never visited would otherwise draw the search for ever.
+  double unreachable_penalty = 60.0;
 };
 
 void ValidateOptions(const SearchOptions& options);
@@ -33,6 +36,8 @@ class ChargerSearch {
 
   // The robot spent `dt` s at `position` (odom frame).
   void Visit(const Eigen::Vector2d& position, double dt);
+  // The robot could not get to `goal`: its cell counts as visited for unreachable_penalty s more.
+  void MarkUnreachable(const Eigen::Vector2d& goal);
   // Seconds spent in the cell holding `position`.
   double Visits(const Eigen::Vector2d& position) const;
 

@@ -28,7 +28,10 @@ struct ChargingOptions {
   double undock_min_distance = 0.5;  // m
   // Policy for a lock that does not come: after waiting this long the robot withdraws its
   // request and looks for another charger, avoiding this one for `avoid_time`.
-  double lock_timeout = 600.0;   // s
+  // Long enough for a queue: each charge takes about 7 minutes, so with two robots ahead a
+  // 600 s timeout gave up (and lost the place in the queue) just before its turn, and on the
+  // benchmark the robots that did so ran flat. Waiting costs little battery; searching more.
+  double lock_timeout = 1500.0;  // s
   double avoid_time = 300.0;     // s
   // Docking that does not end docked within this time (someone in the way, odometry off) backs
   // out to the waiting point, still holding the lock, and tries again.

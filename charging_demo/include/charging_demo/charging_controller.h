@@ -10,6 +10,7 @@
 #include "charging_demo/charger_search.h"
 #include "charging_demo/charging_behaviour.h"
 #include "charging_demo/trail.h"
+#include "charging_demo/wall_follower.h"
 #include "grid/pose2d.h"
 #include "local_mutex/local_mutex.h"
 #include "sounds_good_explorer/local_navigator.h"
@@ -35,6 +36,11 @@ struct ControllerOptions {
   // cutting across to the crumb nearest that sighting among those within `retrace_reach` that
   // the local map lets it plan to.
   TrailOptions trail;
+  // A search that has not found a charger in `follow_after` s goes on by following walls
+  // (left hand for odd seeds, right for even), round the room and out of its door; going round
+  // an island it takes one search goal away, then follows again.
+  WallFollowOptions wall_follow;
+  double follow_after = 60.0;  // s
   double retrace_after = 15.0;  // s
   double retrace_reach = 2.5;   // m
   std::uint32_t seed = 1;
@@ -71,13 +77,16 @@ class ChargingController {
   const Trail& trail() const { return trail_; }
   bool retracing() const { return retrace_.active; }
   std::uint64_t retraces() const { return retraces_; }  // approaches that went back along the trail
+  bool following_walls() const { return following_ && !escaping_; }
+  std::uint64_t loops() const { return loops_; }  // islands gone round while following walls
   double battery() const { return battery_; }
 
  private:
   // The duty: wandering, kept off every known charger.
   sounds_good_explorer::Velocity Wander(double dt);
-  // The search: goal after goal towards the least visited surroundings.
-  sounds_good_explorer::Velocity Search(double time);
+  // The search: goal after goal towards the least visited surroundings, then walls.
+  sounds_good_explorer::Velocity Search(double time, double dt);
+  sounds_good_explorer::Velocity SearchGoal(double time);
   sounds_good_explorer::Velocity GoTo(const Eigen::Vector2d& target, double time);
   // To the waiting point: directly, or back along the trail when that makes no progress.
   sounds_good_explorer::Velocity Approach(const Eigen::Vector2d& target, double time);
@@ -103,6 +112,7 @@ class ChargingController {
   ChargerSearch search_;
   std::optional<Eigen::Vector2d> search_goal_;  // odom frame
   double search_since_ = 0.0;                   // s, when the goal was chosen
+  double search_start_distance_ = 0.0;          // m from the robot to the goal then
   std::optional<double> search_failed_;         // rad, direction of the last goal that failed
   Trail trail_;
   // The approach under way: which one (its charger and start), and its direct progress.
@@ -118,6 +128,14 @@ class ChargingController {
   Retrace retrace_;
   std::optional<std::uint64_t> retraced_mark_;  // the last mark reached: not retraced again
   std::uint64_t retraces_ = 0;
+  WallFollower follower_;
+  bool following_ = false, escaping_ = false;
+  double follow_since_ = 0.0, loop_checked_ = 0.0;
+  Eigen::Vector2d follow_progress_at_{0.0, 0.0};  // where following last got somewhere
+  double follow_progress_time_ = 0.0;
+  std::uint64_t loops_ = 0;
+  std::uint64_t goals_chosen_ = 0;  // search goals so far
+  std::uint64_t escape_goal_ = 0;   // the goal escaping an island (goals_chosen_ then)
 };
 
 }  // namespace charging_demo

@@ -1,0 +1,82 @@
+#include "charging_demo/wall_follower.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "grid/pose2d.h"
+#include "sounds_good_explorer/option_checks.h"
+
+namespace charging_demo {
+
+namespace {
+
+// The nearest reading within `half` of `bearing` (+inf when none).
+double Nearest(const std::vector<sounds_good_explorer::RangeReading>& ranges, double bearing, double half) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const sounds_good_explorer::RangeReading& r : ranges)
+    if (std::abs(grid::NormalizeAngle(r.bearing - bearing)) <= half + 1e-9 && std::isfinite(r.range))
+      nearest = std::min(nearest, r.range);
+  return nearest;
+}
+
+}  // namespace
+
+void ValidateOptions(const WallFollowOptions& o) {
+  using sounds_good_explorer::RequireAbove;
+  RequireAbove("wall_follow distance (m)", o.distance, 0.0);
+  RequireAbove("wall_follow speed (m/s)", o.speed, 0.0);
+  RequireAbove("wall_follow gain", o.gain, 0.0);
+  RequireAbove("wall_follow turn_rate (rad/s)", o.turn_rate, 0.0);
+  RequireAbove("wall_follow lost_range (m)", o.lost_range, o.distance);
+  RequireAbove("wall_follow corner_radius (m)", o.corner_radius, 0.0);
+}
+
+WallFollower::WallFollower(const WallFollowOptions& options, Hand hand)
+    : options_((ValidateOptions(options), options)), hand_(hand) {}
+
+void WallFollower::Reset() {
+  on_wall_ = false;
+  arcing_ = 0.0;
+}
+
+sounds_good_explorer::Velocity WallFollower::Update(const std::vector<sounds_good_explorer::RangeReading>& ranges,
+                                                    double dt) {
+  const WallFollowOptions& o = options_;
+  const double side = hand_ == Hand::kLeft ? 1.0 : -1.0;  // the wall's side, as a sign of bearings
+  const double front = Nearest(ranges, 0.0, M_PI / 6.0);
+  // The wall straight across, and half way between ahead and across (a wall along the way reads
+  // 1/cos 45 further there; nearer, the wall closes in ahead).
+  const double across = Nearest(ranges, side * M_PI / 2.0, M_PI / 8.0);
+  const double diagonal = Nearest(ranges, side * M_PI / 4.0, M_PI / 8.0) * std::cos(M_PI / 4.0);
+  sounds_good_explorer::Velocity out;
+  if (front < o.distance + 0.25) {
+    // Something ahead: turn away from the wall side on the spot; it becomes the wall.
+    on_wall_ = true;
+    arcing_ = 0.0;
+    out.w = -side * o.turn_rate;
+    return out;
+  }
+  if (across <= o.lost_range) {
+    on_wall_ = true;
+    arcing_ = 0.0;
+    out.v = o.speed * std::clamp((front - o.distance) / o.lost_range, 0.3, 1.0);
+    // Keep the wall at `distance`, and turn away early where it closes in ahead.
+    const double off = std::min(across, diagonal) - o.distance;
+    out.w = std::clamp(side * o.gain * off, -o.turn_rate, o.turn_rate);
+    return out;
+  }
+  if (on_wall_) {
+    // The wall ended (a door, a corner turning away): arc round its end, for at most a
+    // three-quarter turn; with still no wall by then, it is lost.
+    out.v = 0.6 * o.speed;
+    out.w = side * std::min(out.v / o.corner_radius, o.turn_rate);
+    arcing_ += dt;
+    if (arcing_ * std::abs(out.w) > 1.5 * M_PI) Reset();
+    return out;
+  }
+  out.v = o.speed;  // open space: straight on to the next wall
+  return out;
+}
+
+}  // namespace charging_demo
