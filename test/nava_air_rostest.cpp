@@ -100,16 +100,21 @@ TEST(NavaAir, EveryRobotHearsEveryOther) {
   }
 }
 
-// All three robots are asked to send at once; returns what went wrong ("" for nothing). The
-// jammers, idle here, listen to the whole exchange: all three packets must arrive whole, one
-// after the other, with no noise. (A sender itself can miss a packet that starts while it is
-// deaf to its own echo, so the senders are not the judges.)
-std::string SimultaneousExchange(std::uint8_t attempt) {
+// All three robots are asked to send at once. The jammers, idle here, listen to the whole
+// exchange: all three packets must arrive whole, one after the other, with no noise. (A sender
+// itself can miss a packet that starts while it is deaf to its own echo, so the senders are not
+// the judges.)
+struct Exchange {
+  std::string wrong;     // "" when all went well
+  bool overlap = false;  // two whole packets heard overlapping: the back-off failed outright
+};
+
+Exchange SimultaneousExchange(std::uint8_t attempt) {
   air->Forget();
   std::vector<std::vector<std::uint8_t>> data;
   for (std::size_t s = 0; s < kRobots.size(); ++s) data.push_back({0x20, static_cast<std::uint8_t>(s), attempt, 0xAA});
   for (std::size_t s = 0; s < kRobots.size(); ++s) air->Send(kRobots[s], data[s]);
-  std::string wrong;
+  Exchange result;
   for (const std::string listener : {"jammer_a", "jammer_b"}) {
     const bool all = WaitFor([&] {
       for (const auto& d : data) {
@@ -124,23 +129,27 @@ std::string SimultaneousExchange(std::uint8_t attempt) {
     std::sort(ends.begin(), ends.end());
     bool overlap = false;
     for (std::size_t k = 1; k < ends.size(); ++k) overlap = overlap || ends[k] - ends[k - 1] < kPacketSeconds * 0.9;
+    result.overlap = result.overlap || overlap;
     if (!all || overlap || air->Noise(listener) > 0) {
-      wrong += "\n" + listener + (all ? "" : " did not hear all three;") + (overlap ? " heard overlapping packets;" : "") +
+      result.wrong += "\n" + listener + (all ? "" : " did not hear all three;") + (overlap ? " heard overlapping packets;" : "") +
                " it heard:" + air->Describe(listener);
     }
   }
-  return wrong;
+  return result;
 }
 
 // CSMA-CA spreads three simultaneous sends apart. The air is real time on a shared machine: a
 // stall of a sender's process can cut a packet it is playing (nava_modem warns "packets cut"),
-// which has nothing to do with the back-off, so the exchange may be tried three times. Without
-// back-off every try collides (checked with backoff_max_bits:=2, which gives all three robots
-// the same wait).
+// which has nothing to do with the back-off, so a try that lost or garbled a packet may be
+// tried again, up to three tries; two whole packets overlapping fail at once. Without back-off
+// every try collides (checked with backoff_max_bits:=2, which gives all three robots the same
+// wait).
 TEST(NavaAir, SimultaneousSendsAreSpreadApartByCsma) {
   std::string failures;
   for (std::uint8_t attempt = 1; attempt <= 3; ++attempt) {
-    const std::string wrong = SimultaneousExchange(attempt);
+    const Exchange exchange = SimultaneousExchange(attempt);
+    const std::string& wrong = exchange.wrong;
+    ASSERT_FALSE(exchange.overlap) << "overlapping packets on try " << static_cast<int>(attempt) << ":" << wrong;
     if (wrong.empty()) {
       if (!failures.empty()) std::fprintf(stderr, "nava_air_rostest: passed on try %d after:%s\n", attempt, failures.c_str());
       return;

@@ -10,13 +10,6 @@
 
 namespace charging_demo {
 
-namespace {
-
-// m an approach must come closer by to count as progress.
-constexpr double kApproachProgress = 0.5;
-
-}  // namespace
-
 using sounds_good_explorer::RequireAbove;
 using sounds_good_explorer::RequireAtLeast;
 
@@ -88,7 +81,10 @@ std::optional<Eigen::Vector2d> ChargingBehaviour::ChooseCharger(const Eigen::Vec
 }
 
 Eigen::Vector2d ChargingBehaviour::WaitingPoint(const Eigen::Vector2d& robot) const {
-  const Eigen::Vector2d away = robot - *charger_;
+  // On the side the charger was last seen from: the ring's point on that line of sight is in
+  // sight of the charger too (the nearest point to the robot may be behind a door jamb).
+  const Eigen::Vector2d from = (charger_seen_from_ - *charger_).norm() > 1e-6 ? charger_seen_from_ : robot;
+  const Eigen::Vector2d away = from - *charger_;
   const Eigen::Vector2d direction = away.norm() > 1e-6 ? away.normalized() : Eigen::Vector2d(1, 0);
   return *charger_ + direction * options_.wait_distance;
 }
@@ -104,17 +100,17 @@ void ChargingBehaviour::See(const std::vector<ChargerSighting>& sightings, const
     });
     if (known == known_.end()) {
       // Odometry drifts: a charger remembered from long ago shows up further off than
-      // same_charger. The nearest unseen for recheck_time within recheck_distance is taken to be
-      // it, rather than remembering one charger twice (the copy, planned round as another
-      // charger, could wall the real one's waiting ring off).
+      // same_charger. The nearest with its marker unseen for recheck_time within
+      // recheck_distance is taken to be it, rather than remembering one charger twice (the
+      // copy, planned round as another charger, could wall the real one's waiting ring off).
       double nearest = options_.recheck_distance;
       for (auto k = known_.begin(); k != known_.end(); ++k) {
         const double d = (k->position - p).norm();
-        if (d < nearest && time - k->seen > options_.recheck_time) nearest = d, known = k;
+        if (k->id == s.id && d < nearest && time - k->seen > options_.recheck_time) nearest = d, known = k;
       }
     }
-    if (known == known_.end()) known_.push_back({p, time, -1.0});
-    else known->position = p, known->seen = time;  // the latest sighting: odometry drifts
+    if (known == known_.end()) known_.push_back({p, s.id, time, -1.0, odom.position()});
+    else known->position = p, known->seen = time, known->seen_from = odom.position();  // odometry drifts
     if (!charger_) continue;
     // The charger in use follows its sightings. One remembered from long ago may be off by
     // more than same_charger; if it has gone unseen for recheck_time while a charger is in
@@ -124,6 +120,7 @@ void ChargingBehaviour::See(const std::vector<ChargerSighting>& sightings, const
         (time - charger_seen_ > options_.recheck_time && offset < options_.recheck_distance)) {
       charger_ = p;
       charger_seen_ = time;
+      charger_seen_from_ = odom.position();
     }
   }
 }
@@ -182,7 +179,7 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
       charger_ = ChooseCharger(robot, in.time);
       if (!charger_) return cmd;  // keep exploring until a charger comes into view
       for (const Known& k : known_)
-        if ((k.position - *charger_).norm() < 1e-9) charger_seen_ = k.seen;
+        if ((k.position - *charger_).norm() < 1e-9) charger_seen_ = k.seen, charger_seen_from_ = k.seen_from;
       Enter(Phase::kApproach, in.time);
       approach_best_ = std::numeric_limits<double>::infinity();
       approach_improved_ = in.time;
@@ -200,7 +197,8 @@ ChargingCommand ChargingBehaviour::Update(const ChargingInputs& in) {
         return cmd;
       }
       // Anywhere on the ring wait_distance from the charger will do: the target is the ring's
-      // nearest point, so robots arriving from different sides wait on different sides. But
+      // point towards where the robot saw it from, so robots arriving from different sides wait
+      // on different sides. But
       // only in sight of it: on the ring behind a wall the robot is not there yet (and the
       // navigation must find another way, or the approach times out).
       if (std::abs(distance - options_.wait_distance) > options_.arrive_tolerance ||

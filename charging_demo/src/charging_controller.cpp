@@ -36,8 +36,6 @@ constexpr double kFollowStuck = 15.0;
 constexpr double kMaxStep = 0.5;
 // m: a crumb this close is reached.
 constexpr double kCrumbReached = 0.3;
-// m the direct approach must come closer by to count as progress (the behaviour's measure).
-constexpr double kDirectProgress = 0.5;
 
 }  // namespace
 
@@ -50,6 +48,10 @@ void ValidateOptions(const ControllerOptions& o) {
   ValidateOptions(o.wall_follow);
   sounds_good_explorer::RequireAtLeast("charging follow_after (s)", o.follow_after, 0.0);
   sounds_good_explorer::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
+  if (!(o.retrace_after < o.charging.approach_timeout))
+    throw std::invalid_argument("charging retrace_after must be below approach_timeout (" +
+                                std::to_string(o.charging.approach_timeout) + " s), or an approach gives up first; got " +
+                                std::to_string(o.retrace_after));
   sounds_good_explorer::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
   if (!(o.keep_out < o.charging.wait_distance))
     throw std::invalid_argument("charging keep_out must be below wait_distance (" +
@@ -142,10 +144,15 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
 
 sounds_good_explorer::Velocity ChargingController::Search(double time, double dt) {
   const Eigen::Vector2d here = nav_.pose().position();
-  if (time - behaviour_.phase_since() < options_.follow_after) {
+  if (search_phase_since_ != behaviour_.phase_since()) {
+    // A new search (after duty, or after giving up on a charger): nothing carries over.
+    search_phase_since_ = behaviour_.phase_since();
+    search_goal_.reset();
+    search_failed_.reset();
     following_ = false;
-    return SearchGoal(time);
+    escaping_ = false;
   }
+  if (time - behaviour_.phase_since() < options_.follow_after) return SearchGoal(time);
   // Long enough near by: follow walls, which leads out of rooms and into every other.
   if (!following_) {
     following_ = true;
@@ -282,13 +289,20 @@ sounds_good_explorer::Velocity ChargingController::Approach(const Eigen::Vector2
   }
   if (!retrace_.active) {
     const double distance = (target - here).norm();
-    if (distance < direct_best_ - kDirectProgress) {
+    if (distance < direct_best_ - kApproachProgress) {
       direct_best_ = distance;
       direct_improved_ = time;
     } else if (time - direct_improved_ > options_.retrace_after && !StartRetrace(time)) {
       direct_improved_ = time;  // the trail cannot help: keep trying directly
     }
     if (!retrace_.active) return GoTo(target, time);
+  }
+  if (retrace_.mark < trail_.oldest()) {
+    // The way back has dropped out of the trail's memory: only directly from here on.
+    retrace_.active = false;
+    retraced_mark_ = retrace_.mark;
+    direct_improved_ = time;
+    return GoTo(target, time);
   }
   if (nav_.ReplanDue(time) || !planned_for_) {
     // One pass over the local map says which crumbs the robot could plan to from here.

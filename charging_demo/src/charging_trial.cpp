@@ -196,6 +196,7 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
     record.give_ups = robots[k].behaviour().give_ups();
     record.redocks = robots[k].behaviour().redocks();
     record.retraces = robots[k].retraces();
+    record.wall_loops = robots[k].wall_loops();
     record.lock = locks[k]->counters();
   }
   result.collisions = world.TotalCollisions();

@@ -11,6 +11,14 @@ namespace charging_demo {
 
 namespace {
 
+// m beyond `distance` at which something ahead makes the robot turn away on the spot: room to
+// turn before it touches.
+constexpr double kTurnRoom = 0.25;
+// Round the end of a wall at this share of the speed, for at most this angle (rad): a
+// three-quarter turn brings a wall that ended (a door jamb) back within reach.
+constexpr double kArcSpeedShare = 0.6;
+constexpr double kArcLimit = 1.5 * M_PI;
+
 // The nearest reading within `half` of `bearing` (+inf when none).
 double Nearest(const std::vector<sounds_good_explorer::RangeReading>& ranges, double bearing, double half) {
   double nearest = std::numeric_limits<double>::infinity();
@@ -50,7 +58,7 @@ sounds_good_explorer::Velocity WallFollower::Update(const std::vector<sounds_goo
   const double across = Nearest(ranges, side * M_PI / 2.0, M_PI / 8.0);
   const double diagonal = Nearest(ranges, side * M_PI / 4.0, M_PI / 8.0) * std::cos(M_PI / 4.0);
   sounds_good_explorer::Velocity out;
-  if (front < o.distance + 0.25) {
+  if (front < o.distance + kTurnRoom) {
     // Something ahead: turn away from the wall side on the spot; it becomes the wall.
     on_wall_ = true;
     arcing_ = 0.0;
@@ -67,12 +75,12 @@ sounds_good_explorer::Velocity WallFollower::Update(const std::vector<sounds_goo
     return out;
   }
   if (on_wall_) {
-    // The wall ended (a door, a corner turning away): arc round its end, for at most a
-    // three-quarter turn; with still no wall by then, it is lost.
-    out.v = 0.6 * o.speed;
+    // The wall ended (a door, a corner turning away): arc round its end; with still no wall
+    // after kArcLimit, it is lost.
+    out.v = kArcSpeedShare * o.speed;
     out.w = side * std::min(out.v / o.corner_radius, o.turn_rate);
     arcing_ += dt;
-    if (arcing_ * std::abs(out.w) > 1.5 * M_PI) Reset();
+    if (arcing_ * std::abs(out.w) > kArcLimit) Reset();
     return out;
   }
   out.v = o.speed;  // open space: straight on to the next wall

@@ -60,7 +60,8 @@ void WriteCsv(const fs::path& out, const std::vector<Seeded>& runs) {
   std::ofstream trials(out / "trials.csv"), robots(out / "robots.csv");
   trials << "seed,robots,chargers,hours,charges,double_dockings,robots_flat,utilisation,mean_wait_s,"
             "give_ups,redocks,retraces,collisions,lock_packets,queue_overflows\n";
-  robots << "seed,robot,charges,give_ups,redocks,retraces,min_battery,flat,mean_wait_s,max_wait_s,mean_seek_s\n";
+  robots << "seed,robot,charges,give_ups,redocks,retraces,wall_loops,min_battery,flat,mean_wait_s,max_wait_s,"
+            "mean_seek_s\n";
   for (const Seeded& run : runs) {
     const ChargingTrialResult& r = run.result;
     std::uint64_t give_ups = 0, redocks = 0, retraces = 0;
@@ -72,7 +73,7 @@ void WriteCsv(const fs::path& out, const std::vector<Seeded>& runs) {
       const double max_wait = robot.waits.empty() ? std::nan("")
                                                   : *std::max_element(robot.waits.begin(), robot.waits.end());
       robots << run.seed << ',' << k << ',' << robot.charges << ',' << robot.give_ups << ','
-             << robot.redocks << ',' << robot.retraces << ',' << robot.min_battery << ',' << (robot.flat ? 1 : 0) << ','
+             << robot.redocks << ',' << robot.retraces << ',' << robot.wall_loops << ',' << robot.min_battery << ',' << (robot.flat ? 1 : 0) << ','
              << Mean(robot.waits) << ',' << max_wait << ',' << Mean(robot.seeks) << '\n';
     }
     trials << run.seed << ',' << r.robots.size() << ',' << r.charger_busy.size() << ','

@@ -62,6 +62,7 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     burst_ = modulator_.ModulatePacket(*packet);
     burst_at_ = 0;
     burst_cut_ = false;
+    burst_written_ = 0;
   }
   // Playback runs in step with capture: this tick's share of the burst, or silence.
   std::vector<float>& out = in_;
@@ -70,17 +71,9 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     const std::size_t n = std::min(count, burst_.size() - burst_at_);
     std::copy(burst_.begin() + burst_at_, burst_.begin() + burst_at_ + n, out.begin());
     burst_at_ += n;
+    burst_pending_ += n;
   }
   Put(out.data(), count);
-  // Writes lag the burst by at most a block, so an underrun met while the MAC is sending
-  // falls inside the packet's sound (or a block after it): the packet went out with a gap.
-  if (device_.underruns() != underruns_seen_) {
-    underruns_seen_ = device_.underruns();
-    if ((before == MacState::kSending || mac_.state() == MacState::kSending) && !burst_cut_) {
-      burst_cut_ = true;
-      ++packets_cut_;
-    }
-  }
   return true;
 }
 
@@ -103,10 +96,20 @@ bool NavaLink::Take(float* out, std::size_t count) {
 
 void NavaLink::Put(const float* in, std::size_t count) {
   playing_.insert(playing_.end(), in, in + count);
-  if (playing_.size() >= block_) {
-    device_.Write(playing_.data(), playing_.size());
-    playing_.clear();
+  if (playing_.size() < block_) return;
+  device_.Write(playing_.data(), playing_.size());
+  playing_.clear();
+  // An underrun met by this write left a gap before its samples: inside the packet when some
+  // of it went out before and some goes out now.
+  if (device_.underruns() != underruns_seen_) {
+    underruns_seen_ = device_.underruns();
+    if (burst_written_ > 0 && burst_pending_ > 0 && !burst_cut_) {
+      burst_cut_ = true;
+      ++packets_cut_;
+    }
   }
+  burst_written_ += burst_pending_;
+  burst_pending_ = 0;
 }
 
 }  // namespace nava_modem

@@ -56,6 +56,9 @@ struct ChargingOptions {
 // a threshold outside (0, 1), full below low, ...).
 void ValidateOptions(const ChargingOptions& options);
 
+// m an approach must come closer by to count as progress.
+constexpr double kApproachProgress = 0.5;
+
 enum class Phase : std::uint8_t {
   kDuty,       // normal work (explore or wander)
   kSeek,       // battery low: looking for a charger
@@ -144,8 +147,10 @@ class ChargingBehaviour {
 
   struct Known {
     Eigen::Vector2d position;  // odom frame, at the latest sighting
+    std::uint32_t id = 0;      // its marker
     double seen = 0.0;         // s, latest sighting
     double near_since = -1.0;  // s, since when the robot has been within recheck_distance (< 0: not)
+    Eigen::Vector2d seen_from{0.0, 0.0};  // odom frame: where the robot was at that sighting
   };
   std::vector<Known> known_;
   struct Avoided {
@@ -155,6 +160,7 @@ class ChargingBehaviour {
   std::vector<Avoided> avoid_;
   std::optional<Eigen::Vector2d> charger_;
   double charger_seen_ = 0.0;  // s, latest sighting of the charger in use
+  Eigen::Vector2d charger_seen_from_{0.0, 0.0};  // odom frame: where the robot saw it from then
   bool retry_dock_ = false;  // backing out after a dock timeout, to try again
   int redocks_in_row_ = 0;
   double approach_best_ = 0.0;      // m, closest the approach has come to the charger

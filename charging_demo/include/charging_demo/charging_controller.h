@@ -37,8 +37,9 @@ struct ControllerOptions {
   // the local map lets it plan to.
   TrailOptions trail;
   // A search that has not found a charger in `follow_after` s goes on by following walls
-  // (left hand for odd seeds, right for even), round the room and out of its door; going round
-  // an island it takes one search goal away, then follows again.
+  // (left hand for odd seeds, right for even), round the room and out of its door. Back where
+  // it was at least 10 s before going the same way (round a pillar, or a stretch of wall between
+  // two doors), or stuck for 15 s, it switches hands and takes one search goal away first.
   WallFollowOptions wall_follow;
   double follow_after = 60.0;  // s
   double retrace_after = 15.0;  // s
@@ -74,11 +75,10 @@ class ChargingController {
 
   const ChargingBehaviour& behaviour() const { return behaviour_; }
   const sounds_good_explorer::LocalNavigator& navigator() const { return nav_; }
-  const Trail& trail() const { return trail_; }
   bool retracing() const { return retrace_.active; }
   std::uint64_t retraces() const { return retraces_; }  // approaches that went back along the trail
-  bool following_walls() const { return following_ && !escaping_; }
-  std::uint64_t loops() const { return loops_; }  // islands gone round while following walls
+  // Loops (and stalls) broken while following walls.
+  std::uint64_t wall_loops() const { return loops_; }
   double battery() const { return battery_; }
 
  private:
@@ -129,6 +129,7 @@ class ChargingController {
   std::optional<std::uint64_t> retraced_mark_;  // the last mark reached: not retraced again
   std::uint64_t retraces_ = 0;
   WallFollower follower_;
+  double search_phase_since_ = -1.0;  // the seek phase the search state belongs to
   bool following_ = false, escaping_ = false;
   double follow_since_ = 0.0, loop_checked_ = 0.0;
   Eigen::Vector2d follow_progress_at_{0.0, 0.0};  // where following last got somewhere

@@ -37,6 +37,7 @@ struct RobotRecord {
   std::uint64_t give_ups = 0;   // lock requests withdrawn after lock_timeout
   std::uint64_t redocks = 0;    // dockings backed out of after dock_timeout
   std::uint64_t retraces = 0;   // approaches that went back along the trail
+  std::uint64_t wall_loops = 0;  // loops and stalls broken while following walls in a search
   bool flat = false;            // the battery ran empty at some time
   double min_battery = 1.0;
   std::vector<double> waits;    // s from reaching the waiting point to docking, per charge

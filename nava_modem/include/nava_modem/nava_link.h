@@ -64,6 +64,7 @@ class NavaLink {
   std::uint64_t underruns_seen_ = 0;
   std::uint64_t packets_cut_ = 0;
   bool burst_cut_ = false;  // the packet being sent has been counted in packets_cut_
+  std::size_t burst_written_ = 0, burst_pending_ = 0;  // its samples written, and waiting in playing_
 };
 
 }  // namespace nava_modem
