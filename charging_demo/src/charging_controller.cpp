@@ -257,10 +257,7 @@ sounds_good_explorer::Velocity ChargingController::BackAway(const Eigen::Vector2
       to.norm() > 1e-6 ? grid::NormalizeAngle(std::atan2(to.y(), to.x()) - pose.yaw) : 0.0;
   sounds_good_explorer::Velocity out;
   out.w = std::clamp(m.turn_gain * error, -m.max_turn_rate, m.max_turn_rate);
-  double behind = std::numeric_limits<double>::infinity();
-  for (const sounds_good_explorer::RangeReading& r : ranges_)
-    if (std::abs(grid::NormalizeAngle(r.bearing)) >= 2.0 * M_PI / 3.0 && std::isfinite(r.range))
-      behind = std::min(behind, r.range);
+  const double behind = sounds_good_explorer::NearestRange(ranges_, M_PI, M_PI / 3.0);
   if (std::abs(error) < M_PI / 3.0 && behind > options_.navigation.planner.robot_radius + kRearGap)
     out.v = -kUndockSpeed * std::cos(error);
   return out;
@@ -284,24 +281,16 @@ sounds_good_explorer::Velocity ChargingController::Approach(const Eigen::Vector2
     approach_since_ = behaviour_.phase_since();
     retrace_.active = false;
     retraced_mark_.reset();
-    direct_best_ = std::numeric_limits<double>::infinity();
-    direct_improved_ = time;
   }
   if (!retrace_.active) {
-    const double distance = (target - here).norm();
-    if (distance < direct_best_ - kApproachProgress) {
-      direct_best_ = distance;
-      direct_improved_ = time;
-    } else if (time - direct_improved_ > options_.retrace_after && !StartRetrace(time)) {
-      direct_improved_ = time;  // the trail cannot help: keep trying directly
-    }
+    // The behaviour measures the approach's progress; stalled this long, try the trail.
+    if (time - behaviour_.approach_progress_time() > options_.retrace_after) StartRetrace(time);
     if (!retrace_.active) return GoTo(target, time);
   }
   if (retrace_.mark < trail_.oldest()) {
     // The way back has dropped out of the trail's memory: only directly from here on.
     retrace_.active = false;
     retraced_mark_ = retrace_.mark;
-    direct_improved_ = time;
     return GoTo(target, time);
   }
   if (nav_.ReplanDue(time) || !planned_for_) {
@@ -324,8 +313,6 @@ sounds_good_explorer::Velocity ChargingController::Approach(const Eigen::Vector2
     // Back where the charger was last seen: from here the way to it is direct.
     retrace_.active = false;
     retraced_mark_ = retrace_.mark;
-    direct_best_ = (target - here).norm();
-    direct_improved_ = time;
     return GoTo(target, time);
   }
   return GoTo(crumb, time);

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
-#include "grid/pose2d.h"
 #include "sounds_good_explorer/option_checks.h"
 
 namespace charging_demo {
@@ -18,15 +16,6 @@ constexpr double kTurnRoom = 0.25;
 // three-quarter turn brings a wall that ended (a door jamb) back within reach.
 constexpr double kArcSpeedShare = 0.6;
 constexpr double kArcLimit = 1.5 * M_PI;
-
-// The nearest reading within `half` of `bearing` (+inf when none).
-double Nearest(const std::vector<sounds_good_explorer::RangeReading>& ranges, double bearing, double half) {
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const sounds_good_explorer::RangeReading& r : ranges)
-    if (std::abs(grid::NormalizeAngle(r.bearing - bearing)) <= half + 1e-9 && std::isfinite(r.range))
-      nearest = std::min(nearest, r.range);
-  return nearest;
-}
 
 }  // namespace
 
@@ -52,11 +41,11 @@ sounds_good_explorer::Velocity WallFollower::Update(const std::vector<sounds_goo
                                                     double dt) {
   const WallFollowOptions& o = options_;
   const double side = hand_ == Hand::kLeft ? 1.0 : -1.0;  // the wall's side, as a sign of bearings
-  const double front = Nearest(ranges, 0.0, M_PI / 6.0);
+  const double front = sounds_good_explorer::NearestRange(ranges, 0.0, M_PI / 6.0);
   // The wall straight across, and half way between ahead and across (a wall along the way reads
   // 1/cos 45 further there; nearer, the wall closes in ahead).
-  const double across = Nearest(ranges, side * M_PI / 2.0, M_PI / 8.0);
-  const double diagonal = Nearest(ranges, side * M_PI / 4.0, M_PI / 8.0) * std::cos(M_PI / 4.0);
+  const double across = sounds_good_explorer::NearestRange(ranges, side * M_PI / 2.0, M_PI / 8.0);
+  const double diagonal = sounds_good_explorer::NearestRange(ranges, side * M_PI / 4.0, M_PI / 8.0) * std::cos(M_PI / 4.0);
   sounds_good_explorer::Velocity out;
   if (front < o.distance + kTurnRoom) {
     // Something ahead: turn away from the wall side on the spot; it becomes the wall.

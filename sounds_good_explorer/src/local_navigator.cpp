@@ -32,6 +32,14 @@ void ValidateOptions(const NavigatorOptions& o) {
   ValidateOptions(o.motion);
 }
 
+double NearestRange(const std::vector<RangeReading>& readings, double bearing, double half_width) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const RangeReading& r : readings)
+    if (std::abs(grid::NormalizeAngle(r.bearing - bearing)) <= half_width + 1e-9 && std::isfinite(r.range))
+      nearest = std::min(nearest, r.range);
+  return nearest;
+}
+
 LocalNavigator::LocalNavigator(const NavigatorOptions& options)
     : options_((ValidateOptions(options), options)), map_(options.map) {}
 
@@ -51,14 +59,10 @@ void LocalNavigator::OnRanges(const std::vector<RangeReading>& readings, double 
     ++bad_scans_;
     return;
   }
-  front_clearance_ = std::numeric_limits<double>::infinity();
   const double half_width =
       options_.clear_sectors && !readings.empty() ? M_PI / readings.size() : 0.0;
-  for (const RangeReading& r : readings) {
-    map_.AddRange(pose_, r.bearing, r.range, reach, time, half_width);
-    if (std::abs(grid::NormalizeAngle(r.bearing)) <= M_PI / 3.0 && std::isfinite(r.range))
-      front_clearance_ = std::min(front_clearance_, r.range);
-  }
+  for (const RangeReading& r : readings) map_.AddRange(pose_, r.bearing, r.range, reach, time, half_width);
+  front_clearance_ = NearestRange(readings, 0.0, M_PI / 3.0);
   // The robot stands where it is: its own cells are free whatever the beams said.
   map_.MarkFree(pose_.position(), options_.planner.robot_radius, time);
 }

@@ -123,6 +123,8 @@ class ChargingBehaviour {
   double phase_since() const { return phase_since_; }
   std::optional<Eigen::Vector2d> charger() const { return charger_; }  // the one in use
   double charger_seen() const { return charger_seen_; }  // s, its latest sighting
+  // s, when the approach under way last came kApproachProgress closer (or made way).
+  double approach_progress_time() const { return approach_improved_; }
   // Every charger remembered, odom frame (at its latest sighting).
   std::vector<Eigen::Vector2d> known_chargers() const;
   std::uint64_t charges() const { return charges_; }

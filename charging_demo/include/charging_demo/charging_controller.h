@@ -115,10 +115,9 @@ class ChargingController {
   double search_start_distance_ = 0.0;          // m from the robot to the goal then
   std::optional<double> search_failed_;         // rad, direction of the last goal that failed
   Trail trail_;
-  // The approach under way: which one (its charger and start), and its direct progress.
+  // The approach under way: which one (its charger and start).
   std::optional<Eigen::Vector2d> approach_charger_;
   double approach_since_ = -1.0;
-  double direct_best_ = 0.0, direct_improved_ = 0.0;
   struct Retrace {
     bool active = false;
     std::uint64_t mark = 0;    // the crumb laid when the charger was last seen

@@ -44,6 +44,9 @@ struct RangeReading {
   double range = 0.0;    // m from the robot's centre; +inf or NaN: nothing in reach
 };
 
+// The nearest finite reading within `half_width` rad of `bearing` (robot frame); +inf when none.
+double NearestRange(const std::vector<RangeReading>& readings, double bearing, double half_width);
+
 struct Velocity {
   double v = 0.0, w = 0.0;
 };
