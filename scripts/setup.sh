@@ -36,6 +36,9 @@ packages=(
   # air for tests on machines without a sound card; minimodem to check we talk to others
   libsndfile1-dev libasound2-dev libdiagnostic-updater-dev
   pulseaudio pulseaudio-utils libasound2-plugins alsa-utils minimodem
+  # the room profile and the room channel: FEC (libfec: Viterbi, Reed-Solomon), FFTs (FFTW),
+  # resampling for clock offsets (libsamplerate); espeak-ng and sox make test speech at run time
+  libfec-dev libfftw3-dev libsamplerate0-dev espeak-ng sox
   # headless rviz and screenshots
   xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
 )
