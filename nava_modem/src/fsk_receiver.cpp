@@ -58,16 +58,6 @@ std::size_t RingSize(double per_bit) {
 
 }  // namespace
 
-const char* NoiseName(RxEvent::Noise noise) {
-  switch (noise) {
-    case RxEvent::Noise::kNone: return "none";
-    case RxEvent::Noise::kZeroByte: return "zero_byte";
-    case RxEvent::Noise::kOneByte: return "one_byte";
-    case RxEvent::Noise::kBadCrc: return "bad_crc";
-  }
-  return "?";
-}
-
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem), options_(options), filters_(modem),
       per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate) {

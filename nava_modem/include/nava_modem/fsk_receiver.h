@@ -7,60 +7,27 @@
 #include "nava_modem/bit_clock.h"
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/modem_options.h"
+#include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
 
 namespace nava_modem {
-
-struct ReceiverOptions {
-  // How clear the break's SPACE-to-MARK step must be to decode a frame after it: both how much
-  // MARK outweighs SPACE over the 10 bits after it and SPACE outweighs MARK over the 10 bits
-  // before, each from -1 to 1. Noise alone stays near 0; a clean break gives 1.
-  double detect_threshold = 0.4;
-  // Bit-rate mismatch between sender and receiver searched for, as a fraction.
-  double max_rate_error = 0.035;
-  // Bits the CRC may repair (0, 1 or 2; see RepairFrame).
-  int max_fixed_bits = 2;
-  // In-band level (dB of full scale) above which the air counts as busy, for ZERO_BYTE
-  // reports of busy air in which no frame was found. None: such air is not reported.
-  std::optional<double> carrier_threshold_db;
-};
-
-// What the receiver heard (thesis section 5.2.4): a packet, or noise of some kind.
-struct RxEvent {
-  enum class Kind { kPacket, kNoise };
-  enum class Noise { kNone, kZeroByte, kOneByte, kBadCrc };
-  Kind kind = Kind::kNoise;
-  Noise noise = Noise::kNone;
-  std::vector<std::uint8_t> data;  // the 4 data bytes of a packet
-  double start = 0.0, end = 0.0;   // s since the first sample
-  double level_db = 0.0;           // mean in-band level, dB of full scale
-  double quality = 0.0;            // mean sum of the MARK and SPACE filter outputs (full scale 1)
-  int fixed_bits = 0;              // bits the CRC repaired
-  double rate_error = 0.0;         // the sender's bit rate over ours, minus 1
-  double clarity = 0.0;            // how clear the break was (see detect_threshold); 0 if none
-};
-const char* NoiseName(RxEvent::Noise noise);  // none, zero_byte, one_byte, bad_crc
 
 // The Nava demodulator. Samples pass the two tone filters (ToneFilters); the break before each
 // packet is found by its SPACE-to-MARK step; the bit clock is fitted to the break, the start
 // and stop bits and the header (bit rate and phase, by maximum likelihood over the packet),
 // then a digital PLL (BitClock) follows the data's transitions; the emulated UART reads 8N1
 // characters from soft decisions, and the CRC repairs up to two unsure bits.
-class FskReceiver {
+class FskReceiver : public PacketReceiver {
  public:
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
 
-  // Feeds samples; appends what ended within them to `events`.
-  void Process(const float* samples, std::size_t count, std::vector<RxEvent>& events);
-  // End of stream: decodes what is pending as if silence followed.
-  void Flush(std::vector<RxEvent>& events);
-  // While muted (the link is sending, or deaf to its own echo) nothing is detected.
-  void SetMuted(bool muted);
-  void SetCarrierThreshold(std::optional<double> db);
-
+  void Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) override;
+  void Flush(std::vector<RxEvent>& events) override;
+  void SetMuted(bool muted) override;
+  void SetCarrierThreshold(std::optional<double> db) override;
   // In-band level of the last bit, dB of full scale.
-  double level_db() const;
-  double time() const { return Seconds(static_cast<double>(n_)); }  // s of audio processed
+  double level_db() const override;
+  double time() const override { return Seconds(static_cast<double>(n_)); }
 
  private:
   enum class State { kSearching, kPeaking, kCollecting };

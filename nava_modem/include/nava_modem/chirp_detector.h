@@ -1,0 +1,77 @@
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace nava_modem {
+
+struct ChirpDetectorOptions {
+  // A peak of the matched filter's output power counts as a chirp when it exceeds the mean
+  // output over the preceding `background_seconds` by this factor (CFAR). Noise alone gives
+  // exponentially distributed power: a factor of 25 (14 dB) is passed by chance about once in
+  // 10^11 samples; a chirp 10 dB under the reverberation still gives several hundred.
+  double threshold = 25.0;
+  double background_seconds = 0.3;
+  double guard_seconds = 0.02;  // the background ends this long before the sample judged
+  // After the threshold is passed, the strongest output is the chirp once nothing stronger has
+  // come for this long (the direct sound may be followed by reflections; a stronger one is
+  // taken, the same one in both chirps of a packet).
+  double peak_window_seconds = 0.02;
+  // Envelope kept for looking back (pairing chirps, refining their distance).
+  double history_seconds = 2.5;
+};
+
+struct ChirpPeak {
+  double sample = 0.0;    // where the chirp starts, in samples since the first (sub-sample)
+  double ratio = 0.0;     // peak power over the background
+  double power = 0.0;     // peak output power
+};
+
+// A matched filter for one known chirp over an endless stream, by FFT overlap-save (FFTW),
+// with the analytic (complex) output so that its magnitude is the envelope, and CFAR peak
+// picking on the envelope's power.
+class ChirpDetector {
+ public:
+  ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options);
+  ~ChirpDetector();
+  ChirpDetector(const ChirpDetector&) = delete;
+  ChirpDetector& operator=(const ChirpDetector&) = delete;
+
+  // Feeds samples; appends the chirps found (each once, a peak window after it).
+  void Process(const float* samples, std::size_t count, std::vector<ChirpPeak>& peaks);
+  // No detections before sample `until` (muting, or the chirp's own tail).
+  void Blank(std::int64_t until) { blank_until_ = std::max(blank_until_, until); }
+  // The matched filter's output power at chirp start `n`, if still kept (0 otherwise).
+  double Envelope(std::int64_t n) const;
+  // Output known up to (not including) this chirp start.
+  std::int64_t computed() const { return computed_; }
+  std::size_t length() const { return chirp_length_; }
+
+ private:
+  void RunBlock();
+  void Judge(std::int64_t n, double p, std::vector<ChirpPeak>& peaks);
+
+  ChirpDetectorOptions options_;
+  double sample_rate_;
+  std::size_t chirp_length_, fft_size_, hop_;
+  double template_energy_;
+  struct Fftw;
+  std::unique_ptr<Fftw> fftw_;
+  std::vector<double> input_;        // the last fft_size_ samples
+  std::size_t input_fill_ = 0;       // samples in input_ not yet run through a block
+  std::int64_t block_start_ = 0;     // absolute index of input_[0]
+  std::vector<float> envelope_;      // ring of output power by chirp start
+  std::size_t envelope_mask_;
+  std::int64_t computed_ = 0;
+  // CFAR state: the background is a running sum over the envelope ring.
+  double background_sum_ = 0.0;
+  std::int64_t background_len_, guard_len_, peak_len_;
+  std::int64_t blank_until_ = 0;
+  bool peaking_ = false;
+  ChirpPeak best_{};
+  std::int64_t peak_deadline_ = 0;
+};
+
+}  // namespace nava_modem

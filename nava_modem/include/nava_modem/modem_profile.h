@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nava_modem/modem_options.h"
+#include "nava_modem/packet_receiver.h"
+
+namespace nava_modem {
+
+// The physical layers a link can run. Everything above (the 4-byte payload, its CRC, the
+// CSMA-CA MAC, the noise classes, the ROS topics) is the same for all of them.
+enum class Profile {
+  kNava,  // the thesis's 300 bits/s FSK, 2300/3700 Hz, 110-bit packets; bit-exact, minimodem-compatible
+  kRoom,  // chirp-synchronised hopping 16-FSK with a rate-1/3 convolutional code, for reverberant rooms
+};
+std::optional<Profile> ParseProfile(const std::string& name);  // nava | room
+const char* ProfileName(Profile profile);
+inline const char* kProfileNames = "nava or room";
+
+// How the MAC counts time for a profile: its "bit" (the unit of back-off and of carrier
+// release) and the packet's length in those bits. For nava a bit is a bit; for room, whose
+// bits are coded and spread, it is a symbol time (40 ms).
+struct MacTiming {
+  double bit_rate = 300.0;
+  int packet_bits = 110;
+};
+
+// One profile's modulator, receiver and timing behind one interface.
+class ModemProfile {
+ public:
+  virtual ~ModemProfile() = default;
+  virtual Profile profile() const = 0;
+  // The samples of one packet carrying 4 data bytes.
+  virtual std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const = 0;
+  virtual std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const = 0;
+  // Seconds one packet lasts on the air.
+  virtual double Airtime() const = 0;
+  virtual MacTiming Timing() const = 0;
+  const ModemOptions& options() const { return options_; }
+
+ protected:
+  explicit ModemProfile(const ModemOptions& options) : options_(options) {}
+  ModemOptions options_;
+};
+
+// A profile over the given options (sample rate, amplitude and CRC for every profile; tones
+// and bit rate for nava only). Throws std::invalid_argument naming what does not fit.
+std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& options);
+
+// Timing without a sample rate (for the simulated channel).
+MacTiming ProfileTiming(Profile profile, const ModemOptions& options = {});
+double ProfileAirtime(Profile profile, const ModemOptions& options = {});
+
+}  // namespace nava_modem

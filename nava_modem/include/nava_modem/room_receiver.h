@@ -1,0 +1,68 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "nava_modem/band_level.h"
+#include "nava_modem/busy_air.h"
+#include "nava_modem/chirp_detector.h"
+#include "nava_modem/modem_options.h"
+#include "nava_modem/packet_receiver.h"
+#include "nava_modem/room_phy.h"
+
+namespace nava_modem {
+
+// The `room` profile's receiver (see room_phy.h). The chirp detector finds both chirps of a
+// packet; their distance gives the sender's clock, to which the symbol windows and tone
+// frequencies are scaled; each symbol's 192 tone energies come from one FFT of its window;
+// each tone is judged against its own noise floor (its median over the packet's other
+// symbols, scaled by how loud that symbol's other tones were), which takes out a whine, the
+// speaker's tilt and the reverberant tails of earlier symbols; the soft bits go to the Viterbi
+// decoder and the CRC decides.
+//
+// Noise reports: a pair of chirps whose payload fails the CRC is BAD_CRC; a chirp with no
+// partner at the packet's length is ONE_BYTE (a packet begun and never ended); busy air in
+// which no chirp was heard is ZERO_BYTE.
+class RoomReceiver : public PacketReceiver {
+ public:
+  RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options);
+  ~RoomReceiver() override;
+
+  void Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) override;
+  void Flush(std::vector<RxEvent>& events) override;
+  void SetMuted(bool muted) override;
+  void SetCarrierThreshold(std::optional<double> db) override { busy_.SetThreshold(db); }
+  double level_db() const override { return level_.db(); }
+  double time() const override { return static_cast<double>(n_) / modem_.sample_rate; }
+
+ private:
+  void ProcessPiece(const float* samples, std::size_t count, std::vector<RxEvent>& events);
+  void OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events);
+  void ExpireLoneChirps(std::int64_t now, std::vector<RxEvent>& events);
+  RxEvent Decode(const ChirpPeak& pre, const ChirpPeak& post);
+  // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
+  void SymbolEnergies(std::int64_t first, int length, double* energies);
+  float Sample(std::int64_t n) const { return history_[static_cast<std::size_t>(n) & history_mask_]; }
+
+  ModemOptions modem_;
+  ReceiverOptions options_;
+  ChirpDetector detector_;
+  BandLevel level_;
+  BusyAir busy_;
+  double packet_length_;  // samples from a packet's first chirp to its second, at our clock
+  std::vector<float> history_;
+  std::size_t history_mask_;
+  std::int64_t n_ = 0;  // samples processed
+  bool muted_ = false;
+  std::deque<ChirpPeak> lone_;  // chirps waiting for their partner
+  std::int64_t level_step_, level_count_ = 0;
+  struct Fft;
+  std::unique_ptr<Fft> fft_;
+  std::vector<ChirpPeak> peaks_;  // scratch
+};
+
+}  // namespace nava_modem

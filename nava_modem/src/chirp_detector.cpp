@@ -1,0 +1,169 @@
+#include "nava_modem/chirp_detector.h"
+
+#include <cmath>
+#include <complex>
+#include <cstring>
+#include <stdexcept>
+
+#include <fftw3.h>
+
+namespace nava_modem {
+namespace {
+
+// Output power (a chirp of amplitude A gives A^2) below which nothing counts: -80 dB, digital
+// silence and dither.
+constexpr double kFloor = 1e-8;
+// Renew the running background sum this often against rounding.
+constexpr std::int64_t kRenewEvery = 1 << 16;
+
+std::size_t PowerOfTwoAtLeast(double n) {
+  std::size_t size = 1;
+  while (size < n) size <<= 1;
+  return size;
+}
+
+}  // namespace
+
+// FFTW's buffers and plans for one block size.
+struct ChirpDetector::Fftw {
+  explicit Fftw(std::size_t n)
+      : size(n),
+        real(fftw_alloc_real(n)),
+        spectrum(fftw_alloc_complex(n / 2 + 1)),
+        analytic(fftw_alloc_complex(n)),
+        output(fftw_alloc_complex(n)) {
+    forward = fftw_plan_dft_r2c_1d(static_cast<int>(n), real, spectrum, FFTW_ESTIMATE);
+    backward = fftw_plan_dft_1d(static_cast<int>(n), analytic, output, FFTW_BACKWARD, FFTW_ESTIMATE);
+    if (!forward || !backward) throw std::runtime_error("chirp detector: FFTW could not plan a transform of " + std::to_string(n));
+  }
+  ~Fftw() {
+    fftw_destroy_plan(forward);
+    fftw_destroy_plan(backward);
+    fftw_free(real);
+    fftw_free(spectrum);
+    fftw_free(analytic);
+    fftw_free(output);
+  }
+  std::size_t size;
+  double* real;
+  fftw_complex* spectrum;
+  fftw_complex* analytic;
+  fftw_complex* output;
+  fftw_plan forward, backward;
+  std::vector<std::complex<double>> chirp_conj;  // conj(FFT of the zero-padded chirp), bins 0..n/2
+};
+
+ChirpDetector::ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options)
+    : options_(options), sample_rate_(sample_rate), chirp_length_(chirp.size()) {
+  if (chirp.empty()) throw std::invalid_argument("chirp detector: empty chirp");
+  fft_size_ = PowerOfTwoAtLeast(2.0 * chirp_length_);
+  hop_ = fft_size_ - chirp_length_ + 1;
+  template_energy_ = 0.0;
+  for (float c : chirp) template_energy_ += static_cast<double>(c) * c;
+  fftw_ = std::make_unique<Fftw>(fft_size_);
+  std::fill(fftw_->real, fftw_->real + fft_size_, 0.0);
+  std::copy(chirp.begin(), chirp.end(), fftw_->real);
+  fftw_execute(fftw_->forward);
+  fftw_->chirp_conj.resize(fft_size_ / 2 + 1);
+  for (std::size_t k = 0; k <= fft_size_ / 2; ++k) fftw_->chirp_conj[k] = {fftw_->spectrum[k][0], -fftw_->spectrum[k][1]};
+  input_.assign(fft_size_, 0.0);
+  const std::size_t ring = PowerOfTwoAtLeast(options_.history_seconds * sample_rate + fft_size_ +
+                                             (options_.background_seconds + options_.guard_seconds) * sample_rate);
+  envelope_.assign(ring, 0.0f);
+  envelope_mask_ = ring - 1;
+  background_len_ = std::max<std::int64_t>(1, std::llround(options_.background_seconds * sample_rate));
+  guard_len_ = std::llround(options_.guard_seconds * sample_rate);
+  peak_len_ = std::llround(options_.peak_window_seconds * sample_rate);
+}
+
+ChirpDetector::~ChirpDetector() = default;
+
+double ChirpDetector::Envelope(std::int64_t n) const {
+  if (n < 0 || n >= computed_ || computed_ - n > static_cast<std::int64_t>(envelope_.size())) return 0.0;
+  return envelope_[static_cast<std::size_t>(n) & envelope_mask_];
+}
+
+void ChirpDetector::Process(const float* samples, std::size_t count, std::vector<ChirpPeak>& peaks) {
+  while (count > 0) {
+    const std::size_t take = std::min(count, fft_size_ - input_fill_);
+    std::copy(samples, samples + take, input_.begin() + static_cast<std::ptrdiff_t>(input_fill_));
+    input_fill_ += take;
+    samples += take;
+    count -= take;
+    if (input_fill_ < fft_size_) break;
+    RunBlock();
+    for (std::size_t k = 0; k < hop_; ++k) {
+      const std::int64_t n = block_start_ + static_cast<std::int64_t>(k);
+      Judge(n, envelope_[static_cast<std::size_t>(n) & envelope_mask_], peaks);
+    }
+    // The next block starts a hop later; its first chirp_length_ - 1 samples are already here.
+    std::copy(input_.begin() + static_cast<std::ptrdiff_t>(hop_), input_.end(), input_.begin());
+    input_fill_ = fft_size_ - hop_;
+    block_start_ += static_cast<std::int64_t>(hop_);
+  }
+}
+
+void ChirpDetector::RunBlock() {
+  Fftw& f = *fftw_;
+  std::copy(input_.begin(), input_.end(), f.real);
+  fftw_execute(f.forward);
+  const std::size_t half = fft_size_ / 2;
+  // The correlation's analytic signal: positive frequencies doubled, negative ones dropped.
+  for (std::size_t k = 0; k <= half; ++k) {
+    const std::complex<double> x(f.spectrum[k][0], f.spectrum[k][1]);
+    const std::complex<double> y = x * f.chirp_conj[k] * ((k == 0 || k == half) ? 1.0 : 2.0);
+    f.analytic[k][0] = y.real();
+    f.analytic[k][1] = y.imag();
+  }
+  for (std::size_t k = half + 1; k < fft_size_; ++k) f.analytic[k][0] = f.analytic[k][1] = 0.0;
+  fftw_execute(f.backward);
+  // Lag k of the circular correlation is exact for k <= fft_size_ - chirp_length_: the chirp
+  // starting at block_start_ + k. Scaled so that a chirp of amplitude A gives A^2.
+  const double scale = 1.0 / (static_cast<double>(fft_size_) * template_energy_);
+  for (std::size_t k = 0; k < hop_; ++k) {
+    const double re = f.output[k][0] * scale, im = f.output[k][1] * scale;
+    const std::int64_t n = block_start_ + static_cast<std::int64_t>(k);
+    envelope_[static_cast<std::size_t>(n) & envelope_mask_] = static_cast<float>(re * re + im * im);
+  }
+  computed_ = block_start_ + static_cast<std::int64_t>(hop_);
+}
+
+void ChirpDetector::Judge(std::int64_t n, double p, std::vector<ChirpPeak>& peaks) {
+  auto at = [&](std::int64_t k) { return k < 0 ? 0.0 : static_cast<double>(envelope_[static_cast<std::size_t>(k) & envelope_mask_]); };
+  const std::int64_t newest = n - guard_len_;
+  background_sum_ += at(newest) - at(newest - background_len_);
+  if (n % kRenewEvery == 0) {
+    background_sum_ = 0.0;
+    for (std::int64_t k = newest - background_len_ + 1; k <= newest; ++k) background_sum_ += at(k);
+  }
+  // Early in the stream the background is what there is of it so far.
+  const std::int64_t have = std::min(background_len_, std::max<std::int64_t>(0, newest + 1));
+  const double background = std::max(background_sum_ / std::max<std::int64_t>(1, have), kFloor * 1e-3);
+  if (peaking_) {
+    // The strongest output until none stronger came for a peak window: the threshold may be
+    // passed early on the way up (over silence, on the filter's skirt).
+    if (p > best_.power) {
+      best_ = {static_cast<double>(n), p / background, p};
+      peak_deadline_ = n + peak_len_;
+    }
+    if (n < peak_deadline_) return;
+    // Sub-sample position from a parabola through the peak and its neighbours.
+    const std::int64_t m = static_cast<std::int64_t>(best_.sample);
+    const double a = at(m - 1), b = at(m), c = at(m + 1);
+    const double denom = a - 2.0 * b + c;
+    if (denom < 0.0) best_.sample += std::clamp(0.5 * (a - c) / denom, -0.5, 0.5);
+    peaks.push_back(best_);
+    peaking_ = false;
+    // The chirp's own reflections follow it for a while: they are not chirps of their own.
+    Blank(m + static_cast<std::int64_t>(chirp_length_));
+    return;
+  }
+  // Until a quarter of the background has been heard, there is too little to compare with.
+  if (n >= blank_until_ && have >= background_len_ / 4 && p > kFloor && p > options_.threshold * background) {
+    peaking_ = true;
+    best_ = {static_cast<double>(n), p / background, p};
+    peak_deadline_ = n + peak_len_;
+  }
+}
+
+}  // namespace nava_modem

@@ -1,0 +1,75 @@
+#include "nava_modem/modem_profile.h"
+
+#include <cmath>
+
+#include "nava_modem/frame.h"
+#include "nava_modem/fsk_modulator.h"
+#include "nava_modem/fsk_receiver.h"
+#include "nava_modem/room_modulator.h"
+#include "nava_modem/room_phy.h"
+#include "nava_modem/room_receiver.h"
+
+namespace nava_modem {
+namespace {
+
+class NavaProfile : public ModemProfile {
+ public:
+  explicit NavaProfile(const ModemOptions& options) : ModemProfile(options), modulator_(options) {}
+  Profile profile() const override { return Profile::kNava; }
+  std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const override {
+    return modulator_.ModulatePacket(data);
+  }
+  std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
+    return std::make_unique<FskReceiver>(options_, options);
+  }
+  double Airtime() const override { return ProfileAirtime(Profile::kNava, options_); }
+  MacTiming Timing() const override { return ProfileTiming(Profile::kNava, options_); }
+
+ private:
+  FskModulator modulator_;
+};
+
+class RoomProfile : public ModemProfile {
+ public:
+  explicit RoomProfile(const ModemOptions& options) : ModemProfile(options), modulator_(options) {}
+  Profile profile() const override { return Profile::kRoom; }
+  std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const override {
+    return modulator_.ModulatePacket(data);
+  }
+  std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
+    return std::make_unique<RoomReceiver>(options_, options);
+  }
+  double Airtime() const override { return ProfileAirtime(Profile::kRoom, options_); }
+  MacTiming Timing() const override { return ProfileTiming(Profile::kRoom, options_); }
+
+ private:
+  RoomModulator modulator_;
+};
+
+}  // namespace
+
+std::optional<Profile> ParseProfile(const std::string& name) {
+  if (name == "nava") return Profile::kNava;
+  if (name == "room") return Profile::kRoom;
+  return std::nullopt;
+}
+
+const char* ProfileName(Profile profile) { return profile == Profile::kNava ? "nava" : "room"; }
+
+std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& options) {
+  if (profile == Profile::kNava) return std::make_unique<NavaProfile>(options);
+  return std::make_unique<RoomProfile>(options);
+}
+
+MacTiming ProfileTiming(Profile profile, const ModemOptions& options) {
+  if (profile == Profile::kNava) return MacTiming{options.baud, kPacketBits};
+  const double slot = room_phy::kSymbolSeconds;
+  return MacTiming{1.0 / slot, static_cast<int>(std::ceil(room_phy::kPacketSeconds / slot - 1e-9))};
+}
+
+double ProfileAirtime(Profile profile, const ModemOptions& options) {
+  if (profile == Profile::kNava) return kPacketBits / options.baud;
+  return room_phy::kPacketSeconds;
+}
+
+}  // namespace nava_modem

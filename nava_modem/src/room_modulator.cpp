@@ -1,0 +1,55 @@
+#include "nava_modem/room_modulator.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "nava_modem/frame.h"
+#include "nava_modem/room_code.h"
+#include "nava_modem/room_phy.h"
+
+namespace nava_modem {
+
+void ValidateRoomRate(double sample_rate) {
+  const double needed = 2.0 * room_phy::kHighestHz * 1.05;
+  if (!(sample_rate >= needed && sample_rate <= 384000.0)) {
+    throw std::invalid_argument("profile room: sample rate " + std::to_string(sample_rate) +
+                                " Hz cannot carry its band (600 to 5400 Hz): expected " +
+                                std::to_string(static_cast<int>(std::ceil(needed))) + " to 384000 Hz");
+  }
+}
+
+RoomModulator::RoomModulator(const ModemOptions& options) : options_(options) {
+  ValidateRoomRate(options_.sample_rate);
+  if (!(options_.amplitude > 0.0 && options_.amplitude <= 1.0)) {
+    throw std::invalid_argument("amplitude " + std::to_string(options_.amplitude) + ": expected above 0 and at most 1");
+  }
+  chirp_ = room_phy::Chirp(options_.sample_rate);
+}
+
+std::vector<float> RoomModulator::ModulatePacket(const std::vector<std::uint8_t>& data) const {
+  const Frame frame = MakeFrame(data, options_.crc);
+  room_code::Payload payload{};
+  for (int k = 0; k < room_phy::kPayloadBytes; ++k) payload[k] = frame[1 + k];  // the header is implied
+  const room_code::Tones tones = room_code::Encode(payload);
+
+  const double fs = options_.sample_rate;
+  auto at = [fs](double seconds) { return static_cast<std::size_t>(std::lround(seconds * fs)); };
+  std::vector<float> out(at(room_phy::kPacketSeconds), 0.0f);
+  const float a = static_cast<float>(options_.amplitude);
+  for (std::size_t k = 0; k < chirp_.size(); ++k) {
+    out[k] = a * chirp_[k];
+    out[at(room_phy::kPostChirpStart) + k] = a * chirp_[k];
+  }
+  for (int s = 0; s < room_phy::kSymbols; ++s) {
+    const double start = room_phy::kDataStart + s * room_phy::kSymbolSeconds;
+    const std::size_t first = at(start), last = at(start + room_phy::kSymbolSeconds);
+    // A whole number of cycles per symbol: every symbol starts and ends at zero, so the
+    // hops make no click.
+    const double w = 2.0 * M_PI * room_phy::Bin(s, tones[s]) * room_phy::kToneSpacingHz / fs;
+    for (std::size_t n = first; n < last; ++n) out[n] = a * static_cast<float>(std::sin(w * (n - first)));
+  }
+  return out;
+}
+
+}  // namespace nava_modem

@@ -1,0 +1,253 @@
+#include "nava_modem/room_receiver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fftw3.h>
+
+#include "nava_modem/frame.h"
+#include "nava_modem/room_code.h"
+#include "nava_modem/room_modulator.h"
+
+namespace nava_modem {
+namespace {
+
+using namespace room_phy;
+
+// The in-band level for carrier sense: the profile's band, smoothed over 10 ms.
+constexpr double kLevelSeconds = 0.010;
+constexpr double kBusyStepSeconds = 0.001;
+// Busy air ends after a symbol's time of quiet; shorter stretches are clicks, not noise.
+constexpr double kBusyRelease = kSymbolSeconds;
+constexpr double kBusyMinimum = kSymbolSeconds;
+
+std::size_t PowerOfTwoAtLeast(double n) {
+  std::size_t size = 1;
+  while (size < n) size <<= 1;
+  return size;
+}
+
+double Median(std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// How much a tone's energy, as a multiple of its noise floor, speaks for it. Logarithmic, so
+// that one burst of speech or a click in a wrong tone cannot outvote the other symbols.
+double Evidence(double ratio) { return std::log1p(ratio); }
+
+}  // namespace
+
+// FFTW buffers and one plan per window length (the length follows the sender's clock).
+struct RoomReceiver::Fft {
+  explicit Fft(std::size_t max_length)
+      : in(fftw_alloc_real(max_length)), out(fftw_alloc_complex(max_length / 2 + 1)), capacity(max_length) {}
+  ~Fft() {
+    for (auto& [length, plan] : plans) fftw_destroy_plan(plan);
+    fftw_free(in);
+    fftw_free(out);
+  }
+  fftw_plan Plan(int length) {
+    auto it = plans.find(length);
+    if (it != plans.end()) return it->second;
+    fftw_plan plan = fftw_plan_dft_r2c_1d(length, in, out, FFTW_ESTIMATE);
+    if (!plan) throw std::runtime_error("room receiver: FFTW could not plan a transform of " + std::to_string(length));
+    return plans[length] = plan;
+  }
+  double* in;
+  fftw_complex* out;
+  std::size_t capacity;
+  std::map<int, fftw_plan> plans;
+};
+
+RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options)
+    : modem_(modem),
+      options_(options),
+      detector_((ValidateRoomRate(modem.sample_rate), Chirp(modem.sample_rate)), modem.sample_rate, ChirpDetectorOptions{}),
+      level_(modem.sample_rate, kChirpLowHz - 100.0, kHighestHz + 600.0, kLevelSeconds),
+      busy_(kBusyRelease, kBusyMinimum),
+      packet_length_(kPostChirpStart * modem.sample_rate) {
+  if (!(options_.max_rate_error > 0.0 && options_.max_rate_error < 0.2)) {
+    throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": expected above 0 and below 0.2");
+  }
+  const std::size_t size = PowerOfTwoAtLeast((kPacketSeconds * (1.0 + options_.max_rate_error) + 1.0) * modem.sample_rate +
+                                             4.0 * detector_.length());
+  history_.assign(size, 0.0f);
+  history_mask_ = size - 1;
+  level_step_ = std::max<std::int64_t>(1, std::llround(kBusyStepSeconds * modem.sample_rate));
+  fft_ = std::make_unique<Fft>(static_cast<std::size_t>(kSymbolSeconds * modem.sample_rate * (1.0 + options_.max_rate_error)) + 2);
+  SetCarrierThreshold(options_.carrier_threshold_db);
+}
+
+RoomReceiver::~RoomReceiver() = default;
+
+void RoomReceiver::SetMuted(bool muted) {
+  if (muted && !muted_) {
+    lone_.clear();
+    busy_.Reset();
+  }
+  muted_ = muted;
+}
+
+void RoomReceiver::Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) {
+  // In pieces shorter than the history's spare room, so that a packet found at the end of a
+  // long call still has its samples.
+  const std::size_t piece = static_cast<std::size_t>(0.1 * modem_.sample_rate);
+  while (count > piece) {
+    ProcessPiece(samples, piece, events);
+    samples += piece;
+    count -= piece;
+  }
+  ProcessPiece(samples, count, events);
+}
+
+void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::vector<RxEvent>& events) {
+  for (std::size_t k = 0; k < count; ++k) {
+    history_[static_cast<std::size_t>(n_) & history_mask_] = samples[k];
+    level_.Push(samples[k]);
+    ++n_;
+    if (++level_count_ == level_step_) {
+      level_count_ = 0;
+      if (!muted_) busy_.Step(time(), level_.power(), 0.0, !lone_.empty(), events);
+    }
+  }
+  peaks_.clear();
+  detector_.Process(samples, count, peaks_);
+  if (muted_) {
+    // What began while we were sending or deaf is our own sound.
+    detector_.Blank(n_);
+    return;
+  }
+  for (const ChirpPeak& p : peaks_) OnChirp(p, events);
+  ExpireLoneChirps(detector_.computed(), events);
+}
+
+void RoomReceiver::Flush(std::vector<RxEvent>& events) {
+  const std::vector<float> silence(static_cast<std::size_t>(modem_.sample_rate * (kPacketSeconds + 1.0)), 0.0f);
+  Process(silence.data(), silence.size(), events);
+}
+
+void RoomReceiver::OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events) {
+  ExpireLoneChirps(static_cast<std::int64_t>(peak.sample), events);
+  const double shortest = packet_length_ * (1.0 - options_.max_rate_error);
+  const double longest = packet_length_ * (1.0 + options_.max_rate_error);
+  auto partner = lone_.end();
+  for (auto it = lone_.begin(); it != lone_.end(); ++it) {
+    const double d = peak.sample - it->sample;
+    if (d >= shortest && d <= longest && (partner == lone_.end() || it->ratio > partner->ratio)) partner = it;
+  }
+  if (partner == lone_.end()) {
+    lone_.push_back(peak);
+    return;
+  }
+  const ChirpPeak pre = *partner;
+  // Chirps before the packet's first one can no longer pair with anything later.
+  lone_.erase(lone_.begin(), partner + 1);
+  events.push_back(Decode(pre, peak));
+  busy_.FrameFound();
+}
+
+void RoomReceiver::ExpireLoneChirps(std::int64_t now, std::vector<RxEvent>& events) {
+  const double longest = packet_length_ * (1.0 + options_.max_rate_error);
+  while (!lone_.empty() && lone_.front().sample + longest < now) {
+    const ChirpPeak& c = lone_.front();
+    RxEvent ev;
+    ev.kind = RxEvent::Kind::kNoise;
+    ev.noise = RxEvent::Noise::kOneByte;
+    ev.start = c.sample / modem_.sample_rate;
+    ev.end = (c.sample + detector_.length()) / modem_.sample_rate;
+    ev.level_db = 10.0 * std::log10(c.power + 1e-20);
+    ev.clarity = c.ratio;
+    events.push_back(ev);
+    busy_.FrameFound();
+    lone_.pop_front();
+  }
+}
+
+void RoomReceiver::SymbolEnergies(std::int64_t first, int length, double* energies) {
+  for (int k = 0; k < length; ++k) fft_->in[k] = Sample(first + k);
+  fftw_execute(fft_->Plan(length));
+  // A tone of amplitude A whose frequency sits on a bin gives |X| = A * length / 2: energies
+  // are the tones' squared amplitudes.
+  const double scale = 4.0 / (static_cast<double>(length) * length);
+  for (int b = 0; b < kBins; ++b) {
+    const fftw_complex& x = fft_->out[kLowestBin + b];
+    energies[b] = (x[0] * x[0] + x[1] * x[1]) * scale;
+  }
+}
+
+RxEvent RoomReceiver::Decode(const ChirpPeak& pre, const ChirpPeak& post) {
+  const double fs = modem_.sample_rate;
+  // The sender's durations over ours: symbol windows are this much longer, tones this much lower.
+  const double stretch = (post.sample - pre.sample) / packet_length_;
+  const int length = static_cast<int>(std::lround(kSymbolSeconds * fs * stretch));
+  std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins);
+  for (int s = 0; s < kSymbols; ++s) {
+    const std::int64_t first = std::llround(pre.sample + (kDataStart + s * kSymbolSeconds) * fs * stretch);
+    SymbolEnergies(first, length, &energy[static_cast<std::size_t>(s) * kBins]);
+  }
+  auto at = [&](int s, int b) -> double& { return energy[static_cast<std::size_t>(s) * kBins + b]; };
+  auto active = [](int s, int b) { return b / kTonesPerBand == Band(s); };
+
+  // Each tone's floor: its median over the symbols that did not use its sub-band.
+  std::vector<double> floor(kBins), values;
+  for (int b = 0; b < kBins; ++b) {
+    values.clear();
+    for (int s = 0; s < kSymbols; ++s) {
+      if (!active(s, b)) values.push_back(at(s, b));
+    }
+    floor[b] = Median(values) + 1e-15;
+  }
+  room_code::SoftBits soft{};
+  for (int s = 0; s < kSymbols; ++s) {
+    // How loud this symbol's time was across the other sub-bands (speech comes and goes).
+    values.clear();
+    for (int b = 0; b < kBins; ++b) {
+      if (!active(s, b)) values.push_back(at(s, b) / floor[b]);
+    }
+    const double loudness = std::max(1.0, Median(values));
+    std::array<double, kTonesPerBand> e{};
+    for (int m = 0; m < kTonesPerBand; ++m) {
+      const int b = Bin(s, m) - kLowestBin;
+      e[m] = Evidence(at(s, b) / (floor[b] * loudness));
+    }
+    for (int j = 0; j < kBitsPerSymbol; ++j) {
+      const int mask = 1 << (kBitsPerSymbol - 1 - j);
+      double one = 0.0, zero = 0.0;
+      for (int m = 0; m < kTonesPerBand; ++m) {
+        double& side = (room_code::ToneBits(m) & mask) ? one : zero;
+        side = std::max(side, e[m]);
+      }
+      soft[static_cast<std::size_t>(s * kBitsPerSymbol + j)] = static_cast<float>(one - zero);
+    }
+  }
+  const room_code::Decoded decoded = room_code::Decode(soft);
+
+  RxEvent ev;
+  ev.start = pre.sample / fs;
+  ev.end = (post.sample + detector_.length()) / fs;
+  double power = 0.0;
+  const std::int64_t first = std::llround(pre.sample), last = std::llround(post.sample) + static_cast<std::int64_t>(detector_.length());
+  for (std::int64_t n = first; n < last; ++n) power += 2.0 * Sample(n) * Sample(n);
+  ev.level_db = 10.0 * std::log10(power / std::max<std::int64_t>(1, last - first) + 1e-20);
+  ev.quality = 1.0 - static_cast<double>(decoded.corrected) / kCodedBits;
+  ev.fixed_bits = decoded.corrected;
+  ev.rate_error = 1.0 / stretch - 1.0;
+  ev.clarity = std::min(pre.ratio, post.ratio);
+  Frame frame{};
+  frame[0] = kHeader;
+  std::copy(decoded.payload.begin(), decoded.payload.end(), frame.begin() + 1);
+  if (CrcMatches(frame, modem_.crc)) {
+    ev.kind = RxEvent::Kind::kPacket;
+    ev.data.assign(frame.begin() + 1, frame.begin() + 1 + kDataBytes);
+  } else {
+    ev.kind = RxEvent::Kind::kNoise;
+    ev.noise = RxEvent::Noise::kBadCrc;
+  }
+  return ev;
+}
+
+}  // namespace nava_modem

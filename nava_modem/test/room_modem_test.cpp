@@ -1,0 +1,123 @@
+// The room profile end to end: its code, its modulator and receiver.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "nava_modem/frame.h"
+#include "nava_modem/modem_profile.h"
+#include "nava_modem/room_code.h"
+#include "nava_modem/room_phy.h"
+
+namespace nava_modem {
+namespace {
+
+using Payloads = std::vector<std::vector<std::uint8_t>>;
+
+Payloads RandomPayloads(int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> byte(0, 255);
+  Payloads out(count, std::vector<std::uint8_t>(kDataBytes));
+  for (auto& p : out)
+    for (auto& b : p) b = static_cast<std::uint8_t>(byte(rng));
+  return out;
+}
+
+// Packets with gaps between them, as a sender would play them.
+std::vector<float> Play(const ModemProfile& profile, const Payloads& payloads, double gap) {
+  const std::size_t silence = static_cast<std::size_t>(gap * profile.options().sample_rate);
+  std::vector<float> audio(silence, 0.0f);
+  for (const auto& p : payloads) {
+    const std::vector<float> burst = profile.ModulatePacket(p);
+    audio.insert(audio.end(), burst.begin(), burst.end());
+    audio.insert(audio.end(), silence, 0.0f);
+  }
+  return audio;
+}
+
+std::vector<RxEvent> Hear(const ModemProfile& profile, const std::vector<float>& audio) {
+  auto rx = profile.MakeReceiver({});
+  std::vector<RxEvent> events;
+  // In pieces, as a sound card delivers it.
+  for (std::size_t at = 0; at < audio.size(); at += 441) rx->Process(audio.data() + at, std::min<std::size_t>(441, audio.size() - at), events);
+  rx->Flush(events);
+  return events;
+}
+
+Payloads PacketsOf(const std::vector<RxEvent>& events) {
+  Payloads out;
+  for (const RxEvent& e : events) {
+    if (e.kind == RxEvent::Kind::kPacket) out.push_back(e.data);
+  }
+  return out;
+}
+
+// The sender's clock off by `offset` (+0.01: 1 % fast): linear interpolation is enough for a
+// test at these rates (the tones are far below Nyquist).
+std::vector<float> ClockOffset(const std::vector<float>& in, double offset) {
+  std::vector<float> out;
+  for (double t = 0.0; t + 1.0 < in.size(); t += 1.0 + offset) {
+    const std::size_t k = static_cast<std::size_t>(t);
+    const double f = t - k;
+    out.push_back(static_cast<float>((1.0 - f) * in[k] + f * in[k + 1]));
+  }
+  return out;
+}
+
+TEST(RoomProfile, FitsTheBudget) {
+  EXPECT_LE(ProfileAirtime(Profile::kRoom), 2.0);
+  const MacTiming t = ProfileTiming(Profile::kRoom);
+  EXPECT_GE(t.packet_bits / t.bit_rate, ProfileAirtime(Profile::kRoom));
+  EXPECT_LT(t.packet_bits / t.bit_rate, ProfileAirtime(Profile::kRoom) + 1.0 / t.bit_rate);
+}
+
+TEST(RoomProfile, RoundTripsAtEachSampleRate) {
+  for (double rate : {16000.0, 44100.0, 48000.0}) {
+    ModemOptions o;
+    o.sample_rate = rate;
+    const auto profile = MakeProfile(Profile::kRoom, o);
+    const Payloads payloads = RandomPayloads(6, static_cast<unsigned>(rate));
+    std::vector<float> audio = Play(*profile, payloads, 0.4);
+    EXPECT_NEAR(profile->ModulatePacket(payloads[0]).size() / rate, profile->Airtime(), 1e-3);
+    std::mt19937 rng(3);
+    std::normal_distribution<float> noise(0.0f, 0.01f);
+    for (float& x : audio) x += noise(rng);
+    const auto events = Hear(*profile, audio);
+    EXPECT_EQ(PacketsOf(events), payloads) << rate << " Hz";
+    EXPECT_EQ(events.size(), payloads.size()) << rate << " Hz: no noise reports";
+    for (const RxEvent& e : events) EXPECT_NEAR(e.rate_error, 0.0, 1e-4);
+  }
+}
+
+TEST(RoomProfile, FollowsTheSendersClock) {
+  ModemOptions o;
+  o.sample_rate = 16000.0;
+  const auto profile = MakeProfile(Profile::kRoom, o);
+  const Payloads payloads = RandomPayloads(4, 7);
+  for (double offset : {-0.01, -0.003, 0.004, 0.01}) {
+    const auto events = Hear(*profile, ClockOffset(Play(*profile, payloads, 0.3), offset));
+    EXPECT_EQ(PacketsOf(events), payloads) << offset;
+    for (const RxEvent& e : events) EXPECT_NEAR(e.rate_error, offset, 2e-4) << offset;
+  }
+}
+
+TEST(RoomProfile, RefusesARateThatCannotCarryItsBand) {
+  ModemOptions o;
+  o.sample_rate = 8000.0;
+  try {
+    MakeProfile(Profile::kRoom, o);
+    FAIL() << "8000 Hz accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("8000"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RoomProfile, ParsesNames) {
+  EXPECT_EQ(ParseProfile("nava"), Profile::kNava);
+  EXPECT_EQ(ParseProfile("room"), Profile::kRoom);
+  EXPECT_FALSE(ParseProfile("Room").has_value());
+  EXPECT_STREQ(ProfileName(Profile::kRoom), "room");
+}
+
+}  // namespace
+}  // namespace nava_modem
