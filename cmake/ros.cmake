@@ -117,6 +117,7 @@ if(MULTIROBOT_AUDIO_TESTS)
     add_test(NAME ${target} COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh ${test_file})
   endfunction()
   multirobot_audio_air_test(nava_air_rostest nava_air.test test/nava_air_rostest.cpp)
+  add_test(NAME nava_air_room_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh nava_air.test profile:=room)
   multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
                             test/rostest_main.cpp)
   add_dependencies(tests local_mutex_node)

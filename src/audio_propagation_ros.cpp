@@ -13,6 +13,7 @@
 #include "conversions.h"
 #include "params.h"
 #include "grid/map_file.h"
+#include "nava_modem/modem_profile.h"
 #include "world_sim/world_file.h"
 
 namespace multirobot_audio {
@@ -63,7 +64,22 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   auto& c = o.channel;
   c.capture_margin_db = NumberParam(pnh, "capture_margin_db", c.capture_margin_db, 0.0, 1000.0);
   c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise, 0.0, 10.0);
-  c.mac.bit_rate = NumberParam(pnh, "bit_rate", c.mac.bit_rate, 1.0, 100000.0);
+  // The modem profile the robots run sets how long a packet sounds (and the MAC's unit of time).
+  const std::string profile = StringParam(pnh, "profile", "nava");
+  const auto parsed_profile = nava_modem::ParseProfile(profile);
+  if (!parsed_profile) {
+    throw ParamError(pnh.resolveName("profile") + ": expected " + nava_modem::kProfileNames + ", got '" + profile + "'");
+  }
+  if (*parsed_profile == nava_modem::Profile::kNava) {
+    nava_modem::ModemOptions modem;
+    modem.baud = NumberParam(pnh, "bit_rate", modem.baud, 1.0, 100000.0);
+    nava_modem::UseProfileTiming(*parsed_profile, modem, c.mac);
+  } else {
+    if (pnh.hasParam("bit_rate")) {
+      throw ParamError(pnh.resolveName("bit_rate") + ": sets the nava profile's bit rate; profile " + profile + " has its own timing");
+    }
+    nava_modem::UseProfileTiming(*parsed_profile, {}, c.mac);
+  }
   c.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
   c.cache_size = static_cast<std::size_t>(IntParam(pnh, "cache_size", 1000, 0, 10000000));
   try {

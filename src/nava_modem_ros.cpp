@@ -7,6 +7,7 @@
 #include <multirobot_audio/AudioReception.h>
 #include <multirobot_audio/CarrierSense.h>
 
+#include "nava_modem/frame.h"
 #include "params.h"
 
 namespace multirobot_audio {
@@ -19,6 +20,12 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   o.frame_id = StringParam(pnh, "frame_id", o.frame_id);
   o.carrier_rate = NumberParam(pnh, "carrier_rate", o.carrier_rate, 0.1, 1000.0);
 
+  const std::string profile = StringParam(pnh, "profile", "nava");
+  const auto parsed_profile = nava_modem::ParseProfile(profile);
+  if (!parsed_profile) {
+    throw ParamError(pnh.resolveName("profile") + ": expected " + nava_modem::kProfileNames + ", got '" + profile + "'");
+  }
+  o.link.profile = *parsed_profile;
   nava_modem::ModemOptions& m = o.link.modem;
   m.sample_rate = o.alsa.sample_rate;
   m.mark_hz = NumberParam(pnh, "mark", m.mark_hz, 1.0, 1e6);
@@ -38,8 +45,7 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   mac.backoff_max_bits = NumberParam(pnh, "backoff_max_bits", mac.backoff_max_bits, 0.0, 1e6);
   mac.deaf_time = NumberParam(pnh, "deaf_time", mac.deaf_time, 0.0, 60.0);
   mac.queue_capacity = static_cast<std::size_t>(IntParam(pnh, "queue_size", static_cast<int>(mac.queue_capacity), 1, 100000));
-  mac.bit_rate = m.baud;
-  mac.packet_bits = nava_modem::kPacketBits;
+  nava_modem::UseProfileTiming(o.link.profile, m, mac);
 
   nava_modem::ReceiverOptions& rx = o.link.receiver;
   rx.max_fixed_bits = IntParam(pnh, "max_fixed_bits", rx.max_fixed_bits, 0, 2);
@@ -47,6 +53,7 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   o.link.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
   try {
     nava_modem::ValidateModemOptions(m);
+    nava_modem::MakeProfile(o.link.profile, m);  // refuses a rate the profile's band does not fit
     nava_modem::ValidateMacOptions(mac);
   } catch (const std::invalid_argument& e) {
     throw ParamError(e.what());
@@ -58,10 +65,16 @@ NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaMo
     : nh_(nh), pnh_(pnh), options_(options), updater_(nh, pnh) {
   device_ = std::make_unique<nava_modem::AlsaDevice>(options_.alsa);
   link_ = std::make_unique<nava_modem::NavaLink>(options_.link, *device_);
-  ROS_INFO("nava_modem: ALSA device '%s' at %.0f Hz; MARK %.0f Hz, SPACE %.0f Hz, %.0f bits/s; %s",
-           options_.alsa.device.c_str(), options_.alsa.sample_rate, options_.link.modem.mark_hz,
-           options_.link.modem.space_hz, options_.link.modem.baud,
-           options_.link.mac.fixed_threshold_db ? "fixed carrier threshold" : "calibrating on silence");
+  if (options_.link.profile == nava_modem::Profile::kNava) {
+    ROS_INFO("nava_modem: ALSA device '%s' at %.0f Hz; profile nava: MARK %.0f Hz, SPACE %.0f Hz, %.0f bits/s; %s",
+             options_.alsa.device.c_str(), options_.alsa.sample_rate, options_.link.modem.mark_hz,
+             options_.link.modem.space_hz, options_.link.modem.baud,
+             options_.link.mac.fixed_threshold_db ? "fixed carrier threshold" : "calibrating on silence");
+  } else {
+    ROS_INFO("nava_modem: ALSA device '%s' at %.0f Hz; profile %s: %.2f s a packet; %s", options_.alsa.device.c_str(),
+             options_.alsa.sample_rate, nava_modem::ProfileName(options_.link.profile), link_->profile().Airtime(),
+             options_.link.mac.fixed_threshold_db ? "fixed carrier threshold" : "calibrating on silence");
+  }
   tx_sub_ = nh_.subscribe("audio/tx", 20, &NavaModemRos::OnTx, this);
   rx_pub_ = nh_.advertise<multirobot_audio::AudioReception>("audio/rx", 50);
   carrier_pub_ = nh_.advertise<multirobot_audio::CarrierSense>("audio/carrier", 20);
@@ -197,6 +210,7 @@ void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
   }
+  status.add("profile", nava_modem::ProfileName(options_.link.profile));
   status.add("state", c.state);
   status.add("carrier threshold (dB)", c.threshold_db);
   status.add("level (dB)", c.level_db);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "nava_modem/modem_profile.h"
+
 namespace audio_propagation {
 namespace {
 
@@ -56,6 +58,36 @@ TEST(AudioChannel, APacketArrivesAfterItsDurationAndTravelTimeWithItsLevel) {
   EXPECT_NEAR(rx.level_db, 60.0 - 20.0, 1e-9);
   EXPECT_NEAR(rx.time - tx.start, tx.duration + 10.0 / 343.0, 2.0 * team.channel->tick_seconds());
   EXPECT_NEAR(rx.direction, M_PI, 1e-9);  // from behind: the sender is at smaller x
+}
+
+// The simulated link runs the robots' modem profile: a room packet sounds its 1.92 s, raising
+// the listener's carrier all that time, and a packet sent 1 s into it collides.
+TEST(AudioChannel, APacketLastsItsProfilesAirtime) {
+  ChannelOptions options;
+  nava_modem::UseProfileTiming(nava_modem::Profile::kRoom, {}, options.mac);
+  options.mac.backoff_min_bits = options.mac.backoff_max_bits = 2.0;
+  // Robots 0 and 2 are 40 m apart, out of each other's hearing: robot 0's carrier cannot keep
+  // robot 2 from sending into robot 1's reception.
+  Team team({2.0, 22.0, 42.0}, options);
+  ASSERT_TRUE(team.channel->Send(0, {1, 2, 3, 4}));
+  auto events = team.Run(1.0);
+  ASSERT_EQ(events.started.size(), 1u);
+  const double airtime = nava_modem::ProfileAirtime(nava_modem::Profile::kRoom);
+  EXPECT_NEAR(events.started[0].duration, airtime, 1e-9);
+  EXPECT_TRUE(team.channel->Carrier(1)) << "still hearing the packet after 1 s";
+  events = team.Run(airtime);
+  ASSERT_EQ(events.received.size(), 1u);
+  EXPECT_EQ(events.received[0].kind, Reception::Kind::kPacket);
+  EXPECT_NEAR(events.received[0].time, airtime + 20.0 / 343.0, 0.1);
+  EXPECT_FALSE(team.channel->Carrier(1));
+
+  ASSERT_TRUE(team.channel->Send(0, {1, 2, 3, 4}));
+  team.Run(1.0);
+  ASSERT_TRUE(team.channel->Send(2, {5, 6, 7, 8}));
+  events = team.Run(2.0 * airtime);
+  int noise_at_1 = 0;
+  for (const Reception& r : events.received) noise_at_1 += r.receiver == 1 && r.kind == Reception::Kind::kNoise;
+  EXPECT_EQ(noise_at_1, 2) << "both overlapping packets lost at the robot between the senders";
 }
 
 TEST(AudioChannel, CarrierRisesWhileAPacketIsHeardAndFallsAfter) {

@@ -63,8 +63,14 @@ std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& o
 
 MacTiming ProfileTiming(Profile profile, const ModemOptions& options) {
   if (profile == Profile::kNava) return MacTiming{options.baud, kPacketBits};
-  const double slot = room_phy::kSymbolSeconds;
+  const double slot = 0.010;
   return MacTiming{1.0 / slot, static_cast<int>(std::ceil(room_phy::kPacketSeconds / slot - 1e-9))};
+}
+
+void UseProfileTiming(Profile profile, const ModemOptions& options, MacOptions& mac) {
+  const MacTiming timing = ProfileTiming(profile, options);
+  mac.bit_rate = timing.bit_rate;
+  mac.packet_bits = timing.packet_bits;
 }
 
 double ProfileAirtime(Profile profile, const ModemOptions& options) {

@@ -1,5 +1,7 @@
 #include "nava_modem/nava_link.h"
 
+#include "nava_modem/frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -16,8 +18,7 @@ LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
     throw std::invalid_argument("the audio device runs at " + std::to_string(device.sample_rate()) +
                                 " Hz, the modem at " + std::to_string(o.modem.sample_rate) + " Hz");
   }
-  o.mac.bit_rate = o.modem.baud;
-  o.mac.packet_bits = kPacketBits;
+  UseProfileTiming(o.profile, o.modem, o.mac);
   return o;
 }
 
@@ -26,10 +27,10 @@ LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
 NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
     : options_(Checked(options, device)),
       device_(device),
-      modulator_(options_.modem),
-      receiver_(options_.modem, options_.receiver),
+      profile_(MakeProfile(options_.profile, options_.modem)),
+      receiver_(profile_->MakeReceiver(options_.receiver)),
       mac_(options_.mac, options_.seed),
-      samples_per_tick_(SamplesPerBit(options_.modem) / 16.0),
+      samples_per_tick_(mac_.tick_seconds() * options_.modem.sample_rate),
       block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))) {}
 
 bool NavaLink::Send(std::vector<std::uint8_t> data) {
@@ -49,17 +50,17 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
   ++ticks_;
 
   const MacState before = mac_.state();
-  receiver_.SetMuted(before == MacState::kSending || before == MacState::kDeaf);
-  receiver_.Process(in_.data(), count, events);
+  receiver_->SetMuted(before == MacState::kSending || before == MacState::kDeaf);
+  receiver_->Process(in_.data(), count, events);
   // The thesis's receiver threshold is the MAC's, known once calibration ends: from then on,
   // busy air with no packet is ZERO_BYTE noise.
   if (!threshold_shared_ && before != MacState::kCalibrating) {
-    receiver_.SetCarrierThreshold(mac_.threshold_db());
+    receiver_->SetCarrierThreshold(mac_.threshold_db());
     threshold_shared_ = true;
   }
 
-  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_.level_db())) {
-    burst_ = modulator_.ModulatePacket(*packet);
+  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db())) {
+    burst_ = profile_->ModulatePacket(*packet);
     burst_at_ = 0;
     burst_cut_ = false;
     burst_written_ = 0;

@@ -13,7 +13,7 @@ namespace nava_modem {
 void ValidateRoomRate(double sample_rate) {
   const double needed = 2.0 * room_phy::kHighestHz * 1.05;
   if (!(sample_rate >= needed && sample_rate <= 384000.0)) {
-    throw std::invalid_argument("profile room: sample rate " + std::to_string(sample_rate) +
+    throw std::invalid_argument("profile room: sample rate " + std::to_string(std::lround(sample_rate)) +
                                 " Hz cannot carry its band (600 to 5400 Hz): expected " +
                                 std::to_string(static_cast<int>(std::ceil(needed))) + " to 384000 Hz");
   }

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include "nava_modem/fsk_modulator.h"
+#include "nava_modem/fsk_receiver.h"
+
 #include "nava_modem/wav_device.h"
 #include "nava_modem/wav_file.h"
 
@@ -84,6 +87,38 @@ TEST(NavaLink, PlaysWhatItSendsAndIsDeafToItsOwnEcho) {
   std::remove(silent.c_str());
   std::remove(echo_file.c_str());
   EXPECT_TRUE(events.empty()) << "heard its own echo";
+}
+
+// The same link runs the room profile: it plays room packets and hears them, with the MAC
+// timed by the profile.
+TEST(NavaLink, RunsTheRoomProfile) {
+  LinkOptions o = Quick();
+  o.profile = Profile::kRoom;
+  o.modem.sample_rate = 16000.0;
+  o.mac.fixed_threshold_db = -40.0;
+  const std::string silent = TempWav("room_silent.wav");
+  WriteWavFile(silent, std::vector<float>(static_cast<std::size_t>(4.0 * o.modem.sample_rate)), o.modem.sample_rate);
+  WavDevice dry(silent, "");
+  NavaLink link(o, dry);
+  EXPECT_NEAR(link.mac().packet_ticks() * link.mac().tick_seconds(), ProfileAirtime(Profile::kRoom), 1e-9);
+  ASSERT_TRUE(link.Send({9, 8, 7, 6}));
+  std::vector<RxEvent> events;
+  while (link.Tick(events)) {
+  }
+  std::remove(silent.c_str());
+  EXPECT_EQ(link.packets_sent(), 1u);
+  EXPECT_TRUE(events.empty()) << "deaf to itself";
+
+  const std::string heard = TempWav("room_heard.wav");
+  WriteWavFile(heard, dry.played(), o.modem.sample_rate);
+  WavDevice device(heard, "");
+  NavaLink listener(o, device);
+  while (listener.Tick(events)) {
+  }
+  std::remove(heard.c_str());
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, RxEvent::Kind::kPacket);
+  EXPECT_EQ(events[0].data, std::vector<std::uint8_t>({9, 8, 7, 6}));
 }
 
 // Silence in, and an underrun reported by the device at chosen points of playback.

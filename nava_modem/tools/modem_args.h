@@ -1,18 +1,50 @@
 #pragma once
 
 // The options every nava_modem tool takes, like the node's parameters:
-// --mark HZ --space HZ --baud BPS --rate HZ --amplitude A --crc ccitt-false|xmodem
+// --profile nava|room --mark HZ --space HZ --baud BPS --rate HZ --amplitude A --crc ccitt-false|xmodem
+// (--mark, --space and --baud set the nava profile's FSK and are refused with --profile room).
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "nava_modem/modem_options.h"
+#include "nava_modem/modem_profile.h"
 #include "tool_args/tool_args.h"
 
 namespace nava_modem::tools {
 
 inline const char* kModemUsage =
-    "[--mark 2300] [--space 3700] [--baud 300] [--rate 48000] [--amplitude 0.5] [--crc ccitt-false|xmodem]";
+    "[--profile nava|room] [--mark 2300] [--space 3700] [--baud 300] [--rate 48000] [--amplitude 0.5] "
+    "[--crc ccitt-false|xmodem]";
+
+struct ToolModem {
+  Profile profile = Profile::kNava;
+  ModemOptions options;
+};
+
+inline ModemOptions ModemArgs(const multirobot_audio::tools::ToolArgs& args);
+
+// The profile and its options; a profile that cannot run with them (say, room at 8000 Hz) is
+// refused here, by name.
+inline ToolModem ProfileArgs(const multirobot_audio::tools::ToolArgs& args) {
+  ToolModem m;
+  const std::string name = args.String("--profile", "nava");
+  const auto profile = ParseProfile(name);
+  if (!profile) args.Fail(std::string("--profile: expected ") + kProfileNames + ", got " + name);
+  m.profile = *profile;
+  if (m.profile != Profile::kNava) {
+    for (const char* flag : {"--mark", "--space", "--baud"}) {
+      if (!args.String(flag, "").empty()) args.Fail(std::string(flag) + " sets the nava profile's FSK; the " + name + " profile has its own tones");
+    }
+  }
+  m.options = ModemArgs(args);
+  try {
+    MakeProfile(m.profile, m.options);
+  } catch (const std::exception& e) {
+    args.Fail(e.what());
+  }
+  return m;
+}
 
 inline ModemOptions ModemArgs(const multirobot_audio::tools::ToolArgs& args) {
   ModemOptions o;

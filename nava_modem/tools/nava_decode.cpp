@@ -9,7 +9,7 @@
 #include <iostream>
 
 #include "modem_args.h"
-#include "nava_modem/fsk_receiver.h"
+#include "nava_modem/modem_profile.h"
 #include "nava_modem/wav_file.h"
 
 int main(int argc, char** argv) {
@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
     std::cerr << "nava_decode: " << e.what() << "\n";
     return 1;
   }
-  ModemOptions options = tools::ModemArgs(args);
+  tools::ToolModem modem = tools::ProfileArgs(args);
+  ModemOptions& options = modem.options;
   if (!given_rate.empty() && std::abs(options.sample_rate - audio.sample_rate) > 0.5) {
     args.Fail("--rate " + given_rate + " Hz, but " + files[0] + " is sampled at " +
               std::to_string(static_cast<long>(audio.sample_rate)) + " Hz");
@@ -40,9 +41,9 @@ int main(int argc, char** argv) {
   rx.max_fixed_bits = fixed;
   std::vector<RxEvent> events;
   try {
-    FskReceiver receiver(options, rx);
-    receiver.Process(audio.samples.data(), audio.samples.size(), events);
-    receiver.Flush(events);
+    const auto receiver = MakeProfile(modem.profile, options)->MakeReceiver(rx);
+    receiver->Process(audio.samples.data(), audio.samples.size(), events);
+    receiver->Flush(events);
   } catch (const std::exception& e) {
     std::cerr << "nava_decode: " << files[0] << ": " << e.what() << "\n";
     return 1;

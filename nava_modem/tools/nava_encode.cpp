@@ -6,7 +6,6 @@
 #include <iostream>
 
 #include "modem_args.h"
-#include "nava_modem/fsk_modulator.h"
 #include "nava_modem/wav_file.h"
 
 int main(int argc, char** argv) {
@@ -15,18 +14,19 @@ int main(int argc, char** argv) {
   const multirobot_audio::tools::ToolArgs args("nava_encode", usage, argc, argv);
   const std::string out = args.Required("--out");
   const double gap = args.Double("--gap", 0.5, 0.0, 3600.0);
-  const ModemOptions options = tools::ModemArgs(args);
+  const tools::ToolModem modem = tools::ProfileArgs(args);
+  const ModemOptions& options = modem.options;
   const std::vector<std::string>& hex = args.positional();
   args.CheckAllUsed();
   if (hex.empty()) args.Fail("no packets: give one HEX argument (8 hex digits) per packet");
 
-  const FskModulator modulator(options);
+  const auto profile = MakeProfile(modem.profile, options);
   const std::size_t gap_samples = static_cast<std::size_t>(std::lround(gap * options.sample_rate));
   std::vector<float> audio(gap_samples, 0.0f);
   for (const std::string& h : hex) {
     const std::vector<std::uint8_t> data = tools::ParseHexPacket(h);
     if (data.empty()) args.Fail("packet '" + h + "': expected 8 hex digits (4 data bytes), e.g. 0102a0ff");
-    const std::vector<float> burst = modulator.ModulatePacket(data);
+    const std::vector<float> burst = profile->ModulatePacket(data);
     audio.insert(audio.end(), burst.begin(), burst.end());
     audio.insert(audio.end(), gap_samples, 0.0f);
   }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "nava_modem/csma_mac.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
 
@@ -23,7 +24,8 @@ inline const char* kProfileNames = "nava or room";
 
 // How the MAC counts time for a profile: its "bit" (the unit of back-off and of carrier
 // release) and the packet's length in those bits. For nava a bit is a bit; for room, whose
-// bits are coded and spread, it is a symbol time (40 ms).
+// bits are coded and spread, it is 10 ms: the default back-off of 2 to 30 such bits (20 to
+// 300 ms) then spreads senders well past the ~10 ms its carrier sense takes to react.
 struct MacTiming {
   double bit_rate = 300.0;
   int packet_bits = 110;
@@ -54,5 +56,7 @@ std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& o
 // Timing without a sample rate (for the simulated channel).
 MacTiming ProfileTiming(Profile profile, const ModemOptions& options = {});
 double ProfileAirtime(Profile profile, const ModemOptions& options = {});
+// Sets the MAC's bit rate and packet length to the profile's.
+void UseProfileTiming(Profile profile, const ModemOptions& options, MacOptions& mac);
 
 }  // namespace nava_modem

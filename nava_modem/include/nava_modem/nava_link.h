@@ -5,19 +5,20 @@
 
 #include "nava_modem/audio_device.h"
 #include "nava_modem/csma_mac.h"
-#include "nava_modem/fsk_modulator.h"
-#include "nava_modem/fsk_receiver.h"
+#include "nava_modem/modem_profile.h"
 
 namespace nava_modem {
 
 struct LinkOptions {
+  Profile profile = Profile::kNava;
   ModemOptions modem;
-  MacOptions mac;  // its bit rate is the modem's
+  MacOptions mac;  // its bit rate and packet length are the profile's (MacTiming)
   ReceiverOptions receiver;
   std::uint32_t seed = 1;
 };
 
-// A whole Nava link on an audio device (thesis section 5.2.4): every tick (1/16 bit) it reads
+// A whole Nava link on an audio device (thesis section 5.2.4), with any modem profile: every
+// tick (1/16 of the profile's MAC bit) it reads
 // a tick of audio, runs the receiver on it (deaf while sending and for the echo time after),
 // tells the CSMA-CA MAC the level heard, and writes a tick of the packet being sent, or of
 // silence. Single-threaded: the caller runs Tick() in a loop.
@@ -33,7 +34,8 @@ class NavaLink {
   bool Tick(std::vector<RxEvent>& events);
 
   const CsmaMac& mac() const { return mac_; }
-  double level_db() const { return receiver_.level_db(); }
+  double level_db() const { return receiver_->level_db(); }
+  const ModemProfile& profile() const { return *profile_; }
   bool carrier() const { return mac_.carrier(); }
   double time() const { return ticks_ * mac_.tick_seconds(); }  // s of audio run
   std::uint64_t packets_sent() const { return mac_.sent(); }
@@ -46,8 +48,8 @@ class NavaLink {
  private:
   LinkOptions options_;
   AudioDevice& device_;
-  FskModulator modulator_;
-  FskReceiver receiver_;
+  std::unique_ptr<ModemProfile> profile_;
+  std::unique_ptr<PacketReceiver> receiver_;
   CsmaMac mac_;
   double samples_per_tick_;
   std::uint64_t ticks_ = 0;
