@@ -65,8 +65,26 @@ class FskReceiver {
  private:
   enum class State { kSearching, kPeaking, kCollecting };
   // Before the first sample, the air was silent.
-  double D(std::int64_t n) const { return n < 0 ? 0.0 : d_[static_cast<std::size_t>(n) & mask_]; }
-  double E(std::int64_t n) const { return n < 0 ? 0.0 : e_[static_cast<std::size_t>(n) & mask_]; }
+  double M(std::int64_t n) const { return n < 0 ? 0.0 : m_[static_cast<std::size_t>(n) & mask_]; }
+  double S(std::int64_t n) const { return n < 0 ? 0.0 : s_[static_cast<std::size_t>(n) & mask_]; }
+  double D(std::int64_t n) const { return M(n) - S(n); }
+  double E(std::int64_t n) const { return M(n) + S(n); }
+  // What the break before a packet tells of how each tone arrives (see ToneModel in the .cpp):
+  // each tone's own level and noise floor, and the room's reverberant tail, so that the bits
+  // are decided on each tone's energy against its own level and its own tail.
+  struct ToneModel {
+    double level[2] = {1.0, 1.0};  // direct power of MARK, SPACE in its own filter
+    double floor[2] = {0.0, 0.0};  // the filter's power with its tone absent and no tail
+    double decay = 0.0;            // the tail's power kept from one bit to the next
+    double gain = 0.0;             // tail power a bit of a tone adds, over its direct power
+    double tail[2] = {0.0, 0.0};   // each tone's tail at the first bit of the frame
+  };
+  ToneModel FitToneModel(double break_step) const;
+  // The tone filters' difference, each tone scaled by its level (over the packet being decoded).
+  double Normalized(std::int64_t n) const {
+    const std::int64_t k = n - normalized_start_;
+    return k < 0 || k >= static_cast<std::int64_t>(normalized_.size()) ? 0.0 : normalized_[static_cast<std::size_t>(k)];
+  }
   void Step(std::vector<RxEvent>& events);  // one filter output
   void TrackCarrier(double e, std::vector<RxEvent>& events);
   struct ClockFit {
@@ -79,6 +97,9 @@ class FskReceiver {
   // Reads the frame with the bit clock starting there (the first MARK bit of the break).
   RxEvent ReadFrame(double first_mark, double period);
   double FitMetric(double first_mark, double period) const;
+  // Soft decisions on the frame from its bits' filter outputs, each tone's level and floor
+  // read from the frame itself; `hard`: the first decisions.
+  SoftFrame FrameModelSoft(const double heard[2][kFrameBits], const std::uint8_t* hard) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
 
   ModemOptions modem_;
@@ -88,14 +109,17 @@ class FskReceiver {
   double per_bit_;    // steps per bit
   double seconds_per_step_;
   std::int64_t w_;    // steps in each half of the break detector
-  std::vector<float> d_, e_;  // MARK^2 - SPACE^2 and MARK^2 + SPACE^2, per step, a ring
+  std::vector<float> m_, s_;  // MARK^2 and SPACE^2, per step, a ring
   std::size_t mask_;
   std::int64_t n_ = 0;  // steps processed
   double after_ = 0.0, before_ = 0.0, after_power_ = 0.0, before_power_ = 0.0;  // break detector sums
   State state_ = State::kSearching;
-  double peak_ = 0.0;
+  double peak_ = 0.0, peak_power_ = 0.0;  // the clearest step so far, and its windows' power
   std::int64_t peak_at_ = 0, decode_at_ = 0, blank_until_ = 0;
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
+  ToneModel model_;          // of the packet being decoded
+  std::vector<float> normalized_;
+  std::int64_t normalized_start_ = 0;
   bool muted_ = false;
   double carrier_threshold_power_ = 0.0;  // the carrier threshold as a power
   // Busy air, for ZERO_BYTE reports.
