@@ -30,6 +30,9 @@ constexpr int kEndBit = kBreakMarkBits + kFrameBits;
 // (a resampler's wander).
 constexpr double kPhaseGain = 0.1;
 constexpr double kPeriodGain = 0.002;
+// Phases searched either side of the detector's estimate of the break, in bits: a room's tail
+// of the SPACE half delays the step the detector sees by a bit or two.
+constexpr double kPhaseSpanBits = 2.5;
 // Bit clocks tried per packet (see DecodeFrame).
 constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
@@ -364,7 +367,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   const int rates = static_cast<int>(std::lround(options_.max_rate_error / rate_step));
   std::vector<ClockFit> per_rate;
   for (int k = -rates; k <= rates; ++k) {
-    per_rate.push_back(BestFit(break_step, per_bit_ * (1.0 + k * rate_step), per_bit_ / 2.0, per_bit_ / 16.0, 0.0, 1.0));
+    per_rate.push_back(BestFit(break_step, per_bit_ * (1.0 + k * rate_step), kPhaseSpanBits * per_bit_, per_bit_ / 8.0, 0.0, 1.0));
   }
   std::vector<ClockFit> candidates;
   for (std::size_t k = 0; k < per_rate.size(); ++k) {

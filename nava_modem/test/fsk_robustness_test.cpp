@@ -89,7 +89,8 @@ TEST(FskRobustness, ReverberantRoomDecodesAKnownShare) {
     right += DecodedRight(o, audio, payloads);
   }
   std::printf("RT60 0.3 s, DRR +3 dB: %d of %d packets decoded\n", right, rooms * packets);
-  EXPECT_GE(right, rooms * packets / 2);
+  // 40 when written (the receiver before the tone model: 26; minimodem: none).
+  EXPECT_GE(right, 35);
 }
 
 // The sender's sound card 1 % fast or slow: tones and bit rate scaled alike.
