@@ -42,10 +42,14 @@ struct RxEvent {
 const char* NoiseName(RxEvent::Noise noise);  // none, zero_byte, one_byte, bad_crc
 
 // The Nava demodulator. Samples pass the two tone filters (ToneFilters); the break before each
-// packet is found by its SPACE-to-MARK step; the bit clock is fitted to the break, the start
-// and stop bits and the header (bit rate and phase, by maximum likelihood over the packet),
-// then a digital PLL (BitClock) follows the data's transitions; the emulated UART reads 8N1
-// characters from soft decisions, and the CRC repairs up to two unsure bits.
+// packet is found by its SPACE-to-MARK step; each tone's level and floor (and a room's tail)
+// are read from the break, so that a tone weaker than the other counts as much; the bit clock
+// is fitted to the break, the start and stop bits and the header (bit rate and phase, by
+// maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
+// transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
+// against their levels and floors (read again from the frame itself, as a room colours the
+// break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
+// repairs up to two unsure bits.
 class FskReceiver {
  public:
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
@@ -69,9 +73,9 @@ class FskReceiver {
   double S(std::int64_t n) const { return n < 0 ? 0.0 : s_[static_cast<std::size_t>(n) & mask_]; }
   double D(std::int64_t n) const { return M(n) - S(n); }
   double E(std::int64_t n) const { return M(n) + S(n); }
-  // What the break before a packet tells of how each tone arrives (see ToneModel in the .cpp):
-  // each tone's own level and noise floor, and the room's reverberant tail, so that the bits
-  // are decided on each tone's energy against its own level and its own tail.
+  // What the break before a packet tells of how each tone arrives (see FitToneModel): each
+  // tone's own level and noise floor, and the room's reverberant tail, so that the bits are
+  // decided on each tone's energy against its own level and its own tail.
   struct ToneModel {
     double level[2] = {1.0, 1.0};  // direct power of MARK, SPACE in its own filter
     double floor[2] = {0.0, 0.0};  // the filter's power with its tone absent and no tail
@@ -80,7 +84,8 @@ class FskReceiver {
     double tail[2] = {0.0, 0.0};   // each tone's tail at the first bit of the frame
   };
   ToneModel FitToneModel(double break_step) const;
-  // The tone filters' difference, each tone scaled by its level (over the packet being decoded).
+  // The tone filters' difference, each tone less its floor and over its level (over the
+  // packet being decoded; 0 outside it).
   double Normalized(std::int64_t n) const {
     const std::int64_t k = n - normalized_start_;
     return k < 0 || k >= static_cast<std::int64_t>(normalized_.size()) ? 0.0 : normalized_[static_cast<std::size_t>(k)];
