@@ -18,6 +18,9 @@ constexpr int kPeakWindowBits = 10;
 // clearer than noise (0.55 at -12 dB against at most 0.5 in noise alone); the MARK-then-SPACE
 // patterns that data can hold are not.
 constexpr double kSupersede = 0.2;
+// So does a step past the threshold this many times louder: a break heard in the quiet before
+// a packet (noise passes the threshold now and then) must not hide the packet's own break.
+constexpr double kLouder = 10.0;
 // Bit indices relative to the first MARK bit of the break.
 constexpr int kFirstBit = -kBreakSpaceBits;
 constexpr int kFrameStart = kBreakMarkBits;
@@ -27,10 +30,63 @@ constexpr int kEndBit = kBreakMarkBits + kFrameBits;
 // (a resampler's wander).
 constexpr double kPhaseGain = 0.1;
 constexpr double kPeriodGain = 0.002;
+// Phases searched either side of the detector's estimate of the break, in bits: a room's tail
+// of the SPACE half delays the step the detector sees by a bit or two.
+constexpr double kPhaseSpanBits = 2.5;
 // Bit clocks tried per packet (see DecodeFrame).
 constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
 constexpr double kLoopMinSoft = 0.3;
+// The tone model (FitToneModel). Bits of the break whose windows lie inside its SPACE half and
+// its MARK half even with the bit rate max_rate_error off and the break found a bit or two off.
+constexpr int kSpaceFirst = -17, kSpaceLast = -3, kMarkFirst = 2, kMarkLast = 17;
+// The SPACE tail's decay is read from three groups of bits in the MARK half, 6 bits apart.
+constexpr int kGroupBits = 6, kGroup1 = 2, kGroupWidth = 4;
+// The decay across the groups must exceed this share of the last group's power to count as
+// a tail rather than noise's wander (the group means vary by about a third in white noise).
+constexpr double kTailSignificance = 1.0;
+constexpr double kMaxDecay = 0.985;  // per bit: RT60 about 4 s at 300 bits/s
+// The noise a tone's decision assumes is at least this share of its level: the filters'
+// leakage from neighbouring bits, which the break does not show, is about this large.
+constexpr double kMinNoise = 0.01;
+
+// ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
+// 9.8.2), for x >= 0.
+double LogBesselI0(double x) {
+  if (x < 3.75) {
+    const double t = (x / 3.75) * (x / 3.75);
+    return std::log(1.0 + t * (3.5156229 + t * (3.0899424 + t * (1.2067492 + t * (0.2659732 + t * (0.0360768 + t * 0.0045813))))));
+  }
+  const double t = 3.75 / x;
+  return x - 0.5 * std::log(x) +
+         std::log(0.39894228 + t * (0.01328592 + t * (0.00225319 + t * (-0.00157565 + t * (0.00916281 +
+                  t * (-0.02057706 + t * (0.02635537 + t * (-0.01647633 + t * 0.00392377))))))));
+}
+
+// The log-likelihood ratio of MARK over SPACE for one bit whose filters heard powers m and s.
+// Each tone's filter holds its direct sound, if sent, and a random part (noise, and the
+// room's reverberation of earlier bits) of known mean power: Rician against Rayleigh.
+double BitLlr(const double level[2], const double noise[2], double m, double s) {
+  const double heard[2] = {m, s};
+  double llr = 0.0;
+  for (int t = 0; t < 2; ++t) {
+    const double n = std::max(noise[t], kMinNoise * level[t]);
+    const double l = LogBesselI0(2.0 * std::sqrt(level[t] * heard[t]) / n) - level[t] / n;
+    llr += t == 0 ? l : -l;
+  }
+  return llr;
+}
+
+// Two estimates of a quantity for MARK and SPACE, drawn towards their geometric mean as far
+// as their ratio is within its standard error (var_log: the variance of the log ratio), so
+// that the tones are told apart only where the audio shows a real difference.
+void Shrink(double value[2], double var_log) {
+  const double lr = std::log(value[0] / value[1]);
+  const double kept = lr * lr / (lr * lr + var_log + kTiny) * lr;
+  const double mid = std::sqrt(value[0] * value[1]);
+  value[0] = mid * std::exp(kept / 2.0);
+  value[1] = mid * std::exp(-kept / 2.0);
+}
 
 // The MARK and SPACE filter outputs summed (the thesis's quality figure), from the difference d
 // and the sum e of their squares.
@@ -64,8 +120,8 @@ FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& optio
   ValidateModemOptions(modem_);
   w_ = static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_));
   const std::size_t size = RingSize(per_bit_);
-  d_.assign(size, 0.0f);
-  e_.assign(size, 0.0f);
+  m_.assign(size, 0.0f);
+  s_.assign(size, 0.0f);
   mask_ = size - 1;
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
@@ -100,11 +156,10 @@ void FskReceiver::Flush(std::vector<RxEvent>& events) {
 }
 
 void FskReceiver::Step(std::vector<RxEvent>& events) {
-  const double m2 = filters_.mark_power(), s2 = filters_.space_power();
-  const double d = m2 - s2, e = m2 + s2;
   const std::int64_t n = n_;
-  d_[n & mask_] = static_cast<float>(d);
-  e_[n & mask_] = static_cast<float>(e);
+  m_[n & mask_] = static_cast<float>(filters_.mark_power());
+  s_[n & mask_] = static_cast<float>(filters_.space_power());
+  const double d = D(n), e = E(n);
   // The break detector's running sums over the last w samples and the w before them.
   after_ += d - D(n - w_);
   before_ += D(n - w_) - D(n - 2 * w_);
@@ -132,12 +187,14 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         state_ = State::kPeaking;
         peak_ = step;
         peak_at_ = n;
+        peak_power_ = after_power_ + before_power_;
       }
       break;
     case State::kPeaking:
       if (step > peak_) {
         peak_ = step;
         peak_at_ = n;
+        peak_power_ = after_power_ + before_power_;
       } else if (n - peak_at_ > kPeakWindowBits * per_bit_) {
         // The windows' boundary sits on the filters' zero crossing, which lags the step by
         // half a window.
@@ -147,18 +204,22 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
       }
       break;
     case State::kCollecting:
-      if (step > peak_ + kSupersede) {
-        // A much clearer break than the one being collected: that one was noise.
+      if (step > peak_ + kSupersede || (step > options_.detect_threshold && after_power_ + before_power_ > kLouder * peak_power_)) {
+        // A much clearer or louder break than the one being collected: that one was noise.
         state_ = State::kPeaking;
         peak_ = step;
         peak_at_ = n;
+        peak_power_ = after_power_ + before_power_;
       } else if (n >= decode_at_) {
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
         if (busy_) busy_had_frame_ = true;
         // No new break before the detector's windows have left this packet: its tail
-        // followed by silence could pass for a step.
-        blank_until_ = static_cast<std::int64_t>(events.back().end / seconds_per_step_) + 2 * w_;
+        // followed by silence could pass for a step. Not after a faint step that decoded to
+        // nothing: that was noise, and a packet's break may be arriving just now.
+        if (events.back().kind == RxEvent::Kind::kPacket || peak_ >= options_.detect_threshold + kSupersede) {
+          blank_until_ = static_cast<std::int64_t>(events.back().end / seconds_per_step_) + 2 * w_;
+        }
         state_ = State::kSearching;
       }
       break;
@@ -205,7 +266,7 @@ void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
 double FskReceiver::FitMetric(double first_mark, double period) const {
   double sum = 0.0;
   for (int k = kFirstBit; k < kEndBit; ++k) {
-    const double v = D(std::llround(first_mark + (k + 1) * period - 1.0));
+    const double v = Normalized(std::llround(first_mark + (k + 1) * period - 1.0));
     const int known = KnownBit(k);
     sum += known < 0 ? std::abs(v) : (known ? v : -v);
   }
@@ -225,7 +286,69 @@ FskReceiver::ClockFit FskReceiver::BestFit(double start0, double period0, double
   return best;
 }
 
+FskReceiver::ToneModel FskReceiver::FitToneModel(double break_step) const {
+  // The mean of a tone's filter over the windows of bits first..last of the break (bit 0 its
+  // first MARK bit), on the clock of the detector's estimate.
+  auto mean = [&](int tone, int first, int last) {
+    const std::int64_t lo = std::llround(break_step + (first + 1) * per_bit_ - 1.0);
+    const std::int64_t hi = std::llround(break_step + (last + 1) * per_bit_ - 1.0);
+    double sum = 0.0;
+    for (std::int64_t n = lo; n <= hi; ++n) sum += tone == 0 ? M(n) : S(n);
+    return sum / static_cast<double>(hi - lo + 1);
+  };
+  ToneModel model;
+  // With SPACE off in the MARK half, the SPACE filter shows the room's tail of the 20 SPACE
+  // bits decaying (plus the noise floor): three group means, g_i = floor + t0 decay^c_i, give
+  // the decay per bit, the tail at the step and the floor.
+  const double c1 = kGroup1 + kGroupWidth / 2.0;
+  const double g1 = mean(1, kGroup1, kGroup1 + kGroupWidth);
+  const double g2 = mean(1, kGroup1 + kGroupBits, kGroup1 + kGroupBits + kGroupWidth);
+  const double g3 = mean(1, kGroup1 + 2 * kGroupBits, kGroup1 + 2 * kGroupBits + kGroupWidth);
+  double t0 = 0.0;
+  if (g1 > g2 && g2 > g3 && g1 - g3 > kTailSignificance * g3) {
+    const double decay = std::min(kMaxDecay, std::pow((g2 - g3) / (g1 - g2), 1.0 / kGroupBits));
+    model.decay = decay;
+    t0 = (g1 - g2) / (std::pow(decay, c1) * (1.0 - std::pow(decay, kGroupBits)));
+    model.floor[1] = std::max(0.0, g3 - t0 * std::pow(decay, c1 + 2 * kGroupBits));
+  } else {
+    model.floor[1] = mean(1, kMarkFirst, kMarkLast);
+  }
+  const double a = model.decay, a20 = std::pow(a, kBreakSpaceBits);
+  // The SPACE tail builds up over the SPACE half towards t0 at the step: subtract its mean
+  // there from the SPACE level to leave the direct power.
+  double built = 0.0;
+  for (int k = kSpaceFirst; k <= kSpaceLast; ++k) built += t0 * (1.0 - std::pow(a, k + kBreakSpaceBits)) / (1.0 - a20 + kTiny);
+  built /= kSpaceLast - kSpaceFirst + 1;
+  model.floor[0] = mean(0, kSpaceFirst, kSpaceLast);
+  const double space_level = mean(1, kSpaceFirst, kSpaceLast) - model.floor[1] - built;
+  model.level[1] = std::max(space_level, 0.1 * (space_level + built));
+  // Tail power added per bit of a tone, over its direct power: the same for MARK (one room).
+  model.gain = t0 > 0.0 ? t0 * (1.0 - a) / (model.level[1] * (1.0 - a20)) : 0.0;
+  // MARK's own tail builds up over the MARK half likewise.
+  double growth = 0.0;
+  for (int k = kMarkFirst; k <= kMarkLast; ++k) growth += model.gain * (1.0 - std::pow(a, k)) / (1.0 - a);
+  growth /= kMarkLast - kMarkFirst + 1;
+  model.level[0] = std::max(mean(0, kMarkFirst, kMarkLast) - model.floor[0], 0.0) / (1.0 + growth);
+  const double weak = kTiny + 1e-6 * std::max(model.level[0], model.level[1]);
+  model.level[0] = std::max(model.level[0], weak);
+  model.level[1] = std::max(model.level[1], weak);
+  model.tail[0] = model.gain * model.level[0] * (1.0 - a20) / (1.0 - a + kTiny);
+  model.tail[1] = t0 * a20;
+  return model;
+}
+
 RxEvent FskReceiver::DecodeFrame(double break_step) {
+  // Each tone on its own scale, so that a tone weaker than the other (the speaker's, the
+  // room's and the microphone's responses tilt the spectrum) weighs as much in the clock fit.
+  model_ = FitToneModel(break_step);
+  const double margin = (1.0 + options_.max_rate_error) * per_bit_;
+  normalized_start_ = static_cast<std::int64_t>(std::floor(break_step + (kFirstBit - 2) * margin));
+  const std::int64_t normalized_end = static_cast<std::int64_t>(std::ceil(break_step + (kEndBit + 2) * margin));
+  normalized_.resize(static_cast<std::size_t>(std::max<std::int64_t>(0, normalized_end - normalized_start_)));
+  for (std::size_t k = 0; k < normalized_.size(); ++k) {
+    const std::int64_t n = normalized_start_ + static_cast<std::int64_t>(k);
+    normalized_[k] = static_cast<float>((M(n) - model_.floor[0]) / model_.level[0] - (S(n) - model_.floor[1]) / model_.level[1]);
+  }
   // The bit clock that best explains the packet's known bits and the strength of its unknown
   // ones, over a grid of phases for each rate. In deep noise the best fit can be a wrong one,
   // so the best few rates that are local optima are each refined on a finer grid and read in
@@ -234,7 +357,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   const int rates = static_cast<int>(std::lround(options_.max_rate_error / rate_step));
   std::vector<ClockFit> per_rate;
   for (int k = -rates; k <= rates; ++k) {
-    per_rate.push_back(BestFit(break_step, per_bit_ * (1.0 + k * rate_step), per_bit_ / 2.0, per_bit_ / 16.0, 0.0, 1.0));
+    per_rate.push_back(BestFit(break_step, per_bit_ * (1.0 + k * rate_step), kPhaseSpanBits * per_bit_, per_bit_ / 8.0, 0.0, 1.0));
   }
   std::vector<ClockFit> candidates;
   for (std::size_t k = 0; k < per_rate.size(); ++k) {
@@ -254,6 +377,45 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   return first;
 }
 
+SoftFrame FskReceiver::FrameModelSoft(const double heard[2][kFrameBits], const std::uint8_t* hard) const {
+  // The break shows each tone held steady, which a room colours by its steady-state response
+  // (a fade of several dB at one frequency, another at the other), not as the short bits
+  // arrive; so each tone's level and floor are read again from the frame's own bits: the
+  // known ones (start, stop, header) and the others as first decided.
+  double sum[2][2] = {}, sum2[2][2] = {};  // [tone][on]
+  int count[2][2] = {};
+  for (int j = 0; j < kFrameBits; ++j) {
+    const int known = KnownBit(kFrameStart + j);
+    const int bit = known < 0 ? hard[j] : known;
+    for (int t = 0; t < 2; ++t) {
+      const int on = (t == 0) == (bit == 1);
+      sum[t][on] += heard[t][j];
+      sum2[t][on] += heard[t][j] * heard[t][j];
+      ++count[t][on];
+    }
+  }
+  double level[2], noise[2], var_level = 0.0, var_noise = 0.0;
+  for (int t = 0; t < 2; ++t) {
+    if (count[t][0] < 2 || count[t][1] < 2) return SoftFrame{};
+    const double on = sum[t][1] / count[t][1], off = sum[t][0] / count[t][0];
+    noise[t] = std::max(off, kTiny);
+    level[t] = std::max(on - off, kMinNoise * on + kTiny);
+    // The variance of the log of each mean.
+    const double var_on = std::max(0.0, sum2[t][1] / count[t][1] - on * on) / count[t][1];
+    const double var_off = std::max(0.0, sum2[t][0] / count[t][0] - off * off) / count[t][0];
+    var_level += (var_on + var_off) / (level[t] * level[t]);
+    var_noise += var_off / (noise[t] * noise[t]);
+  }
+  Shrink(level, var_level);
+  Shrink(noise, var_noise);
+  SoftFrame soft{};
+  for (int j = 0; j < kFrameBits; ++j) {
+    const int pos = j % kBitsPerByte;
+    if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(BitLlr(level, noise, heard[0][j], heard[1][j]));
+  }
+  return soft;
+}
+
 RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   BitClock clock(best_start, best_period, filters_.window(), kPhaseGain, kPeriodGain);
   SoftFrame soft{};
@@ -261,13 +423,26 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   double power = 0.0, quality = 0.0;
   int previous = 1;  // the break's last bit is MARK
   double previous_soft = 1.0;
+  double tail[2] = {model_.tail[0], model_.tail[1]};
+  double heard[2][kFrameBits];  // MARK's and SPACE's filters at each bit
   for (int k = kFrameStart; k < kEndBit; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
     const double d = D(at), e = E(at);
-    const double v = d / (e + kTiny);
+    // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
+    // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
+    // the tone is on (Rician against Rayleigh), MARK's less SPACE's.
+    const double noise[2] = {model_.floor[0] + tail[0], model_.floor[1] + tail[1]};
+    heard[0][k - kFrameStart] = M(at);
+    heard[1][k - kFrameStart] = S(at);
+    const double llr = BitLlr(model_.level, noise, M(at), S(at));
+    const double v = std::tanh(llr / 2.0);  // P(MARK) - P(SPACE)
+    // The tails the next bit sees: what is left of these, and what this bit adds.
+    const double mark = (1.0 + v) / 2.0;
+    tail[0] = model_.decay * tail[0] + model_.gain * model_.level[0] * mark;
+    tail[1] = model_.decay * tail[1] + model_.gain * model_.level[1] * (1.0 - mark);
     const int j = k - kFrameStart, pos = j % kBitsPerByte;
-    hard[j] = v > 0.0;
-    if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(v);
+    hard[j] = llr > 0.0;
+    if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(llr);
     power += e;
     quality += FilterSum(d, e);
     // Follow the transition into this bit, if it is clear on both sides.
@@ -277,7 +452,7 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
       const std::int64_t hi = std::llround(expected + clock.period() / 4.0);
       double crossing = 0.0, nearest = 1e300;
       for (std::int64_t i = lo + 1; i <= hi; ++i) {
-        const double a = D(i - 1), b = D(i);
+        const double a = Normalized(i - 1), b = Normalized(i);
         if ((a > 0.0) == (b > 0.0) || a == b) continue;
         const double at_zero = (i - 1) + a / (a - b);
         if (std::abs(at_zero - expected) < nearest) {
@@ -297,7 +472,8 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   ev.level_db = 10.0 * std::log10(power / kFrameBits + kTiny);
   ev.quality = quality / kFrameBits;
   ev.rate_error = per_bit_ / best_period - 1.0;
-  const std::optional<RepairedFrame> repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+  std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, options_.max_fixed_bits);
+  if (!repaired) repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
   if (repaired) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);

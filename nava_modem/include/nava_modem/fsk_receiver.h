@@ -13,10 +13,14 @@
 namespace nava_modem {
 
 // The Nava demodulator. Samples pass the two tone filters (ToneFilters); the break before each
-// packet is found by its SPACE-to-MARK step; the bit clock is fitted to the break, the start
-// and stop bits and the header (bit rate and phase, by maximum likelihood over the packet),
-// then a digital PLL (BitClock) follows the data's transitions; the emulated UART reads 8N1
-// characters from soft decisions, and the CRC repairs up to two unsure bits.
+// packet is found by its SPACE-to-MARK step; each tone's level and floor (and a room's tail)
+// are read from the break, so that a tone weaker than the other counts as much; the bit clock
+// is fitted to the break, the start and stop bits and the header (bit rate and phase, by
+// maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
+// transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
+// against their levels and floors (read again from the frame itself, as a room colours the
+// break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
+// repairs up to two unsure bits.
 class FskReceiver : public PacketReceiver {
  public:
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
@@ -32,8 +36,27 @@ class FskReceiver : public PacketReceiver {
  private:
   enum class State { kSearching, kPeaking, kCollecting };
   // Before the first sample, the air was silent.
-  double D(std::int64_t n) const { return n < 0 ? 0.0 : d_[static_cast<std::size_t>(n) & mask_]; }
-  double E(std::int64_t n) const { return n < 0 ? 0.0 : e_[static_cast<std::size_t>(n) & mask_]; }
+  double M(std::int64_t n) const { return n < 0 ? 0.0 : m_[static_cast<std::size_t>(n) & mask_]; }
+  double S(std::int64_t n) const { return n < 0 ? 0.0 : s_[static_cast<std::size_t>(n) & mask_]; }
+  double D(std::int64_t n) const { return M(n) - S(n); }
+  double E(std::int64_t n) const { return M(n) + S(n); }
+  // What the break before a packet tells of how each tone arrives (see FitToneModel): each
+  // tone's own level and noise floor, and the room's reverberant tail, so that the bits are
+  // decided on each tone's energy against its own level and its own tail.
+  struct ToneModel {
+    double level[2] = {1.0, 1.0};  // direct power of MARK, SPACE in its own filter
+    double floor[2] = {0.0, 0.0};  // the filter's power with its tone absent and no tail
+    double decay = 0.0;            // the tail's power kept from one bit to the next
+    double gain = 0.0;             // tail power a bit of a tone adds, over its direct power
+    double tail[2] = {0.0, 0.0};   // each tone's tail at the first bit of the frame
+  };
+  ToneModel FitToneModel(double break_step) const;
+  // The tone filters' difference, each tone less its floor and over its level (over the
+  // packet being decoded; 0 outside it).
+  double Normalized(std::int64_t n) const {
+    const std::int64_t k = n - normalized_start_;
+    return k < 0 || k >= static_cast<std::int64_t>(normalized_.size()) ? 0.0 : normalized_[static_cast<std::size_t>(k)];
+  }
   void Step(std::vector<RxEvent>& events);  // one filter output
   void TrackCarrier(double e, std::vector<RxEvent>& events);
   struct ClockFit {
@@ -46,6 +69,9 @@ class FskReceiver : public PacketReceiver {
   // Reads the frame with the bit clock starting there (the first MARK bit of the break).
   RxEvent ReadFrame(double first_mark, double period);
   double FitMetric(double first_mark, double period) const;
+  // Soft decisions on the frame from its bits' filter outputs, each tone's level and floor
+  // read from the frame itself; `hard`: the first decisions.
+  SoftFrame FrameModelSoft(const double heard[2][kFrameBits], const std::uint8_t* hard) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
 
   ModemOptions modem_;
@@ -55,14 +81,17 @@ class FskReceiver : public PacketReceiver {
   double per_bit_;    // steps per bit
   double seconds_per_step_;
   std::int64_t w_;    // steps in each half of the break detector
-  std::vector<float> d_, e_;  // MARK^2 - SPACE^2 and MARK^2 + SPACE^2, per step, a ring
+  std::vector<float> m_, s_;  // MARK^2 and SPACE^2, per step, a ring
   std::size_t mask_;
   std::int64_t n_ = 0;  // steps processed
   double after_ = 0.0, before_ = 0.0, after_power_ = 0.0, before_power_ = 0.0;  // break detector sums
   State state_ = State::kSearching;
-  double peak_ = 0.0;
+  double peak_ = 0.0, peak_power_ = 0.0;  // the clearest step so far, and its windows' power
   std::int64_t peak_at_ = 0, decode_at_ = 0, blank_until_ = 0;
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
+  ToneModel model_;          // of the packet being decoded
+  std::vector<float> normalized_;
+  std::int64_t normalized_start_ = 0;
   bool muted_ = false;
   double carrier_threshold_power_ = 0.0;  // the carrier threshold as a power
   // Busy air, for ZERO_BYTE reports.
