@@ -18,6 +18,7 @@ constexpr double kTailFadeS = 0.005;
 constexpr double kEarlyFirstS = 0.005, kEarlyLastS = 0.040;
 constexpr double kEarlyShare = 0.25;  // of the reverberant energy
 constexpr double kLn1000 = 6.907755278982137;  // 60 dB of amplitude decay
+constexpr double kPi = 3.141592653589793;
 
 double Energy(const std::vector<double>& x) {
   double e = 0.0;
@@ -43,7 +44,7 @@ std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, 
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / sample_rate;
     if (t < kTailStartS) continue;
-    const double fade = t < kTailStartS + kTailFadeS ? 0.5 - 0.5 * std::cos(M_PI * (t - kTailStartS) / kTailFadeS) : 1.0;
+    const double fade = t < kTailStartS + kTailFadeS ? 0.5 - 0.5 * std::cos(kPi * (t - kTailStartS) / kTailFadeS) : 1.0;
     // Decay counted from the tail's start, not from 0: the same shape up to a factor (which the
     // caller's scaling removes), and no underflow to zero for very short rt60.
     const double since = t - kTailStartS;
