@@ -1,0 +1,118 @@
+#include "nava_modem/room_impulse_response.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "nava_modem/noise_sources.h"
+#include "nava_modem/real_fft.h"
+
+namespace nava_modem {
+namespace {
+
+constexpr double kTailStartS = 0.005;
+constexpr double kTailFadeS = 0.005;
+constexpr double kEarlyFirstS = 0.005, kEarlyLastS = 0.040;
+constexpr double kEarlyShare = 0.25;  // of the reverberant energy
+constexpr double kLn1000 = 6.907755278982137;  // 60 dB of amplitude decay
+constexpr double kPi = 3.141592653589793;
+
+double Energy(const std::vector<double>& x) {
+  double e = 0.0;
+  for (double v : x) e += v * v;
+  return e;
+}
+
+// Gaussian noise of length n split at the crossover into (below, above), each band then given
+// its own exponential decay, starting at kTailStartS with a raised-cosine fade-in.
+std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, RandomSource& random) {
+  const std::size_t size = FftSize(n);
+  std::vector<double> noise(size);
+  for (double& v : noise) v = random.Gaussian();
+  const std::vector<std::complex<double>> spectrum = ForwardFft(noise, size);
+  std::vector<std::complex<double>> low(spectrum.size()), high(spectrum.size());
+  for (std::size_t k = 0; k < spectrum.size(); ++k) {
+    (BinHz(k, size, sample_rate) < kRoomCrossoverHz ? low : high)[k] = spectrum[k];
+  }
+  const std::vector<double> low_band = InverseFft(low, size);
+  const std::vector<double> high_band = InverseFft(high, size);
+  const double low_rate = kLn1000 / rt60, high_rate = kLn1000 / (kHighBandDecayRatio * rt60);
+  std::vector<double> tail(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / sample_rate;
+    if (t < kTailStartS) continue;
+    const double fade = t < kTailStartS + kTailFadeS ? 0.5 - 0.5 * std::cos(kPi * (t - kTailStartS) / kTailFadeS) : 1.0;
+    // Decay counted from the tail's start, not from 0: the same shape up to a factor (which the
+    // caller's scaling removes), and no underflow to zero for very short rt60.
+    const double since = t - kTailStartS;
+    tail[i] = fade * (low_band[i] * std::exp(-low_rate * since) + high_band[i] * std::exp(-high_rate * since));
+  }
+  return tail;
+}
+
+std::vector<double> EarlyReflections(std::size_t n, double rt60, double sample_rate, RandomSource& random) {
+  double delay[kEarlyReflections], sign[kEarlyReflections], spread[kEarlyReflections];
+  for (int r = 0; r < kEarlyReflections; ++r) {
+    delay[r] = kEarlyFirstS + (kEarlyLastS - kEarlyFirstS) * random.Uniform();
+    sign[r] = random.Uniform() < 0.5 ? -1.0 : 1.0;
+    spread[r] = 0.4 + 0.6 * random.Uniform();
+  }
+  // Decay counted from the first reflection (the caller's scaling removes the factor), so that
+  // however short rt60 is, that one does not underflow to zero.
+  const double first = *std::min_element(delay, delay + kEarlyReflections);
+  const double rate = kLn1000 / rt60;
+  std::vector<double> early(n, 0.0);
+  for (int r = 0; r < kEarlyReflections; ++r) {
+    const std::size_t i = std::min(n - 1, static_cast<std::size_t>(std::lround(delay[r] * sample_rate)));
+    early[i] += sign[r] * spread[r] * std::exp(-rate * (delay[r] - first));
+  }
+  return early;
+}
+
+}  // namespace
+
+std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample_rate, std::uint32_t seed) {
+  if (!(sample_rate > 0.0) || !std::isfinite(sample_rate)) {
+    throw std::invalid_argument("sample rate " + std::to_string(sample_rate) + " Hz: expected above 0");
+  }
+  if (!(rt60 >= 0.0 && rt60 <= 10.0)) {
+    throw std::invalid_argument("rt60 " + std::to_string(rt60) + " s: expected 0 (no room) or above 0 and at most 10");
+  }
+  if (!(std::fabs(drr_db) <= 40.0)) {
+    throw std::invalid_argument("drr_db " + std::to_string(drr_db) + " dB: expected from -40 to 40");
+  }
+  if (rt60 == 0.0) return {1.0f};
+
+  const std::size_t n = static_cast<std::size_t>(std::ceil(std::max(1.2 * rt60, 0.045) * sample_rate));
+  RandomSource random(seed, kImpulseResponseStream);
+  std::vector<double> early = EarlyReflections(n, rt60, sample_rate, random);
+  std::vector<double> tail = DiffuseTail(n, rt60, sample_rate, random);
+  early[0] = tail[0] = 0.0;  // index 0 is the direct sound's alone
+
+  // Early and tail each to their share, then the sum (whose cross terms are not quite zero)
+  // to the asked ratio exactly: direct energy is 1, so the reverberant energy is 10^(-drr/10).
+  const double reverberant = std::pow(10.0, -drr_db / 10.0);
+  // (A guard for absurdly low sample rates, where a part may land wholly on index 0.)
+  const double early_gain = Energy(early) > 0.0 ? std::sqrt(kEarlyShare / Energy(early)) : 0.0;
+  const double tail_gain = Energy(tail) > 0.0 ? std::sqrt((1.0 - kEarlyShare) / Energy(tail)) : 0.0;
+  std::vector<double> sum(n);
+  for (std::size_t i = 0; i < n; ++i) sum[i] = early_gain * early[i] + tail_gain * tail[i];
+  const double gain = Energy(sum) > 0.0 ? std::sqrt(reverberant / Energy(sum)) : 0.0;
+  std::vector<float> response(n);
+  response[0] = 1.0f;
+  for (std::size_t i = 1; i < n; ++i) response[i] = static_cast<float>(gain * sum[i]);
+  return response;
+}
+
+double MeasureDrrDb(const std::vector<float>& response) {
+  if (response.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double rest = 0.0;
+  for (std::size_t i = 1; i < response.size(); ++i) rest += static_cast<double>(response[i]) * response[i];
+  if (rest <= 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(static_cast<double>(response[0]) * response[0] / rest);
+}
+
+}  // namespace nava_modem

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# nava_room end to end: a modem WAV through mild rooms still decodes, a speech interferer made by
+# make_speech.sh is resampled and mixed, the summary line; then the tool's answers to bad input.
+#   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH
+set -uo pipefail
+export PATH="/usr/bin:/bin:${PATH}"
+tool=$1
+encode=$2
+decode=$3
+make_speech=$4
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+source "$(dirname "$0")/../../test/tool_checks.sh"
+
+"$encode" --out "$out/clean.wav" 01020304 a0b0c0d0 || fail "nava_encode failed"
+
+# decodes FILE: both packets come out of nava_decode.
+decodes() {
+  "$decode" "$1" >"$out/decoded" || fail "nava_decode $1 failed"
+  for p in 01020304 a0b0c0d0; do
+    grep -q "\"kind\": \"packet\".*\"data\": \"$p\"" "$out/decoded" || { cat "$out/decoded"; fail "$1: packet $p not decoded"; }
+  done
+}
+
+"$tool" --in "$out/clean.wav" --out "$out/mild.wav" --tilt -6 --clock 0.5 --noise white --snr 15 \
+  --whine 600 --whine-sir 15 --seed 4 2>"$out/stderr" || { cat "$out/stderr"; fail "mild room failed"; }
+decodes "$out/mild.wav"
+"$tool" --in "$out/clean.wav" --out "$out/room.wav" --rt60 0.3 --drr 20 2>"$out/stderr" \
+  || { cat "$out/stderr"; fail "reverberant room failed"; }
+grep -q "measured DRR 20.00 dB" "$out/stderr" || { cat "$out/stderr"; fail "summary line without the measured DRR"; }
+decodes "$out/room.wav"
+
+"$make_speech" "$out/speech.wav" 5 2 2>"$out/stderr" || { cat "$out/stderr"; fail "make_speech.sh failed"; }
+"$tool" --in "$out/clean.wav" --out "$out/talk.wav" --interferer "$out/speech.wav" --sir -6 2>"$out/stderr" \
+  || { cat "$out/stderr"; fail "speech interferer failed"; }
+grep -q "resampling the interferer .* from 22050 Hz to 48000 Hz" "$out/stderr" || { cat "$out/stderr"; fail "no resampling note"; }
+grep -q "(SIR -6 dB)" "$out/stderr" || { cat "$out/stderr"; fail "summary line without the SIR"; }
+[ "$(grep -c . "$out/stderr")" -eq 2 ] || { cat "$out/stderr"; fail "expected the resampling note and one summary line"; }
+
+# Bad input: a clear message and exit status 1.
+in=(--in "$out/clean.wav" --out "$out/x.wav")
+expect_error "--rt60: rt60 -1 s: expected 0 (no reverberation) or above 0 and at most 10" "${in[@]}" --rt60 -1
+expect_error "--rt60 abc: expected a number" "${in[@]}" --rt60 abc
+expect_error "--drr: drr_db 50 dB: expected from -40 to 40" "${in[@]}" --drr 50
+expect_error "--tilt: tilt_db 45 dB: expected from -40 to 40" "${in[@]}" --tilt 45
+expect_error "--tilt-band: tilt_high_hz 2000 Hz: expected above tilt_low_hz" "${in[@]}" --tilt-band 3000,2000
+expect_error "--tilt-band 3000: expected LO,HI" "${in[@]}" --tilt-band 3000
+expect_error "--clock: clock_offset 0.07: expected from -0.05 to 0.05" "${in[@]}" --clock 7
+expect_error "--noise purple: expected white or pink" "${in[@]}" --noise purple
+expect_error "--snr: there is no noise to set; add --noise white|pink" "${in[@]}" --snr 10
+expect_error "--snr: snr_db -70 dB: expected from -60 to 100" "${in[@]}" --noise pink --snr -70
+expect_error "--sir: there is no interferer to set; add --interferer FILE" "${in[@]}" --sir 3
+expect_error "--whine-sir: there is no whine to set" "${in[@]}" --whine-sir 3
+expect_error "--whine: whine_hz 30000 Hz: expected 0 (none) or above 0 and below 23762 Hz" "${in[@]}" --whine 30000
+expect_error "--seed: expected a whole number" "${in[@]}" --seed -1
+expect_error "--in $out/nothing.wav: not a readable audio file" --in "$out/nothing.wav" --out "$out/x.wav"
+expect_error "--interferer $out/decoded: not a readable audio file" "${in[@]}" --interferer "$out/decoded"
+expect_error "--out is required" --in "$out/clean.wav"
+expect_error "unknown option --reverb" "${in[@]}" --reverb 1
+[ ! -e "$out/x.wav" ] || fail "a failed run wrote its output"
+echo "nava_room checks: all passed"

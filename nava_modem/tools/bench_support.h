@@ -1,0 +1,145 @@
+#pragma once
+
+// What nava_bench needs around the decoders: running them as child processes with their CPU
+// time, the packets they printed, and scoring those against what was sent.
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <spawn.h>
+
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "modem_args.h"
+#include "nava_modem/frame.h"
+#include "nava_modem/modem_profile.h"
+
+extern char** environ;
+
+namespace nava_modem::tools {
+
+struct RunResult {
+  std::string out;
+  double cpu_s = 0.0;
+  int status = -1;
+};
+
+// Runs a program, capturing its standard output; CPU time from the child's own usage.
+inline RunResult Run(const std::vector<std::string>& argv) {
+  RunResult r;
+  int pipe_fd[2];
+  if (pipe(pipe_fd) != 0) return r;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fd[1], 1);
+  posix_spawn_file_actions_addclose(&actions, pipe_fd[0]);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(pipe_fd[1]);
+  if (spawned != 0) {
+    close(pipe_fd[0]);
+    return r;
+  }
+  char buffer[65536];
+  ssize_t got;
+  while ((got = read(pipe_fd[0], buffer, sizeof buffer)) > 0) r.out.append(buffer, static_cast<std::size_t>(got));
+  close(pipe_fd[0]);
+  struct rusage usage {};
+  int status = 0;
+  wait4(pid, &status, 0, &usage);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.cpu_s = usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6 + usage.ru_stime.tv_sec + usage.ru_stime.tv_usec * 1e-6;
+  return r;
+}
+
+struct Count {
+  int right = 0, wrong = 0;
+};
+
+// Counts each sent packet at most once.
+inline Count Score(const std::vector<std::string>& decoded_hex, const std::vector<std::string>& sent_hex) {
+  std::map<std::string, int> left;
+  for (const std::string& s : sent_hex) ++left[s];
+  Count c;
+  for (const std::string& d : decoded_hex) {
+    auto it = left.find(d);
+    if (it != left.end() && it->second > 0) {
+      --it->second;
+      ++c.right;
+    } else if (it == left.end()) {
+      ++c.wrong;
+    }
+  }
+  return c;
+}
+
+inline std::vector<std::string> NavaPackets(const std::string& json_lines) {
+  std::vector<std::string> out;
+  std::istringstream in(json_lines);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.find("\"kind\": \"packet\"") == std::string::npos) continue;
+    const auto at = line.find("\"data\": \"");
+    if (at != std::string::npos) out.push_back(line.substr(at + 9, 8));
+  }
+  return out;
+}
+
+// minimodem prints the bytes it decodes; our packets are the runs of 7 that frame correctly.
+inline std::vector<std::string> MinimodemPackets(const std::string& bytes, CrcVariant crc) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i + kFrameBytes <= bytes.size(); ++i) {
+    Frame f;
+    for (int k = 0; k < kFrameBytes; ++k) f[k] = static_cast<std::uint8_t>(bytes[i + k]);
+    if (f[0] != kHeader || !CrcMatches(f, crc)) continue;
+    out.push_back(HexBytes({f[1], f[2], f[3], f[4]}));
+    i += kFrameBytes - 1;
+  }
+  return out;
+}
+
+inline std::string SelfDir() {
+  char path[4096];
+  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+  if (n <= 0) return ".";
+  const std::string p(path, static_cast<std::size_t>(n));
+  return p.substr(0, p.rfind('/'));
+}
+
+
+// N packets of random data with gaps of `gap` s (plus up to `jitter` s more, so that packets
+// meet an interferer at different moments), and the data sent, as hex.
+struct CleanSignal {
+  std::vector<float> samples;
+  std::vector<std::string> sent;
+  double seconds = 0.0;
+};
+inline CleanSignal RandomPackets(const ModemProfile& profile, int packets, double gap, double jitter, std::mt19937& rng) {
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::uniform_real_distribution<double> extra(0.0, jitter);
+  const double rate = profile.options().sample_rate;
+  CleanSignal c;
+  c.samples.assign(static_cast<std::size_t>(gap * rate), 0.0f);
+  for (int p = 0; p < packets; ++p) {
+    std::vector<std::uint8_t> data(kDataBytes);
+    for (auto& b : data) b = static_cast<std::uint8_t>(byte(rng));
+    c.sent.push_back(HexBytes(data));
+    const std::vector<float> burst = profile.ModulatePacket(data);
+    c.samples.insert(c.samples.end(), burst.begin(), burst.end());
+    c.samples.insert(c.samples.end(), static_cast<std::size_t>((gap + extra(rng)) * rate), 0.0f);
+  }
+  c.seconds = c.samples.size() / rate;
+  return c;
+}
+
+}  // namespace nava_modem::tools

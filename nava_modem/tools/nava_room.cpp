@@ -1,0 +1,154 @@
+// nava_room: what a robot's microphone in a real room hears of a clean modem WAV (clock offset,
+// spectral tilt, reverberation, noise, an interferer, a motor's whine); see room_channel.h for
+// the model and the level definitions.
+//
+//   nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI]
+//             [--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB]
+//             [--whine HZ] [--whine-sir DB] [--whine-am HZ] [--seed N]
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "nava_modem/room_channel.h"
+#include "nava_modem/wav_file.h"
+#include "tool_args/tool_args.h"
+
+namespace {
+
+using multirobot_audio::tools::ToolArgs;
+
+// Any finite number; the ranges are RoomOptions' own (ValidateRoomOptions), so that the tool
+// and the library cannot disagree.
+double Number(const ToolArgs& args, const std::string& flag, double fallback) {
+  const std::string v = args.String(flag, "");
+  if (v.empty()) return fallback;
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  if (*end || !std::isfinite(x)) args.Fail(flag + " " + v + ": expected a number");
+  return x;
+}
+
+// The flag that sets each RoomOptions field, to name it in errors.
+const std::map<std::string, std::string>& FlagOfField() {
+  static const std::map<std::string, std::string> flags = {
+      {"rt60", "--rt60"},          {"drr_db", "--drr"},        {"tilt_db", "--tilt"},
+      {"tilt_low_hz", "--tilt-band"}, {"tilt_high_hz", "--tilt-band"}, {"clock_offset", "--clock"},
+      {"snr_db", "--snr"},         {"sir_db", "--sir"},        {"whine_hz", "--whine"},
+      {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"}};
+  return flags;
+}
+
+std::string Fixed(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", v == 0.0 ? 0.0 : v);
+  return std::string(text) == "-0.00" ? "0.00" : text;
+}
+
+std::string Db(double gain) { return Fixed(20.0 * std::log10(gain)) + " dB"; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace nava_modem;
+  const std::string usage =
+      "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI] "
+      "[--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB] [--whine HZ] "
+      "[--whine-sir DB] [--whine-am HZ] [--seed N]";
+  const ToolArgs args("nava_room", usage, argc, argv);
+  const std::string in = args.Required("--in");
+  const std::string out = args.Required("--out");
+  RoomOptions o;
+  o.rt60 = Number(args, "--rt60", o.rt60);
+  o.drr_db = Number(args, "--drr", o.drr_db);
+  o.tilt_db = Number(args, "--tilt", o.tilt_db);
+  const std::string band = args.String("--tilt-band", "");
+  if (!band.empty()) {
+    char* end = nullptr;
+    o.tilt_low_hz = std::strtod(band.c_str(), &end);
+    if (*end != ',') args.Fail("--tilt-band " + band + ": expected LO,HI in Hz, e.g. 2300,3700");
+    const char* high = end + 1;
+    o.tilt_high_hz = std::strtod(high, &end);
+    if (*end || end == high) args.Fail("--tilt-band " + band + ": expected LO,HI in Hz, e.g. 2300,3700");
+  }
+  o.clock_offset = Number(args, "--clock", 0.0) / 100.0;
+  const std::string noise = args.String("--noise", "");
+  if (noise == "white") {
+    o.noise = RoomOptions::Noise::kWhite;
+  } else if (noise == "pink") {
+    o.noise = RoomOptions::Noise::kPink;
+  } else if (!noise.empty()) {
+    args.Fail("--noise " + noise + ": expected white or pink");
+  }
+  const std::string interferer_path = args.String("--interferer", "");
+  o.snr_db = Number(args, "--snr", o.snr_db);
+  o.sir_db = Number(args, "--sir", o.sir_db);
+  o.whine_hz = Number(args, "--whine", o.whine_hz);
+  o.whine_sir_db = Number(args, "--whine-sir", o.whine_sir_db);
+  o.whine_am_hz = Number(args, "--whine-am", o.whine_am_hz);
+  o.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
+  args.CheckAllUsed();
+  // A ratio for a disturbance that is not there is a mistake in the command, not a no-op.
+  if (!args.String("--snr", "").empty() && o.noise == RoomOptions::Noise::kNone) {
+    args.Fail("--snr: there is no noise to set; add --noise white|pink");
+  }
+  if (!args.String("--sir", "").empty() && interferer_path.empty()) {
+    args.Fail("--sir: there is no interferer to set; add --interferer FILE");
+  }
+  for (const char* flag : {"--whine-sir", "--whine-am"}) {
+    if (!args.String(flag, "").empty() && o.whine_hz == 0.0) {
+      args.Fail(std::string(flag) + ": there is no whine to set; add --whine HZ");
+    }
+  }
+
+  // Reads a file named by `flag`, naming both in the error.
+  auto read = [&args](const std::string& flag, const std::string& path) {
+    try {
+      return ReadAudioFile(path);
+    } catch (const std::exception& e) {
+      args.Fail(flag + " " + e.what());
+    }
+  };
+  try {
+    const Audio clean = read("--in", in);
+    try {
+      ValidateRoomOptions(o, clean.sample_rate);
+    } catch (const RoomOptionError& e) {
+      args.Fail(FlagOfField().at(e.field()) + ": " + e.what());
+    }
+    std::vector<float> interferer;
+    if (!interferer_path.empty()) {
+      const Audio audio = read("--interferer", interferer_path);
+      interferer = audio.samples;
+      if (audio.sample_rate != clean.sample_rate) {
+        std::cerr << "nava_room: resampling the interferer " << interferer_path << " from " << std::lround(audio.sample_rate)
+                  << " Hz to " << std::lround(clean.sample_rate) << " Hz\n";
+        interferer = Resample(interferer, clean.sample_rate / audio.sample_rate);
+      }
+      if (interferer.empty()) args.Fail("--interferer " + interferer_path + ": no samples");
+    }
+    RoomRenderInfo info;
+    const std::vector<float> mic = RenderRoom(clean.samples, clean.sample_rate, o, interferer, &info);
+    WriteWavFile(out, mic, clean.sample_rate);
+
+    std::ostringstream s;
+    s.precision(4);
+    s << "nava_room: " << clean.samples.size() / clean.sample_rate << " s in, " << mic.size() / clean.sample_rate
+      << " s out at " << std::lround(clean.sample_rate) << " Hz;";
+    if (o.rt60 > 0.0) s << " room rt60 " << o.rt60 << " s, measured DRR " << Fixed(info.measured_drr_db) << " dB;";
+    if (o.tilt_db != 0.0) s << " tilt " << o.tilt_db << " dB over " << o.tilt_low_hz << "-" << o.tilt_high_hz << " Hz;";
+    if (o.clock_offset != 0.0) s << " clock " << 100.0 * o.clock_offset << " %;";
+    s << " signal RMS " << std::sqrt(info.signal_power) << " over " << 100.0 * info.sounding_fraction << " % sounding;";
+    if (o.noise != RoomOptions::Noise::kNone) s << " " << noise << " noise RMS " << info.noise_rms << " (SNR " << o.snr_db << " dB);";
+    if (!interferer.empty()) s << " interferer gain " << Db(info.interferer_gain) << " (SIR " << o.sir_db << " dB);";
+    if (o.whine_hz > 0.0) s << " whine RMS " << info.whine_rms << " (SIR " << o.whine_sir_db << " dB);";
+    s << " output gain " << Db(info.output_gain) << " (peak 0.9)";
+    std::cerr << s.str() << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "nava_room: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
