@@ -154,12 +154,13 @@ void ChirpDetector::Judge(std::int64_t n, double p, std::vector<ChirpPeak>& peak
     if (denom < 0.0) best_.sample += std::clamp(0.5 * (a - c) / denom, -0.5, 0.5);
     peaks.push_back(best_);
     peaking_ = false;
-    // The chirp's own reflections follow it for a while: they are not chirps of their own.
-    Blank(m + static_cast<std::int64_t>(chirp_length_));
+    // The chirp's own reflections follow it for a while, weaker: they are not chirps of their own.
+    echo_until_ = m + static_cast<std::int64_t>(chirp_length_);
+    echo_power_ = best_.power;
     return;
   }
   // Until a quarter of the background has been heard, there is too little to compare with.
-  if (n >= blank_until_ && have >= background_len_ / 4 && p > kFloor && p > options_.threshold * background) {
+  if (n >= blank_until_ && (n >= echo_until_ || p > echo_power_) && have >= background_len_ / 4 && p > kFloor && p > options_.threshold * background) {
     peaking_ = true;
     best_ = {static_cast<double>(n), p / background, p};
     peak_deadline_ = n + peak_len_;

@@ -21,6 +21,9 @@ constexpr double kBusyStepSeconds = 0.001;
 // Busy air ends after a symbol's time of quiet; shorter stretches are clicks, not noise.
 constexpr double kBusyRelease = kSymbolSeconds;
 constexpr double kBusyMinimum = kSymbolSeconds;
+// The envelope around each chirp's peak lined up to measure their distance: the direct sound
+// and the early reflections, and lags up to a late reflection's delay either way.
+constexpr double kAlignBefore = 0.010, kAlignAfter = 0.030, kAlignReach = 0.012;
 
 std::size_t PowerOfTwoAtLeast(double n) {
   std::size_t size = 1;
@@ -86,7 +89,7 @@ RoomReceiver::~RoomReceiver() = default;
 
 void RoomReceiver::SetMuted(bool muted) {
   if (muted && !muted_) {
-    lone_.clear();
+    heard_.clear();
     busy_.Reset();
   }
   muted_ = muted;
@@ -111,7 +114,7 @@ void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::ve
     ++n_;
     if (++level_count_ == level_step_) {
       level_count_ = 0;
-      if (!muted_) busy_.Step(time(), level_.power(), 0.0, !lone_.empty(), events);
+      if (!muted_) busy_.Step(time(), level_.power(), 0.0, !heard_.empty(), events);
     }
   }
   peaks_.clear();
@@ -122,7 +125,7 @@ void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::ve
     return;
   }
   for (const ChirpPeak& p : peaks_) OnChirp(p, events);
-  ExpireLoneChirps(detector_.computed(), events);
+  ExpireChirps(detector_.computed(), events);
 }
 
 void RoomReceiver::Flush(std::vector<RxEvent>& events) {
@@ -131,39 +134,46 @@ void RoomReceiver::Flush(std::vector<RxEvent>& events) {
 }
 
 void RoomReceiver::OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events) {
-  ExpireLoneChirps(static_cast<std::int64_t>(peak.sample), events);
+  ExpireChirps(static_cast<std::int64_t>(peak.sample), events);
   const double shortest = packet_length_ * (1.0 - options_.max_rate_error);
   const double longest = packet_length_ * (1.0 + options_.max_rate_error);
-  auto partner = lone_.end();
-  for (auto it = lone_.begin(); it != lone_.end(); ++it) {
-    const double d = peak.sample - it->sample;
-    if (d >= shortest && d <= longest && (partner == lone_.end() || it->ratio > partner->ratio)) partner = it;
+  bool failed_post = false;
+  for (auto it = heard_.begin(); it != heard_.end(); ++it) {
+    const double d = peak.sample - it->peak.sample;
+    if (d < shortest || d > longest) continue;
+    RxEvent ev = Decode(it->peak, peak);
+    if (ev.kind == RxEvent::Kind::kPacket) {
+      // Chirps up to the packet's first can no longer begin anything.
+      heard_.erase(heard_.begin(), it + 1);
+      events.push_back(std::move(ev));
+      busy_.FrameFound();
+      return;
+    }
+    if (!it->failure || ev.quality > it->failure->quality) it->failure = std::move(ev);
+    failed_post = true;
   }
-  if (partner == lone_.end()) {
-    lone_.push_back(peak);
-    return;
-  }
-  const ChirpPeak pre = *partner;
-  // Chirps before the packet's first one can no longer pair with anything later.
-  lone_.erase(lone_.begin(), partner + 1);
-  events.push_back(Decode(pre, peak));
-  busy_.FrameFound();
+  heard_.push_back({peak, failed_post, std::nullopt});
 }
 
-void RoomReceiver::ExpireLoneChirps(std::int64_t now, std::vector<RxEvent>& events) {
+void RoomReceiver::ExpireChirps(std::int64_t now, std::vector<RxEvent>& events) {
   const double longest = packet_length_ * (1.0 + options_.max_rate_error);
-  while (!lone_.empty() && lone_.front().sample + longest < now) {
-    const ChirpPeak& c = lone_.front();
-    RxEvent ev;
-    ev.kind = RxEvent::Kind::kNoise;
-    ev.noise = RxEvent::Noise::kOneByte;
-    ev.start = c.sample / modem_.sample_rate;
-    ev.end = (c.sample + detector_.length()) / modem_.sample_rate;
-    ev.level_db = 10.0 * std::log10(c.power + 1e-20);
-    ev.clarity = c.ratio;
-    events.push_back(ev);
-    busy_.FrameFound();
-    lone_.pop_front();
+  while (!heard_.empty() && heard_.front().peak.sample + longest < now) {
+    const Heard& h = heard_.front();
+    if (h.failure) {
+      events.push_back(*h.failure);
+      busy_.FrameFound();
+    } else if (!h.failed_post) {
+      RxEvent ev;
+      ev.kind = RxEvent::Kind::kNoise;
+      ev.noise = RxEvent::Noise::kOneByte;
+      ev.start = h.peak.sample / modem_.sample_rate;
+      ev.end = (h.peak.sample + detector_.length()) / modem_.sample_rate;
+      ev.level_db = 10.0 * std::log10(h.peak.power + 1e-20);
+      ev.clarity = h.peak.ratio;
+      events.push_back(ev);
+      busy_.FrameFound();
+    }
+    heard_.pop_front();
   }
 }
 
@@ -179,10 +189,37 @@ void RoomReceiver::SymbolEnergies(std::int64_t first, int length, double* energi
   }
 }
 
+double RoomReceiver::AlignedPost(const ChirpPeak& pre, const ChirpPeak& post) const {
+  const double fs = modem_.sample_rate;
+  const std::int64_t before = std::llround(kAlignBefore * fs), after = std::llround(kAlignAfter * fs);
+  const std::int64_t reach = std::llround(kAlignReach * fs);
+  const std::int64_t p = std::llround(pre.sample), q = std::llround(post.sample);
+  std::vector<double> a(static_cast<std::size_t>(before + after));
+  for (std::int64_t i = -before; i < after; ++i) a[static_cast<std::size_t>(i + before)] = std::sqrt(detector_.Envelope(p + i));
+  std::vector<double> b(static_cast<std::size_t>(before + after + 2 * reach));
+  for (std::int64_t i = -before - reach; i < after + reach; ++i) b[static_cast<std::size_t>(i + before + reach)] = std::sqrt(detector_.Envelope(q + i));
+  std::vector<double> score(static_cast<std::size_t>(2 * reach + 1));
+  std::size_t best = static_cast<std::size_t>(reach);
+  for (std::size_t lag = 0; lag < score.size(); ++lag) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += a[i] * b[i + lag];
+    score[lag] = sum;
+    if (sum > score[best]) best = lag;
+  }
+  double refined = static_cast<double>(best);
+  if (best > 0 && best + 1 < score.size()) {
+    const double l = score[best - 1], c = score[best], r = score[best + 1];
+    const double denom = l - 2.0 * c + r;
+    if (denom < 0.0) refined += std::clamp(0.5 * (l - r) / denom, -0.5, 0.5);
+  }
+  // The pre chirp's fractional part carries over: the lag is between whole samples.
+  return pre.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach);
+}
+
 RxEvent RoomReceiver::Decode(const ChirpPeak& pre, const ChirpPeak& post) {
   const double fs = modem_.sample_rate;
   // The sender's durations over ours: symbol windows are this much longer, tones this much lower.
-  const double stretch = (post.sample - pre.sample) / packet_length_;
+  const double stretch = (AlignedPost(pre, post) - pre.sample) / packet_length_;
   const int length = static_cast<int>(std::lround(kSymbolSeconds * fs * stretch));
   std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins);
   for (int s = 0; s < kSymbols; ++s) {

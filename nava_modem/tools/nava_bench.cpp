@@ -1,20 +1,20 @@
-// nava_bench: how many packets nava_decode and minimodem each decode from the same noisy files.
+// nava_bench: how many packets the project's receivers (and minimodem, for the nava profile)
+// decode from the same recordings.
 //
-//   nava_bench [--packets 60] [--seed 1] [--snr-min -12] [--snr-max 0] [--dir DIR]
-//              [--minimodem minimodem|none] [modem options]
+//   nava_bench [--profile nava|room] [--packets 60] [--seed 1] [--snr-min -12] [--snr-max 0]
+//              [--dir DIR] [--minimodem minimodem|none] [modem options]
+//   nava_bench --rooms [--profile nava|room|both] [--packets 60] [--plot-packets 30]
+//              [--plot FILE.png] [--seed 1] [--rate 48000] [--dir DIR] [--minimodem minimodem|none]
 //
-// Writes a WAV of N random packets for every full-band SNR (tone power over white-noise power
-// across the whole band) from --snr-max down to --snr-min in 1 dB steps, decodes each file
-// with nava_decode (beside this program) and with minimodem, as child processes, and prints a
-// table: packets each decoded correctly, packets decoded wrong, and each decoder's CPU time.
-// Ends with the speed of each decoder (seconds of audio per CPU second) and the targets.
-#include <fcntl.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <spawn.h>
-
+// Without --rooms: a WAV of N random packets for every full-band SNR (tone power over
+// white-noise power across the whole band) from --snr-max down to --snr-min in 1 dB steps.
+// With --rooms: the same packets through nava_room's renderer under each room condition of
+// room_conditions.h (reverberation, speech, a motor whine, tilt, clock offset, an office, all at
+// once), for each profile, and a PNG of delivery against the direct-to-reverberant ratio for
+// RT60 0.3, 0.6 and 1.0 s. Either way each file is decoded by nava_decode (beside this program)
+// and by minimodem as child processes, and the table gives the packets each decoded correctly,
+// those decoded wrong (CRC-passing but never sent), and each decoder's CPU time; it ends with
+// each decoder's speed (seconds of audio per CPU second) and the targets.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,209 +22,313 @@
 #include <iostream>
 #include <map>
 #include <random>
-#include <sstream>
 
+#include "bench_support.h"
+#include "line_chart.h"
 #include "modem_args.h"
-#include "nava_modem/frame.h"
-#include "nava_modem/fsk_modulator.h"
+#include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
-
-extern char** environ;
+#include "room_conditions.h"
 
 namespace {
 
-struct RunResult {
-  std::string out;
+using namespace nava_modem;
+using namespace nava_modem::tools;
+
+struct Decoders {
+  std::string nava_decode = SelfDir() + "/nava_decode";
+  std::string minimodem;  // empty: not run
+};
+
+struct Decoded {
+  Count count;
   double cpu_s = 0.0;
-  int status = -1;
+  bool ran = false;
 };
 
-// Runs a program, capturing its standard output; CPU time from the child's own usage.
-RunResult Run(const std::vector<std::string>& argv) {
-  RunResult r;
-  int pipe_fd[2];
-  if (pipe(pipe_fd) != 0) return r;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fd[1], 1);
-  posix_spawn_file_actions_addclose(&actions, pipe_fd[0]);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(pipe_fd[1]);
-  if (spawned != 0) {
-    close(pipe_fd[0]);
-    return r;
-  }
-  char buffer[65536];
-  ssize_t got;
-  while ((got = read(pipe_fd[0], buffer, sizeof buffer)) > 0) r.out.append(buffer, static_cast<std::size_t>(got));
-  close(pipe_fd[0]);
-  struct rusage usage {};
-  int status = 0;
-  wait4(pid, &status, 0, &usage);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.cpu_s = usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6 + usage.ru_stime.tv_sec + usage.ru_stime.tv_usec * 1e-6;
-  return r;
-}
-
-struct Count {
-  int right = 0, wrong = 0;
-};
-
-// Counts each sent packet at most once.
-Count Score(const std::vector<std::string>& decoded_hex, const std::vector<std::string>& sent_hex) {
-  std::map<std::string, int> left;
-  for (const std::string& s : sent_hex) ++left[s];
-  Count c;
-  for (const std::string& d : decoded_hex) {
-    auto it = left.find(d);
-    if (it != left.end() && it->second > 0) {
-      --it->second;
-      ++c.right;
-    } else if (it == left.end()) {
-      ++c.wrong;
+Decoded DecodeWithProject(const Decoders& d, Profile profile, const ModemOptions& o, const std::string& file,
+                          const std::vector<std::string>& sent) {
+  std::vector<std::string> argv = {d.nava_decode, "--profile", ProfileName(profile), "--crc", CrcVariantName(o.crc)};
+  if (profile == Profile::kNava) {
+    for (const auto& [flag, value] : {std::pair<const char*, double>{"--mark", o.mark_hz}, {"--space", o.space_hz}, {"--baud", o.baud}}) {
+      argv.push_back(flag);
+      argv.push_back(std::to_string(value));
     }
   }
-  return c;
-}
-
-std::vector<std::string> NavaPackets(const std::string& json_lines) {
-  std::vector<std::string> out;
-  std::istringstream in(json_lines);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.find("\"kind\": \"packet\"") == std::string::npos) continue;
-    const auto at = line.find("\"data\": \"");
-    if (at != std::string::npos) out.push_back(line.substr(at + 9, 8));
+  argv.push_back(file);
+  const RunResult r = Run(argv);
+  if (r.status != 0) {
+    std::cerr << "nava_bench: " << d.nava_decode << " failed on " << file << "\n";
+    std::exit(1);
   }
-  return out;
+  return {Score(NavaPackets(r.out), sent), r.cpu_s, true};
 }
 
-// minimodem prints the bytes it decodes; our packets are the runs of 7 that frame correctly.
-std::vector<std::string> MinimodemPackets(const std::string& bytes, nava_modem::CrcVariant crc) {
-  std::vector<std::string> out;
-  for (std::size_t i = 0; i + nava_modem::kFrameBytes <= bytes.size(); ++i) {
-    nava_modem::Frame f;
-    for (int k = 0; k < nava_modem::kFrameBytes; ++k) f[k] = static_cast<std::uint8_t>(bytes[i + k]);
-    if (f[0] != nava_modem::kHeader || !nava_modem::CrcMatches(f, crc)) continue;
-    out.push_back(nava_modem::tools::HexBytes({f[1], f[2], f[3], f[4]}));
-    i += nava_modem::kFrameBytes - 1;
+Decoded DecodeWithMinimodem(const Decoders& d, const ModemOptions& o, const std::string& file,
+                            const std::vector<std::string>& sent) {
+  if (d.minimodem.empty()) return {};
+  const RunResult r = Run({d.minimodem, "--rx", "-q", "-f", file, "--mark", std::to_string(o.mark_hz), "--space",
+                           std::to_string(o.space_hz), std::to_string(o.baud)});
+  if (r.status < 0) {
+    std::cerr << "nava_bench: could not run " << d.minimodem << " (use --minimodem none to skip it)\n";
+    std::exit(1);
   }
-  return out;
+  return {Score(MinimodemPackets(r.out, o.crc), sent), r.cpu_s, true};
 }
 
-std::string SelfDir() {
-  char path[4096];
-  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
-  if (n <= 0) return ".";
-  const std::string p(path, static_cast<std::size_t>(n));
-  return p.substr(0, p.rfind('/'));
+std::string TempDir(const multirobot_audio::tools::ToolArgs& args, std::string dir) {
+  if (!dir.empty()) return dir;
+  char tmpl[] = "/tmp/nava_bench.XXXXXX";
+  if (!mkdtemp(tmpl)) args.Fail("cannot make a folder in /tmp");
+  return tmpl;
+}
+
+int WhiteNoiseTable(const multirobot_audio::tools::ToolArgs& args) {
+  const int packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
+  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  const int snr_min = static_cast<int>(args.Int("--snr-min", -12, -60, 60));
+  const int snr_max = static_cast<int>(args.Int("--snr-max", 0, -60, 60));
+  const std::string dir = TempDir(args, args.String("--dir", ""));
+  Decoders decoders;
+  const std::string minimodem = args.String("--minimodem", "minimodem");
+  const ToolModem modem = ProfileArgs(args);
+  const ModemOptions& options = modem.options;
+  if (minimodem != "none" && modem.profile == Profile::kNava) decoders.minimodem = minimodem;
+  args.CheckAllUsed();
+  if (snr_min > snr_max) args.Fail("--snr-min must not be above --snr-max");
+
+  std::mt19937 rng(seed);
+  const auto profile = MakeProfile(modem.profile, options);
+  const CleanSignal clean = RandomPackets(*profile, packets, 0.3, 0.0, rng);
+  // The signal's power while it sounds: amplitude^2 / 2 for both profiles (one tone at a time).
+  const double tone_power = options.amplitude * options.amplitude / 2.0;
+  const bool with_minimodem = !decoders.minimodem.empty();
+  std::printf("nava_bench: profile %s, %d packets, %.0f s of audio per file at %.0f Hz, files in %s\n",
+              ProfileName(modem.profile), packets, clean.seconds, options.sample_rate, dir.c_str());
+  std::printf("%8s %10s %10s %10s %10s %10s %10s\n", "snr_db", "ours", "ours_bad", "ours_cpu_s", "minimodem",
+              "mm_bad", "mm_cpu_s");
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  double ours_cpu = 0.0, mm_cpu = 0.0;
+  int files = 0;
+  std::map<int, Count> ours_at, mm_at;
+  for (int snr = snr_max; snr >= snr_min; --snr) {
+    const double sigma = std::sqrt(tone_power / std::pow(10.0, snr / 10.0));
+    // Scale the mix so that the noise stays clear of full scale in a 16-bit file.
+    const double scale = 0.9 / (4.0 * std::max(sigma, options.amplitude));
+    std::vector<float> noisy(clean.samples.size());
+    for (std::size_t k = 0; k < noisy.size(); ++k) noisy[k] = static_cast<float>(scale * (clean.samples[k] + sigma * gauss(rng)));
+    const std::string file = dir + "/snr_" + std::to_string(snr) + ".wav";
+    WriteWavFile(file, noisy, options.sample_rate);
+    ++files;
+    const Decoded ours = DecodeWithProject(decoders, modem.profile, options, file, clean.sent);
+    const Decoded mm = DecodeWithMinimodem(decoders, options, file, clean.sent);
+    ours_at[snr] = ours.count;
+    ours_cpu += ours.cpu_s;
+    if (mm.ran) mm_at[snr] = mm.count;
+    mm_cpu += mm.cpu_s;
+    std::printf("%8d %10d %10d %10.3f %10d %10d %10.3f\n", snr, ours.count.right, ours.count.wrong, ours.cpu_s,
+                mm.count.right, mm.count.wrong, mm.cpu_s);
+    std::fflush(stdout);
+  }
+  const double audio_total = clean.seconds * files;
+  std::printf("speed: nava_decode %.0fx real time", audio_total / std::max(ours_cpu, 1e-9));
+  if (with_minimodem) std::printf(", minimodem %.0fx real time", audio_total / std::max(mm_cpu, 1e-9));
+  std::printf(" (seconds of audio per CPU second)\n");
+  auto share = [&](int snr) { return ours_at.count(snr) ? 100.0 * ours_at[snr].right / packets : -1.0; };
+  bool never_worse = true;
+  for (const auto& [snr, m] : mm_at) never_worse = never_worse && ours_at[snr].right >= m.right;
+  std::printf("targets: -9 dB %.0f%% (>= 90), -10 dB %.0f%% (>= 50), never fewer than minimodem: %s, speed >= 500x: %s\n",
+              share(-9), share(-10), with_minimodem ? (never_worse ? "yes" : "NO") : "not run",
+              audio_total / std::max(ours_cpu, 1e-9) >= 500.0 ? "yes" : "NO");
+  return 0;
+}
+
+// Speech made at run time by make_speech.sh (espeak-ng), at the bench's rate.
+std::vector<float> Speech(const std::string& dir, double rate, unsigned seed) {
+  const std::string file = dir + "/speech.wav";
+  const RunResult r = Run({"bash", NAVA_SPEECH_SCRIPT, file, "240", std::to_string(seed)});
+  if (r.status != 0) {
+    std::cerr << "nava_bench: " << NAVA_SPEECH_SCRIPT << " could not make speech (is espeak-ng installed?)\n";
+    std::exit(1);
+  }
+  const Audio speech = ReadAudioFile(file);
+  return Resample(speech.samples, rate / speech.sample_rate);
+}
+
+struct RoomRow {
+  Decoded nava, minimodem, room;
+};
+
+int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
+  const int packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
+  const int plot_packets = static_cast<int>(args.Int("--plot-packets", 30, 0, 100000));
+  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  const std::string dir = TempDir(args, args.String("--dir", ""));
+  const std::string which = args.String("--profile", "both");
+  const std::string minimodem = args.String("--minimodem", "minimodem");
+  ModemOptions options = ModemArgs(args);
+  args.CheckAllUsed();
+  std::vector<Profile> profiles;
+  if (which == "both") {
+    profiles = {Profile::kNava, Profile::kRoom};
+  } else if (const auto p = ParseProfile(which)) {
+    profiles = {*p};
+  } else {
+    args.Fail(std::string("--profile: expected both, ") + kProfileNames + ", got " + which);
+  }
+  const std::string plot = args.String("--plot", dir + "/delivery_vs_drr.png");
+  Decoders decoders;
+  if (minimodem != "none") decoders.minimodem = minimodem;
+  const bool has_nava = std::count(profiles.begin(), profiles.end(), Profile::kNava) > 0;
+  const bool has_room = std::count(profiles.begin(), profiles.end(), Profile::kRoom) > 0;
+
+  const std::vector<float> speech = Speech(dir, options.sample_rate, seed);
+  const std::vector<RoomCondition> conditions = RoomConditions();
+  std::map<Profile, CleanSignal> clean;
+  for (Profile p : profiles) {
+    std::mt19937 rng(seed);
+    clean[p] = RandomPackets(*MakeProfile(p, options), packets, 0.6, 0.4, rng);
+  }
+  // Renders `signal` under a condition and decodes it with the profile's decoders.
+  double audio_s[3] = {0.0, 0.0, 0.0};  // nava, minimodem, room
+  auto measure = [&](Profile p, const CleanSignal& signal, RoomOptions room, bool with_speech, const std::string& name,
+                     RoomRow& row) {
+    TiltOverBand(room, p == Profile::kNava, options);
+    const std::vector<float> heard = RenderRoom(signal.samples, options.sample_rate, room, with_speech ? speech : std::vector<float>{});
+    const std::string file = dir + "/" + name + "_" + ProfileName(p) + ".wav";
+    WriteWavFile(file, heard, options.sample_rate);
+    const double seconds = heard.size() / options.sample_rate;
+    if (p == Profile::kNava) {
+      row.nava = DecodeWithProject(decoders, p, options, file, signal.sent);
+      row.minimodem = DecodeWithMinimodem(decoders, options, file, signal.sent);
+      audio_s[0] += seconds;
+      if (row.minimodem.ran) audio_s[1] += seconds;
+    } else {
+      row.room = DecodeWithProject(decoders, p, options, file, signal.sent);
+      audio_s[2] += seconds;
+    }
+  };
+
+  std::printf("nava_bench --rooms: %d packets per row at %.0f Hz, files in %s\n", packets, options.sample_rate, dir.c_str());
+  std::printf("%-26s %9s %5s %9s %5s %9s %5s\n", "condition", "nava", "bad", "minimodem", "bad", "room", "bad");
+  auto cell = [&](const Decoded& d) {
+    char text[32];
+    if (!d.ran) return std::string("        -     -");
+    std::snprintf(text, sizeof text, "%6d/%-2d %5d", d.count.right, packets, d.count.wrong);
+    return std::string(text);
+  };
+  std::vector<RoomRow> rows;
+  double cpu[3] = {0.0, 0.0, 0.0};
+  for (std::size_t k = 0; k < conditions.size(); ++k) {
+    RoomRow row;
+    RoomOptions room = conditions[k].room;
+    room.seed = seed * 1000u + static_cast<unsigned>(k);
+    for (Profile p : profiles) measure(p, clean[p], room, conditions[k].speech, "row" + std::to_string(k), row);
+    std::printf("%-26s %s %s %s\n", conditions[k].name.c_str(), cell(row.nava).c_str(), cell(row.minimodem).c_str(),
+                cell(row.room).c_str());
+    std::fflush(stdout);
+    cpu[0] += row.nava.cpu_s;
+    cpu[1] += row.minimodem.cpu_s;
+    cpu[2] += row.room.cpu_s;
+    rows.push_back(row);
+  }
+  const char* names[3] = {"nava_decode --profile nava", "minimodem", "nava_decode --profile room"};
+  std::printf("cpu:");
+  for (int d = 0; d < 3; ++d) {
+    if (audio_s[d] > 0.0) std::printf(" %s %.1f s (%.0fx real time);", names[d], cpu[d], audio_s[d] / std::max(cpu[d], 1e-9));
+  }
+  std::printf("\n");
+
+  // Targets (issue "nava_modem in real rooms").
+  const int need = (packets * 90 + 99) / 100;
+  if (has_room) {
+    int worst = packets, wrong = 0;
+    for (const RoomRow& r : rows) {
+      worst = std::min(worst, r.room.count.right);
+      wrong += r.room.count.wrong;
+    }
+    std::printf("targets room: every row >= 90%% (worst %d/%d): %s; wrong packets 0 (%d): %s; >= 50x real time: %s\n", worst,
+                packets, worst >= need ? "yes" : "NO", wrong, wrong == 0 ? "yes" : "NO",
+                audio_s[2] / std::max(cpu[2], 1e-9) >= 50.0 ? "yes" : "NO");
+  }
+  if (has_nava) {
+    bool tilt_clock = true, never_fewer = true;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const std::string& n = conditions[k].name;
+      if (n.rfind("tilt", 0) == 0 || n.rfind("clock", 0) == 0) tilt_clock = tilt_clock && rows[k].nava.count.right >= need;
+      if (rows[k].minimodem.ran) never_fewer = never_fewer && rows[k].nava.count.right >= rows[k].minimodem.count.right;
+    }
+    std::printf("targets nava: tilt and clock rows >= 90%%: %s; never fewer than minimodem: %s; rt60 0.3 drr +3 >= 50%% (%d/%d): %s\n",
+                tilt_clock ? "yes" : "NO", decoders.minimodem.empty() ? "not run" : (never_fewer ? "yes" : "NO"),
+                rows[0].nava.count.right, packets, 2 * rows[0].nava.count.right >= packets ? "yes" : "NO");
+  }
+
+  if (plot_packets == 0) return 0;
+  // Delivery against DRR for three reverberation times.
+  LineChart chart;
+  chart.title = "Packets decoded against direct-to-reverberant ratio";
+  chart.x_label = "DRR (dB)";
+  chart.y_label = "decoded (%)";
+  const double rt60s[3] = {0.3, 0.6, 1.0};
+  std::map<Profile, CleanSignal> few;
+  for (Profile p : profiles) {
+    std::mt19937 rng(seed + 1);
+    few[p] = RandomPackets(*MakeProfile(p, options), plot_packets, 0.6, 0.4, rng);
+  }
+  std::printf("delivery against DRR (%d packets per point):\n%-8s %-6s", plot_packets, "rt60 s", "drr dB");
+  std::printf("%10s%10s%10s\n", has_nava ? "nava" : "", has_nava && !decoders.minimodem.empty() ? "minimodem" : "", has_room ? "room" : "");
+  for (int r = 0; r < 3; ++r) {
+    LineSeries series[3];
+    for (int d = 0; d < 3; ++d) {
+      series[d].colour = r;
+      series[d].style = d == 2 ? LineSeries::Style::kSolid : d == 0 ? LineSeries::Style::kDashed : LineSeries::Style::kDotted;
+      char label[64];
+      std::snprintf(label, sizeof label, "%s, rt60 %.1f s", d == 0 ? "nava" : d == 1 ? "minimodem" : "room", rt60s[r]);
+      series[d].label = label;
+    }
+    for (int drr = 12; drr >= -15; drr -= 3) {
+      RoomOptions room;
+      room.rt60 = rt60s[r];
+      room.drr_db = drr;
+      room.noise = RoomOptions::Noise::kWhite;
+      room.snr_db = 40.0;
+      room.seed = seed * 7919u + static_cast<unsigned>(r * 100 + drr + 50);
+      RoomRow row;
+      for (Profile p : profiles) measure(p, few[p], room, false, "drr", row);
+      const Decoded* ds[3] = {&row.nava, &row.minimodem, &row.room};
+      std::printf("%-8.1f %-6d", rt60s[r], drr);
+      for (int d = 0; d < 3; ++d) {
+        if (!ds[d]->ran) {
+          std::printf("%10s", "");
+          continue;
+        }
+        series[d].x.push_back(drr);
+        series[d].y.push_back(100.0 * ds[d]->count.right / plot_packets);
+        std::printf("%9.0f%%", 100.0 * ds[d]->count.right / plot_packets);
+      }
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+    for (int d = 0; d < 3; ++d) {
+      if (!series[d].x.empty()) chart.series.push_back(series[d]);
+    }
+  }
+  try {
+    WriteLineChart(plot, chart);
+  } catch (const std::exception& e) {
+    std::cerr << "nava_bench: " << e.what() << "\n";
+    return 1;
+  }
+  std::printf("plot: %s\n", plot.c_str());
+  return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace nava_modem;
-  const std::string usage = std::string("nava_bench [--packets 60] [--seed 1] [--snr-min -12] [--snr-max 0] [--dir DIR] "
-                                        "[--minimodem minimodem|none] ") + tools::kModemUsage;
-  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv);
-  const int packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
-  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  const int snr_min = static_cast<int>(args.Int("--snr-min", -12, -60, 60));
-  const int snr_max = static_cast<int>(args.Int("--snr-max", 0, -60, 60));
-  std::string dir = args.String("--dir", "");
-  const std::string minimodem = args.String("--minimodem", "minimodem");
-  const ModemOptions options = tools::ModemArgs(args);
-  args.CheckAllUsed();
-  if (snr_min > snr_max) args.Fail("--snr-min must not be above --snr-max");
-  if (dir.empty()) {
-    char tmpl[] = "/tmp/nava_bench.XXXXXX";
-    if (!mkdtemp(tmpl)) args.Fail("cannot make a folder in /tmp");
-    dir = tmpl;
-  }
-
-  // The clean signal: packets of random data with gaps, tone power amplitude^2 / 2.
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> byte(0, 255);
-  const FskModulator modulator(options);
-  const std::size_t gap = static_cast<std::size_t>(0.3 * options.sample_rate);
-  std::vector<float> clean(gap, 0.0f);
-  std::vector<std::string> sent;
-  for (int p = 0; p < packets; ++p) {
-    std::vector<std::uint8_t> data(kDataBytes);
-    for (auto& b : data) b = static_cast<std::uint8_t>(byte(rng));
-    sent.push_back(tools::HexBytes(data));
-    const std::vector<float> burst = modulator.ModulatePacket(data);
-    clean.insert(clean.end(), burst.begin(), burst.end());
-    clean.insert(clean.end(), gap, 0.0f);
-  }
-  const double seconds = clean.size() / options.sample_rate;
-  const double tone_power = options.amplitude * options.amplitude / 2.0;
-
-  const std::vector<std::string> flags = {"--mark", std::to_string(options.mark_hz), "--space", std::to_string(options.space_hz),
-                                          "--baud", std::to_string(options.baud), "--crc", CrcVariantName(options.crc)};
-  const std::string decoder = SelfDir() + "/nava_decode";
-  const bool with_minimodem = minimodem != "none";
-  std::printf("nava_bench: %d packets, %.0f s of audio per file at %.0f Hz, files in %s\n", packets, seconds,
-              options.sample_rate, dir.c_str());
-  std::printf("%8s %10s %10s %10s %10s %10s %10s\n", "snr_db", "nava", "nava_bad", "nava_cpu_s", "minimodem",
-              "mm_bad", "mm_cpu_s");
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  double nava_cpu = 0.0, mm_cpu = 0.0;
-  int files = 0;
-  std::map<int, Count> nava_at, mm_at;
-  for (int snr = snr_max; snr >= snr_min; --snr) {
-    const double sigma = std::sqrt(tone_power / std::pow(10.0, snr / 10.0));
-    // Scale the mix so that the noise stays clear of full scale in a 16-bit file.
-    const double scale = 0.9 / (4.0 * std::max(sigma, options.amplitude));
-    std::vector<float> noisy(clean.size());
-    for (std::size_t k = 0; k < clean.size(); ++k) noisy[k] = static_cast<float>(scale * (clean[k] + sigma * gauss(rng)));
-    const std::string file = dir + "/snr_" + std::to_string(snr) + ".wav";
-    WriteWavFile(file, noisy, options.sample_rate);
-    ++files;
-
-    std::vector<std::string> nava_argv = {decoder};
-    nava_argv.insert(nava_argv.end(), flags.begin(), flags.end());
-    nava_argv.push_back(file);
-    const RunResult nava = Run(nava_argv);
-    if (nava.status != 0) {
-      std::cerr << "nava_bench: " << decoder << " failed on " << file << "\n";
-      return 1;
-    }
-    const Count n = Score(NavaPackets(nava.out), sent);
-    nava_at[snr] = n;
-    nava_cpu += nava.cpu_s;
-    Count m;
-    double m_cpu = 0.0;
-    if (with_minimodem) {
-      const RunResult mm = Run({minimodem, "--rx", "-q", "-f", file, "--mark", std::to_string(options.mark_hz), "--space",
-                                std::to_string(options.space_hz), std::to_string(options.baud)});
-      if (mm.status < 0) {
-        std::cerr << "nava_bench: could not run " << minimodem << " (use --minimodem none to skip it)\n";
-        return 1;
-      }
-      m = Score(MinimodemPackets(mm.out, options.crc), sent);
-      m_cpu = mm.cpu_s;
-      mm_cpu += mm.cpu_s;
-      mm_at[snr] = m;
-    }
-    std::printf("%8d %10d %10d %10.3f %10d %10d %10.3f\n", snr, n.right, n.wrong, nava.cpu_s, m.right, m.wrong, m_cpu);
-    std::fflush(stdout);
-  }
-  const double audio_total = seconds * files;
-  std::printf("speed: nava_decode %.0fx real time", audio_total / std::max(nava_cpu, 1e-9));
-  if (with_minimodem) std::printf(", minimodem %.0fx real time", audio_total / std::max(mm_cpu, 1e-9));
-  std::printf(" (seconds of audio per CPU second)\n");
-  auto share = [&](int snr) { return nava_at.count(snr) ? 100.0 * nava_at[snr].right / packets : -1.0; };
-  bool never_worse = true;
-  for (const auto& [snr, m] : mm_at) never_worse = never_worse && nava_at[snr].right >= m.right;
-  std::printf("targets: -9 dB %.0f%% (>= 90), -10 dB %.0f%% (>= 50), never fewer than minimodem: %s, speed >= 500x: %s\n",
-              share(-9), share(-10), with_minimodem ? (never_worse ? "yes" : "NO") : "not run",
-              audio_total / std::max(nava_cpu, 1e-9) >= 500.0 ? "yes" : "NO");
-  return 0;
+  const std::string usage = std::string(
+      "nava_bench [--rooms] [--profile nava|room|both] [--packets 60] [--plot-packets 30] [--plot FILE.png] [--seed 1] "
+      "[--snr-min -12] [--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage;
+  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms"});
+  return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);
 }

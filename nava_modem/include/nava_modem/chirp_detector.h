@@ -41,8 +41,11 @@ class ChirpDetector {
 
   // Feeds samples; appends the chirps found (each once, a peak window after it).
   void Process(const float* samples, std::size_t count, std::vector<ChirpPeak>& peaks);
-  // No detections before sample `until` (muting, or the chirp's own tail).
-  void Blank(std::int64_t until) { blank_until_ = std::max(blank_until_, until); }
+  // No detections before sample `until` (muting).
+  void Blank(std::int64_t until) {
+    blank_until_ = std::max(blank_until_, until);
+    echo_until_ = std::min(echo_until_, blank_until_);
+  }
   // The matched filter's output power at chirp start `n`, if still kept (0 otherwise).
   double Envelope(std::int64_t n) const;
   // Output known up to (not including) this chirp start.
@@ -69,6 +72,10 @@ class ChirpDetector {
   double background_sum_ = 0.0;
   std::int64_t background_len_, guard_len_, peak_len_;
   std::int64_t blank_until_ = 0;
+  // After a chirp, its reflections for a chirp's length: only a stronger peak counts then (the
+  // next chirp can follow a false alarm closely).
+  std::int64_t echo_until_ = 0;
+  double echo_power_ = 0.0;
   bool peaking_ = false;
   ChirpPeak best_{};
   std::int64_t peak_deadline_ = 0;

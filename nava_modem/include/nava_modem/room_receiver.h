@@ -24,9 +24,12 @@ namespace nava_modem {
 // speaker's tilt and the reverberant tails of earlier symbols; the soft bits go to the Viterbi
 // decoder and the CRC decides.
 //
-// Noise reports: a pair of chirps whose payload fails the CRC is BAD_CRC; a chirp with no
-// partner at the packet's length is ONE_BYTE (a packet begun and never ended); busy air in
-// which no chirp was heard is ZERO_BYTE.
+// A chirp is paired with every earlier one at the packet's length (within the clock tolerance)
+// and each such pair is decoded until one passes the CRC: speech and knocks can pass for a
+// chirp, and the first pair found need not be the packet. Noise reports: a chirp whose pairs
+// all failed the CRC is BAD_CRC; a chirp with no partner at all is ONE_BYTE (a packet begun
+// and never ended, or a sound that looked like a chirp); busy air in which no chirp was heard
+// is ZERO_BYTE.
 class RoomReceiver : public PacketReceiver {
  public:
   RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options);
@@ -42,8 +45,14 @@ class RoomReceiver : public PacketReceiver {
  private:
   void ProcessPiece(const float* samples, std::size_t count, std::vector<RxEvent>& events);
   void OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events);
-  void ExpireLoneChirps(std::int64_t now, std::vector<RxEvent>& events);
+  // Reports the chirps that can no longer pair with a later one.
+  void ExpireChirps(std::int64_t now, std::vector<RxEvent>& events);
   RxEvent Decode(const ChirpPeak& pre, const ChirpPeak& post);
+  // Where the second chirp starts, to a fraction of a sample, as the lag that best lines up the
+  // matched filter's envelope around the two peaks: in a reverberant room the strongest peak
+  // can be the direct sound in one chirp and a reflection in the other, but the room (and so
+  // the envelope's pattern of direct sound and reflections) is the same for both.
+  double AlignedPost(const ChirpPeak& pre, const ChirpPeak& post) const;
   // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
   void SymbolEnergies(std::int64_t first, int length, double* energies);
   float Sample(std::int64_t n) const { return history_[static_cast<std::size_t>(n) & history_mask_]; }
@@ -58,7 +67,13 @@ class RoomReceiver : public PacketReceiver {
   std::size_t history_mask_;
   std::int64_t n_ = 0;  // samples processed
   bool muted_ = false;
-  std::deque<ChirpPeak> lone_;  // chirps waiting for their partner
+  // A chirp heard, waiting for a partner at the packet's length after it.
+  struct Heard {
+    ChirpPeak peak;
+    bool failed_post = false;         // it ended a pair that failed the CRC (reported with its first)
+    std::optional<RxEvent> failure;   // the best failed decode it began
+  };
+  std::deque<Heard> heard_;
   std::int64_t level_step_, level_count_ = 0;
   struct Fft;
   std::unique_ptr<Fft> fft_;
