@@ -58,11 +58,7 @@ struct ViterbiDeleter {
 
 }  // namespace
 
-int ToneBits(int tone) {
-  int value = tone;
-  for (int shift = 1; shift < room_phy::kBitsPerSymbol; shift <<= 1) value ^= value >> shift;
-  return value;
-}
+int ToneBits(int tone) { return tone ^ (tone >> 1); }  // the tone number's Gray code
 
 Tones Encode(const Payload& payload) {
   const auto coded = Convolve(payload);
@@ -73,7 +69,10 @@ Tones Encode(const Payload& payload) {
   for (int s = 0; s < kSymbols; ++s) {
     int value = 0;
     for (int j = 0; j < room_phy::kBitsPerSymbol; ++j) value = (value << 1) | air[s * room_phy::kBitsPerSymbol + j];
-    tones[s] = value ^ (value >> 1);  // Gray
+    // The tone whose Gray code the bits are.
+    int tone = value;
+    for (int shift = 1; shift < room_phy::kBitsPerSymbol; shift <<= 1) tone ^= tone >> shift;
+    tones[s] = tone;
   }
   return tones;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # nava_room end to end: a modem WAV through mild rooms still decodes, a speech interferer made by
-# make_speech.sh is resampled and mixed, the summary line; then the tool's answers to bad input.
+# make_speech.sh is resampled and mixed, the summary line; the room profile through a room where
+# the reverberation is louder than the direct sound; then the tools' answers to bad input.
 #   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
@@ -57,5 +58,24 @@ expect_error "--in $out/nothing.wav: not a readable audio file" --in "$out/nothi
 expect_error "--interferer $out/decoded: not a readable audio file" "${in[@]}" --interferer "$out/decoded"
 expect_error "--out is required" --in "$out/clean.wav"
 expect_error "unknown option --reverb" "${in[@]}" --reverb 1
+[ ! -e "$out/x.wav" ] || fail "a failed run wrote its output"
+# The room profile through nava_encode, an office-like room and nava_decode, at 16 kHz.
+"$encode" --profile room --rate 16000 --out "$out/room_clean.wav" 01020304 a0b0c0d0 || fail "nava_encode --profile room failed"
+"$tool" --in "$out/room_clean.wav" --out "$out/office.wav" --rt60 0.6 --drr -6 --noise pink --snr 10 --clock 0.5 \
+  --seed 3 2>"$out/stderr" || { cat "$out/stderr"; fail "office room failed"; }
+"$decode" --profile room "$out/office.wav" >"$out/decoded" || fail "nava_decode --profile room failed"
+for p in 01020304 a0b0c0d0; do
+  grep -q "\"kind\": \"packet\".*\"data\": \"$p\"" "$out/decoded" || { cat "$out/decoded"; fail "room profile: packet $p not decoded"; }
+done
+
+# The modem tools' profile errors.
+tool=$encode
+expect_error "--profile: expected nava or room, got loud" --profile loud --out "$out/x.wav" 01020304
+expect_error "--mark sets the nava profile's FSK; the room profile has its own tones" --profile room --mark 2000 --out "$out/x.wav" 01020304
+expect_error "profile room: sample rate 8000 Hz cannot carry its band" --profile room --rate 8000 --out "$out/x.wav" 01020304
+tool=$decode
+expect_error "--profile: expected nava or room, got Room" --profile Room "$out/office.wav"
+"$encode" --profile nava --rate 8000 --out "$out/narrow.wav" 01020304 || fail "nava_encode at 8000 Hz failed"
+expect_error "$out/narrow.wav: profile room: sample rate 8000 Hz cannot carry its band" --profile room "$out/narrow.wav"
 [ ! -e "$out/x.wav" ] || fail "a failed run wrote its output"
 echo "nava_room checks: all passed"

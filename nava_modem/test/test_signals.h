@@ -1,9 +1,9 @@
 #pragma once
 
-// Test-only impairments for the FSK receiver's tests: packets of random data, a room's
-// reverberation (a direct impulse plus an exponentially decaying Gaussian tail), a spectral
-// tilt between the two tones, white noise at an in-band SNR, a motor's whine. Seeded, so that
-// a test sees the same audio every run.
+// Test-only impairments for the FSK receiver's tests, beside nava_room's renderer (rooms):
+// packets of random data, a spectral tilt between the two tones as a shelf or a peaking cut
+// (biquads, as sox's equalizer), white noise at an in-band SNR. Seeded, so
+// that a test sees the same audio every run.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -15,73 +15,6 @@
 #include "nava_modem/fsk_modulator.h"
 
 namespace nava_modem::test_signals {
-
-// In place, radix 2; `inverse` leaves the 1/N scaling to the caller.
-inline void Fft(std::vector<std::complex<double>>& a, bool inverse) {
-  const std::size_t n = a.size();
-  for (std::size_t i = 1, j = 0; i < n; ++i) {
-    std::size_t bit = n >> 1;
-    for (; j & bit; bit >>= 1) j ^= bit;
-    j ^= bit;
-    if (i < j) std::swap(a[i], a[j]);
-  }
-  for (std::size_t len = 2; len <= n; len <<= 1) {
-    const double angle = 2.0 * M_PI / static_cast<double>(len) * (inverse ? 1.0 : -1.0);
-    const std::complex<double> w_len(std::cos(angle), std::sin(angle));
-    for (std::size_t i = 0; i < n; i += len) {
-      std::complex<double> w(1.0, 0.0);
-      for (std::size_t k = 0; k < len / 2; ++k) {
-        const std::complex<double> u = a[i + k], v = a[i + k + len / 2] * w;
-        a[i + k] = u + v;
-        a[i + k + len / 2] = u - v;
-        w *= w_len;
-      }
-    }
-  }
-}
-
-// The signal convolved with h (output as long as the signal plus h).
-inline std::vector<float> Convolve(const std::vector<float>& x, const std::vector<double>& h) {
-  std::size_t n = 1;
-  while (n < x.size() + h.size()) n <<= 1;
-  std::vector<std::complex<double>> a(n), b(n);
-  for (std::size_t k = 0; k < x.size(); ++k) a[k] = x[k];
-  for (std::size_t k = 0; k < h.size(); ++k) b[k] = h[k];
-  Fft(a, false);
-  Fft(b, false);
-  for (std::size_t k = 0; k < n; ++k) a[k] *= b[k];
-  Fft(a, true);
-  std::vector<float> y(x.size() + h.size() - 1);
-  for (std::size_t k = 0; k < y.size(); ++k) y[k] = static_cast<float>(a[k].real() / static_cast<double>(n));
-  return y;
-}
-
-// A room's impulse response: the direct sound (1 at 0), then from `onset_s` a diffuse tail of
-// Gaussian noise whose energy decays 60 dB in rt60_s, scaled so that the direct energy over
-// the tail's is drr_db.
-inline std::vector<double> RoomResponse(double sample_rate, double rt60_s, double drr_db, unsigned seed,
-                                        double onset_s = 0.001) {
-  const std::size_t onset = static_cast<std::size_t>(onset_s * sample_rate);
-  const std::size_t length = onset + static_cast<std::size_t>(rt60_s * sample_rate);
-  std::vector<double> h(length, 0.0);
-  h[0] = 1.0;
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  double energy = 0.0;
-  for (std::size_t k = onset; k < length; ++k) {
-    const double t = (k - onset) / sample_rate;
-    h[k] = g(rng) * std::exp(-3.0 * std::log(10.0) * t / rt60_s);  // amplitude: -60 dB at rt60
-    energy += h[k] * h[k];
-  }
-  const double scale = std::sqrt(std::pow(10.0, -drr_db / 10.0) / energy);
-  for (std::size_t k = onset; k < length; ++k) h[k] *= scale;
-  return h;
-}
-
-inline std::vector<float> Reverberate(const std::vector<float>& x, double sample_rate, double rt60_s, double drr_db,
-                                      unsigned seed) {
-  return Convolve(x, RoomResponse(sample_rate, rt60_s, drr_db, seed));
-}
 
 // A biquad (direct form I).
 struct Biquad {
@@ -150,20 +83,6 @@ inline void AddNoise(std::vector<float>& x, double reference_power, double snr_d
   std::mt19937 rng(seed);
   std::normal_distribution<double> g(0.0, sigma);
   for (float& v : x) v += static_cast<float>(g(rng));
-}
-
-// A motor's whine: a fundamental wandering slowly around `hz` with its harmonics up to 5 kHz,
-// each harmonic at `amplitude`.
-inline void AddWhine(std::vector<float>& x, double hz, double amplitude, double sample_rate) {
-  double phase = 0.0;
-  for (std::size_t n = 0; n < x.size(); ++n) {
-    const double t = n / sample_rate;
-    const double f = hz * (1.0 + 0.03 * std::sin(2.0 * M_PI * 0.7 * t));
-    phase += 2.0 * M_PI * f / sample_rate;
-    double v = 0.0;
-    for (int h = 1; h * hz * 1.03 < 5000.0; ++h) v += std::sin(h * phase + h);
-    x[n] += static_cast<float>(amplitude * v);
-  }
 }
 
 inline std::vector<std::vector<std::uint8_t>> RandomPayloads(int count, unsigned seed) {

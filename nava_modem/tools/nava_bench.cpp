@@ -166,6 +166,7 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
   const std::string dir = TempDir(args, args.String("--dir", ""));
   const std::string which = args.String("--profile", "both");
   const std::string minimodem = args.String("--minimodem", "minimodem");
+  const std::string plot = args.String("--plot", dir + "/delivery_vs_drr.png");
   ModemOptions options = ModemArgs(args);
   args.CheckAllUsed();
   std::vector<Profile> profiles;
@@ -176,7 +177,6 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
   } else {
     args.Fail(std::string("--profile: expected both, ") + kProfileNames + ", got " + which);
   }
-  const std::string plot = args.String("--plot", dir + "/delivery_vs_drr.png");
   Decoders decoders;
   if (minimodem != "none") decoders.minimodem = minimodem;
   const bool has_nava = std::count(profiles.begin(), profiles.end(), Profile::kNava) > 0;
@@ -327,8 +327,8 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
 
 int main(int argc, char** argv) {
   const std::string usage = std::string(
-      "nava_bench [--rooms] [--profile nava|room|both] [--packets 60] [--plot-packets 30] [--plot FILE.png] [--seed 1] "
-      "[--snr-min -12] [--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage;
+      "nava_bench [--rooms] [--packets 60] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
   const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms"});
   return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);
 }
