@@ -24,6 +24,11 @@ constexpr double kBusyMinimum = kSymbolSeconds;
 // The envelope around each chirp's peak lined up to measure their distance: the direct sound
 // and the early reflections, and lags up to a late reflection's delay either way.
 constexpr double kAlignBefore = 0.010, kAlignAfter = 0.030, kAlignReach = 0.012;
+// A chirp's missing partner is looked for where it must be: the strongest matched-filter
+// output there counts when it is this many times the mean output before it. Far below the
+// detector's own threshold: the window is narrow, and the CRC judges what is decoded.
+constexpr double kSearchRatio = 4.0;
+constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
 
 std::size_t PowerOfTwoAtLeast(double n) {
   std::size_t size = 1;
@@ -81,7 +86,7 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
   history_.assign(size, 0.0f);
   history_mask_ = size - 1;
   level_step_ = std::max<std::int64_t>(1, std::llround(kBusyStepSeconds * modem.sample_rate));
-  fft_ = std::make_unique<Fft>(static_cast<std::size_t>(kSymbolSeconds * modem.sample_rate * (1.0 + options_.max_rate_error)) + 2);
+  fft_ = std::make_unique<Fft>(static_cast<std::size_t>(kSymbolSeconds * modem.sample_rate * (1.0 + MaxStretchError())) + 2);
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
 
@@ -133,8 +138,17 @@ void RoomReceiver::Flush(std::vector<RxEvent>& events) {
   Process(silence.data(), silence.size(), events);
 }
 
+void RoomReceiver::Emit(RxEvent packet, double post, std::vector<RxEvent>& events) {
+  // The packet's chirps, their reflections and anything heard inside it begin nothing more.
+  decoded_until_ = post + static_cast<double>(detector_.length());
+  while (!heard_.empty() && heard_.front().peak.sample < decoded_until_) heard_.pop_front();
+  events.push_back(std::move(packet));
+  busy_.FrameFound();
+}
+
 void RoomReceiver::OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events) {
   ExpireChirps(static_cast<std::int64_t>(peak.sample), events);
+  if (peak.sample < decoded_until_) return;
   const double shortest = packet_length_ * (1.0 - options_.max_rate_error);
   const double longest = packet_length_ * (1.0 + options_.max_rate_error);
   bool failed_post = false;
@@ -143,22 +157,60 @@ void RoomReceiver::OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events) 
     if (d < shortest || d > longest) continue;
     RxEvent ev = Decode(it->peak, peak);
     if (ev.kind == RxEvent::Kind::kPacket) {
-      // Chirps up to the packet's first can no longer begin anything.
-      heard_.erase(heard_.begin(), it + 1);
-      events.push_back(std::move(ev));
-      busy_.FrameFound();
+      Emit(std::move(ev), peak.sample, events);
       return;
     }
     if (!it->failure || ev.quality > it->failure->quality) it->failure = std::move(ev);
     failed_post = true;
   }
+  if (!failed_post) {
+    // No chirp heard where this one's partner would begin: the first chirp may have been too
+    // faint for the detector on its own (a packet's second chirp, found over a reverberant
+    // tail of data, is often the fainter). Look for it where it must be.
+    if (const std::optional<ChirpPeak> pre = StrongestIn(std::max(decoded_until_, peak.sample - longest), peak.sample - shortest)) {
+      RxEvent ev = Decode(*pre, peak);
+      if (ev.kind == RxEvent::Kind::kPacket) {
+        Emit(std::move(ev), peak.sample, events);
+        return;
+      }
+    }
+  }
   heard_.push_back({peak, failed_post, std::nullopt});
 }
 
+std::optional<ChirpPeak> RoomReceiver::StrongestIn(double from, double to) const {
+  const std::int64_t first = std::max<std::int64_t>(0, std::llround(from)), last = std::llround(to);
+  if (last <= first || last >= detector_.computed()) return std::nullopt;
+  ChirpPeak best;
+  for (std::int64_t n = first; n <= last; ++n) {
+    const double p = detector_.Envelope(n);
+    if (p > best.power) best = {static_cast<double>(n), 0.0, p};
+  }
+  // Against the filter's mean output before the window, as the detector judges.
+  const std::int64_t guard = std::llround(kSearchGuard * modem_.sample_rate);
+  const std::int64_t span = std::llround(kSearchBackground * modem_.sample_rate);
+  double sum = 0.0;
+  for (std::int64_t n = first - guard - span; n < first - guard; ++n) sum += detector_.Envelope(n);
+  best.ratio = best.power / std::max(sum / static_cast<double>(span), 1e-20);
+  if (best.ratio < kSearchRatio) return std::nullopt;
+  return best;
+}
+
 void RoomReceiver::ExpireChirps(std::int64_t now, std::vector<RxEvent>& events) {
+  const double shortest = packet_length_ * (1.0 - options_.max_rate_error);
   const double longest = packet_length_ * (1.0 + options_.max_rate_error);
   while (!heard_.empty() && heard_.front().peak.sample + longest < now) {
     const Heard& h = heard_.front();
+    std::optional<ChirpPeak> post;
+    if (!h.failure && !h.failed_post) post = StrongestIn(h.peak.sample + shortest, h.peak.sample + longest);
+    if (post) {
+      // The second chirp where it must be, too faint for the detector on its own.
+      RxEvent ev = Decode(h.peak, *post);
+      if (ev.kind == RxEvent::Kind::kPacket) {
+        Emit(std::move(ev), post->sample, events);
+        continue;
+      }
+    }
     if (h.failure) {
       events.push_back(*h.failure);
       busy_.FrameFound();
@@ -220,6 +272,15 @@ RxEvent RoomReceiver::Decode(const ChirpPeak& pre, const ChirpPeak& post) {
   const double fs = modem_.sample_rate;
   // The sender's durations over ours: symbol windows are this much longer, tones this much lower.
   const double stretch = (AlignedPost(pre, post) - pre.sample) / packet_length_;
+  if (std::abs(stretch - 1.0) > MaxStretchError()) {
+    // Lined up beyond any clock we look for: not a packet's two chirps.
+    RxEvent ev;
+    ev.noise = RxEvent::Noise::kBadCrc;
+    ev.start = pre.sample / fs;
+    ev.end = (post.sample + detector_.length()) / fs;
+    ev.level_db = 10.0 * std::log10(pre.power + 1e-20);
+    return ev;
+  }
   const int length = static_cast<int>(std::lround(kSymbolSeconds * fs * stretch));
   std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins);
   for (int s = 0; s < kSymbols; ++s) {

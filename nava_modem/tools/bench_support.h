@@ -122,6 +122,7 @@ inline std::string SelfDir() {
 struct CleanSignal {
   std::vector<float> samples;
   std::vector<std::string> sent;
+  std::vector<std::size_t> ends;  // where each packet's gap after it ends
   double seconds = 0.0;
 };
 inline CleanSignal RandomPackets(const ModemProfile& profile, int packets, double gap, double jitter, std::mt19937& rng) {
@@ -137,6 +138,7 @@ inline CleanSignal RandomPackets(const ModemProfile& profile, int packets, doubl
     const std::vector<float> burst = profile.ModulatePacket(data);
     c.samples.insert(c.samples.end(), burst.begin(), burst.end());
     c.samples.insert(c.samples.end(), static_cast<std::size_t>((gap + extra(rng)) * rate), 0.0f);
+    c.ends.push_back(c.samples.size());
   }
   c.seconds = c.samples.size() / rate;
   return c;

@@ -3,14 +3,14 @@
 //
 //   nava_bench [--profile nava|room] [--packets 60] [--seed 1] [--snr-min -12] [--snr-max 0]
 //              [--dir DIR] [--minimodem minimodem|none] [modem options]
-//   nava_bench --rooms [--profile nava|room|both] [--packets 60] [--plot-packets 30]
+//   nava_bench --rooms [--profile nava|room|both] [--packets 60] [--rooms-per-row 6] [--plot-packets 30]
 //              [--plot FILE.png] [--seed 1] [--rate 48000] [--dir DIR] [--minimodem minimodem|none]
 //
 // Without --rooms: a WAV of N random packets for every full-band SNR (tone power over
 // white-noise power across the whole band) from --snr-max down to --snr-min in 1 dB steps.
 // With --rooms: the same packets through nava_room's renderer under each room condition of
 // room_conditions.h (reverberation, speech, a motor whine, tilt, clock offset, an office, all at
-// once), for each profile, and a PNG of delivery against the direct-to-reverberant ratio for
+// once), for each profile, the packets of a row spread over several rooms (seeds), and a PNG of delivery against the direct-to-reverberant ratio for
 // RT60 0.3, 0.6 and 1.0 s. Either way each file is decoded by nava_decode (beside this program)
 // and by minimodem as child processes, and the table gives the packets each decoded correctly,
 // those decoded wrong (CRC-passing but never sent), and each decoder's CPU time; it ends with
@@ -162,6 +162,8 @@ struct RoomRow {
 int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
   const int packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
   const int plot_packets = static_cast<int>(args.Int("--plot-packets", 30, 0, 100000));
+  const int rooms_per_row = static_cast<int>(args.Int("--rooms-per-row", 6, 1, 1000));
+  if (rooms_per_row > std::min(packets, std::max(1, plot_packets))) args.Fail("--rooms-per-row: expected at most the packets per row and per plot point");
   const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   const std::string dir = TempDir(args, args.String("--dir", ""));
   const std::string which = args.String("--profile", "both");
@@ -194,7 +196,26 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
   auto measure = [&](Profile p, const CleanSignal& signal, RoomOptions room, bool with_speech, const std::string& name,
                      RoomRow& row) {
     TiltOverBand(room, p == Profile::kNava, options);
-    const std::vector<float> heard = RenderRoom(signal.samples, options.sample_rate, room, with_speech ? speech : std::vector<float>{});
+    // The packets are spread over several rooms (seeds): one room's response at a few
+    // frequencies (a random fade of each) decides much, and a row should not be one room's luck.
+    std::vector<float> heard;
+    const std::size_t packets_in = signal.ends.size();
+    for (int k = 0; k < rooms_per_row; ++k) {
+      const std::size_t first = k == 0 ? 0 : signal.ends[packets_in * k / rooms_per_row - 1];
+      const std::size_t last = signal.ends[packets_in * (k + 1) / rooms_per_row - 1];
+      const std::vector<float> part(signal.samples.begin() + static_cast<std::ptrdiff_t>(first),
+                                    signal.samples.begin() + static_cast<std::ptrdiff_t>(last));
+      RoomOptions this_room = room;
+      this_room.seed = room.seed * 31u + static_cast<unsigned>(k);
+      std::vector<float> talk;
+      if (with_speech) {  // a different stretch of the speech for each room
+        const std::size_t shift = (static_cast<std::size_t>(k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10)) % speech.size();
+        talk.assign(speech.begin() + static_cast<std::ptrdiff_t>(shift), speech.end());
+        talk.insert(talk.end(), speech.begin(), speech.begin() + static_cast<std::ptrdiff_t>(shift));
+      }
+      const std::vector<float> rendered = RenderRoom(part, options.sample_rate, this_room, talk);
+      heard.insert(heard.end(), rendered.begin(), rendered.end());
+    }
     const std::string file = dir + "/" + name + "_" + ProfileName(p) + ".wav";
     WriteWavFile(file, heard, options.sample_rate);
     const double seconds = heard.size() / options.sample_rate;
@@ -209,7 +230,8 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
     }
   };
 
-  std::printf("nava_bench --rooms: %d packets per row at %.0f Hz, files in %s\n", packets, options.sample_rate, dir.c_str());
+  std::printf("nava_bench --rooms: %d packets per row over %d rooms at %.0f Hz, files in %s\n", packets, rooms_per_row,
+              options.sample_rate, dir.c_str());
   std::printf("%-26s %9s %5s %9s %5s %9s %5s\n", "condition", "nava", "bad", "minimodem", "bad", "room", "bad");
   auto cell = [&](const Decoded& d) {
     char text[32];
@@ -327,7 +349,7 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
 
 int main(int argc, char** argv) {
   const std::string usage = std::string(
-      "nava_bench [--rooms] [--packets 60] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
   const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms"});
   return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);

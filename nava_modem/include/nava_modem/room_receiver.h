@@ -26,7 +26,8 @@ namespace nava_modem {
 //
 // A chirp is paired with every earlier one at the packet's length (within the clock tolerance)
 // and each such pair is decoded until one passes the CRC: speech and knocks can pass for a
-// chirp, and the first pair found need not be the packet. Noise reports: a chirp whose pairs
+// chirp, and the first pair found need not be the packet. A chirp without a partner has it
+// looked for where it must be, below the detector's threshold. Noise reports: a chirp whose pairs
 // all failed the CRC is BAD_CRC; a chirp with no partner at all is ONE_BYTE (a packet begun
 // and never ended, or a sound that looked like a chirp); busy air in which no chirp was heard
 // is ZERO_BYTE.
@@ -45,9 +46,14 @@ class RoomReceiver : public PacketReceiver {
  private:
   void ProcessPiece(const float* samples, std::size_t count, std::vector<RxEvent>& events);
   void OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events);
+  // Reports a decoded packet whose second chirp began at `post`.
+  void Emit(RxEvent packet, double post, std::vector<RxEvent>& events);
   // Reports the chirps that can no longer pair with a later one.
   void ExpireChirps(std::int64_t now, std::vector<RxEvent>& events);
   RxEvent Decode(const ChirpPeak& pre, const ChirpPeak& post);
+  // The matched filter's strongest output between two sample positions, as a chirp, if it
+  // stands out from the output before them (see kSearchRatio).
+  std::optional<ChirpPeak> StrongestIn(double from, double to) const;
   // Where the second chirp starts, to a fraction of a sample, as the lag that best lines up the
   // matched filter's envelope around the two peaks: in a reverberant room the strongest peak
   // can be the direct sound in one chirp and a reflection in the other, but the room (and so
@@ -55,6 +61,8 @@ class RoomReceiver : public PacketReceiver {
   double AlignedPost(const ChirpPeak& pre, const ChirpPeak& post) const;
   // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
   void SymbolEnergies(std::int64_t first, int length, double* energies);
+  // The largest clock error a decode accepts: the pairing's, and the alignment's reach.
+  double MaxStretchError() const { return options_.max_rate_error + 0.01; }
   float Sample(std::int64_t n) const { return history_[static_cast<std::size_t>(n) & history_mask_]; }
 
   ModemOptions modem_;
@@ -74,6 +82,7 @@ class RoomReceiver : public PacketReceiver {
     std::optional<RxEvent> failure;   // the best failed decode it began
   };
   std::deque<Heard> heard_;
+  double decoded_until_ = -1.0;  // the end of the last packet decoded, in samples
   std::int64_t level_step_, level_count_ = 0;
   struct Fft;
   std::unique_ptr<Fft> fft_;
