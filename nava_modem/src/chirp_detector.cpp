@@ -7,12 +7,20 @@
 
 #include <fftw3.h>
 
+#include "nava_modem/noise_spectrum.h"
+
 namespace nava_modem {
 namespace {
 
 // Output power (a chirp of amplitude A gives A^2) below which nothing counts: -80 dB, digital
 // silence and dither.
 constexpr double kFloor = 1e-8;
+// The noise spectrum is smoothed over this much either side: far wider than the room profile's
+// 25 Hz tone spacing, whose comb would otherwise be pressed into the chirp as false echoes 40 ms
+// apart, and narrow against the band, so that a whine's neighbourhood is turned down.
+constexpr double kSmoothHz = 250.0;
+// How far the whitening's impulse response reaches either side (gains smooth over 500 Hz).
+constexpr double kWhiteningSpan = 0.02;
 // Renew the running background sum this often against rounding.
 constexpr std::int64_t kRenewEvery = 1 << 16;
 
@@ -56,8 +64,9 @@ struct ChirpDetector::Fftw {
 ChirpDetector::ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options)
     : options_(options), sample_rate_(sample_rate), chirp_length_(chirp.size()) {
   if (chirp.empty()) throw std::invalid_argument("chirp detector: empty chirp");
-  fft_size_ = PowerOfTwoAtLeast(2.0 * chirp_length_);
-  hop_ = fft_size_ - chirp_length_ + 1;
+  margin_ = static_cast<std::size_t>(std::ceil(kWhiteningSpan * sample_rate));
+  fft_size_ = PowerOfTwoAtLeast(2.0 * (chirp_length_ + 2 * margin_));
+  hop_ = fft_size_ - chirp_length_ - 2 * margin_ + 1;
   template_energy_ = 0.0;
   for (float c : chirp) template_energy_ += static_cast<double>(c) * c;
   fftw_ = std::make_unique<Fftw>(fft_size_);
@@ -65,7 +74,16 @@ ChirpDetector::ChirpDetector(const std::vector<float>& chirp, double sample_rate
   std::copy(chirp.begin(), chirp.end(), fftw_->real);
   fftw_execute(fftw_->forward);
   fftw_->chirp_conj.resize(fft_size_ / 2 + 1);
-  for (std::size_t k = 0; k <= fft_size_ / 2; ++k) fftw_->chirp_conj[k] = {fftw_->spectrum[k][0], -fftw_->spectrum[k][1]};
+  template_spectrum_energy_ = 0.0;
+  for (std::size_t k = 0; k <= fft_size_ / 2; ++k) {
+    fftw_->chirp_conj[k] = {fftw_->spectrum[k][0], -fftw_->spectrum[k][1]};
+    template_spectrum_energy_ += std::norm(fftw_->chirp_conj[k]);
+  }
+  noise_ = std::make_unique<NoiseSpectrum>(
+      fft_size_ / 2 + 1, static_cast<std::size_t>(std::ceil(kSmoothHz * fft_size_ / sample_rate)),
+      static_cast<std::size_t>(std::ceil(options_.whitening_seconds * sample_rate / hop_)));
+  power_.resize(fft_size_ / 2 + 1);
+  gain_.resize(fft_size_ / 2 + 1);
   input_.assign(fft_size_, 0.0);
   const std::size_t ring = PowerOfTwoAtLeast(options_.history_seconds * sample_rate + fft_size_ +
                                              (options_.background_seconds + options_.guard_seconds) * sample_rate);
@@ -92,7 +110,7 @@ void ChirpDetector::Process(const float* samples, std::size_t count, std::vector
     count -= take;
     if (input_fill_ < fft_size_) break;
     RunBlock();
-    for (std::size_t k = 0; k < hop_; ++k) {
+    for (std::size_t k = margin_; k < margin_ + hop_; ++k) {
       const std::int64_t n = block_start_ + static_cast<std::int64_t>(k);
       Judge(n, envelope_[static_cast<std::size_t>(n) & envelope_mask_], peaks);
     }
@@ -108,24 +126,44 @@ void ChirpDetector::RunBlock() {
   std::copy(input_.begin(), input_.end(), f.real);
   fftw_execute(f.forward);
   const std::size_t half = fft_size_ / 2;
+  // Whitening by the noise heard before this block: each frequency weighs by the inverse of
+  // its noise power, so a whine, a rumble or pink noise counts no more than white noise of the
+  // same level. A floor at a thousandth of the mean keeps near-silent frequencies from being
+  // blown up; the gains are normalised over the chirp's spectrum, so that the output keeps its
+  // scale from block to block (the CFAR compares blocks) and only the noise's shape matters.
+  const std::vector<double>& noise = noise_->noise();
+  double mean = 0.0;
+  for (double n : noise) mean += n;
+  mean /= static_cast<double>(noise.size());
+  double weighted = 0.0;
+  for (std::size_t k = 0; k <= half; ++k) {
+    gain_[k] = 1.0 / (noise[k] + 1e-3 * mean + 1e-30);
+    weighted += std::norm(f.chirp_conj[k]) * gain_[k];
+  }
+  const double normal = weighted > 0.0 ? template_spectrum_energy_ / weighted : 1.0;
+  for (std::size_t k = 0; k <= half; ++k) power_[k] = std::norm(std::complex<double>(f.spectrum[k][0], f.spectrum[k][1]));
+  noise_->Add(power_);
   // The correlation's analytic signal: positive frequencies doubled, negative ones dropped.
   for (std::size_t k = 0; k <= half; ++k) {
     const std::complex<double> x(f.spectrum[k][0], f.spectrum[k][1]);
-    const std::complex<double> y = x * f.chirp_conj[k] * ((k == 0 || k == half) ? 1.0 : 2.0);
+    const std::complex<double> y = x * std::sqrt(gain_[k] * normal) * f.chirp_conj[k] * ((k == 0 || k == half) ? 1.0 : 2.0);
     f.analytic[k][0] = y.real();
     f.analytic[k][1] = y.imag();
   }
   for (std::size_t k = half + 1; k < fft_size_; ++k) f.analytic[k][0] = f.analytic[k][1] = 0.0;
   fftw_execute(f.backward);
-  // Lag k of the circular correlation is exact for k <= fft_size_ - chirp_length_: the chirp
-  // starting at block_start_ + k. Scaled so that a chirp of amplitude A gives A^2.
+  // Lag k of the circular correlation, the chirp starting at block_start_ + k, is exact for
+  // margin_ <= k <= fft_size_ - chirp_length_ - margin_: the whitening's (zero-phase) impulse
+  // response lengthens the chirp by up to margin_ either side, and what is longer wraps around
+  // the block (a chirp at a block's end would show up as false chirps at its start). Scaled so
+  // that a chirp of amplitude A in white noise gives A^2.
   const double scale = 1.0 / (static_cast<double>(fft_size_) * template_energy_);
-  for (std::size_t k = 0; k < hop_; ++k) {
+  for (std::size_t k = margin_; k < margin_ + hop_; ++k) {
     const double re = f.output[k][0] * scale, im = f.output[k][1] * scale;
     const std::int64_t n = block_start_ + static_cast<std::int64_t>(k);
     envelope_[static_cast<std::size_t>(n) & envelope_mask_] = static_cast<float>(re * re + im * im);
   }
-  computed_ = block_start_ + static_cast<std::int64_t>(hop_);
+  computed_ = block_start_ + static_cast<std::int64_t>(margin_ + hop_);
 }
 
 void ChirpDetector::Judge(std::int64_t n, double p, std::vector<ChirpPeak>& peaks) {

@@ -7,6 +7,8 @@
 
 namespace nava_modem {
 
+class NoiseSpectrum;
+
 struct ChirpDetectorOptions {
   // A peak of the matched filter's output power counts as a chirp when it exceeds the mean
   // output over the preceding `background_seconds` by this factor (CFAR). Noise alone gives
@@ -21,6 +23,9 @@ struct ChirpDetectorOptions {
   double peak_window_seconds = 0.02;
   // Envelope kept for looking back (pairing chirps, refining their distance).
   double history_seconds = 2.5;
+  // The input is whitened by the noise's spectrum before the matched filter (NoiseSpectrum:
+  // the least power at each frequency over about this long).
+  double whitening_seconds = 3.0;
 };
 
 struct ChirpPeak {
@@ -29,9 +34,9 @@ struct ChirpPeak {
   double power = 0.0;     // peak output power
 };
 
-// A matched filter for one known chirp over an endless stream, by FFT overlap-save (FFTW),
-// with the analytic (complex) output so that its magnitude is the envelope, and CFAR peak
-// picking on the envelope's power.
+// A matched filter for one known chirp over an endless stream, by FFT overlap-save (FFTW), on
+// the input whitened by the noise's spectrum, with the analytic (complex) output so that its
+// magnitude is the envelope, and CFAR peak picking on the envelope's power.
 class ChirpDetector {
  public:
   ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options);
@@ -58,8 +63,10 @@ class ChirpDetector {
 
   ChirpDetectorOptions options_;
   double sample_rate_;
-  std::size_t chirp_length_, fft_size_, hop_;
-  double template_energy_;
+  std::size_t chirp_length_, fft_size_, hop_, margin_;
+  double template_energy_, template_spectrum_energy_;
+  std::unique_ptr<NoiseSpectrum> noise_;
+  std::vector<double> power_, gain_;  // per bin: this block's power, the whitening gains
   struct Fftw;
   std::unique_ptr<Fftw> fftw_;
   std::vector<double> input_;        // the last fft_size_ samples
