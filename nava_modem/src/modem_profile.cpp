@@ -12,38 +12,23 @@
 namespace nava_modem {
 namespace {
 
-class NavaProfile : public ModemProfile {
+// A profile from its modulator and receiver classes (each built from the modem options).
+template <Profile kKind, typename Modulator, typename Receiver>
+class ProfileOf : public ModemProfile {
  public:
-  explicit NavaProfile(const ModemOptions& options) : ModemProfile(options), modulator_(options) {}
-  Profile profile() const override { return Profile::kNava; }
+  explicit ProfileOf(const ModemOptions& options) : ModemProfile(options), modulator_(options) {}
+  Profile profile() const override { return kKind; }
   std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const override {
     return modulator_.ModulatePacket(data);
   }
   std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
-    return std::make_unique<FskReceiver>(options_, options);
+    return std::make_unique<Receiver>(options_, options);
   }
-  double Airtime() const override { return ProfileAirtime(Profile::kNava, options_); }
-  MacTiming Timing() const override { return ProfileTiming(Profile::kNava, options_); }
+  double Airtime() const override { return ProfileAirtime(kKind, options_); }
+  MacTiming Timing() const override { return ProfileTiming(kKind, options_); }
 
  private:
-  FskModulator modulator_;
-};
-
-class RoomProfile : public ModemProfile {
- public:
-  explicit RoomProfile(const ModemOptions& options) : ModemProfile(options), modulator_(options) {}
-  Profile profile() const override { return Profile::kRoom; }
-  std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const override {
-    return modulator_.ModulatePacket(data);
-  }
-  std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
-    return std::make_unique<RoomReceiver>(options_, options);
-  }
-  double Airtime() const override { return ProfileAirtime(Profile::kRoom, options_); }
-  MacTiming Timing() const override { return ProfileTiming(Profile::kRoom, options_); }
-
- private:
-  RoomModulator modulator_;
+  Modulator modulator_;
 };
 
 }  // namespace
@@ -57,8 +42,8 @@ std::optional<Profile> ParseProfile(const std::string& name) {
 const char* ProfileName(Profile profile) { return profile == Profile::kNava ? "nava" : "room"; }
 
 std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& options) {
-  if (profile == Profile::kNava) return std::make_unique<NavaProfile>(options);
-  return std::make_unique<RoomProfile>(options);
+  if (profile == Profile::kNava) return std::make_unique<ProfileOf<Profile::kNava, FskModulator, FskReceiver>>(options);
+  return std::make_unique<ProfileOf<Profile::kRoom, RoomModulator, RoomReceiver>>(options);
 }
 
 MacTiming ProfileTiming(Profile profile, const ModemOptions& options) {

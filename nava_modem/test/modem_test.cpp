@@ -7,6 +7,7 @@
 #include "nava_modem/frame.h"
 #include "nava_modem/fsk_modulator.h"
 #include "nava_modem/fsk_receiver.h"
+#include "test_signals.h"
 
 namespace nava_modem {
 namespace {
@@ -33,14 +34,7 @@ std::vector<std::vector<std::uint8_t>> Packets(const std::vector<RxEvent>& event
   return out;
 }
 
-std::vector<std::vector<std::uint8_t>> RandomPayloads(int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> byte(0, 255);
-  std::vector<std::vector<std::uint8_t>> out(count, std::vector<std::uint8_t>(kDataBytes));
-  for (auto& p : out)
-    for (auto& b : p) b = static_cast<std::uint8_t>(byte(rng));
-  return out;
-}
+using test_signals::RandomPayloads;
 
 // Packets of random data, sent with the sender's options, received with ours.
 void ExpectRoundTrip(const ModemOptions& sender, const ModemOptions& receiver, double dc = 0.0) {

@@ -11,20 +11,13 @@
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_code.h"
 #include "nava_modem/room_phy.h"
+#include "test_signals.h"
 
 namespace nava_modem {
 namespace {
 
 using Payloads = std::vector<std::vector<std::uint8_t>>;
-
-Payloads RandomPayloads(int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> byte(0, 255);
-  Payloads out(count, std::vector<std::uint8_t>(kDataBytes));
-  for (auto& p : out)
-    for (auto& b : p) b = static_cast<std::uint8_t>(byte(rng));
-  return out;
-}
+using test_signals::RandomPayloads;
 
 // Packets with gaps between them, as a sender would play them.
 std::vector<float> Play(const ModemProfile& profile, const Payloads& payloads, double gap) {
