@@ -116,12 +116,15 @@ std::size_t RingSize(double per_bit) {
 
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem), options_(options), filters_(modem),
-      per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate) {
+      per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
+      equalizer_(modem) {
   ValidateModemOptions(modem_);
   w_ = static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_));
   const std::size_t size = RingSize(per_bit_);
   m_.assign(size, 0.0f);
   s_.assign(size, 0.0f);
+  mc_.assign(size, 0.0f);
+  sc_.assign(size, 0.0f);
   mask_ = size - 1;
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
@@ -159,6 +162,8 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
   const std::int64_t n = n_;
   m_[n & mask_] = static_cast<float>(filters_.mark_power());
   s_[n & mask_] = static_cast<float>(filters_.space_power());
+  mc_[n & mask_] = std::complex<float>(static_cast<float>(filters_.mark_re()), static_cast<float>(filters_.mark_im()));
+  sc_[n & mask_] = std::complex<float>(static_cast<float>(filters_.space_re()), static_cast<float>(filters_.space_im()));
   const double d = D(n), e = E(n);
   // The break detector's running sums over the last w samples and the w before them.
   after_ += d - D(n - w_);
@@ -425,8 +430,11 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   double previous_soft = 1.0;
   double tail[2] = {model_.tail[0], model_.tail[1]};
   double heard[2][kFrameBits];  // MARK's and SPACE's filters at each bit
+  std::int64_t steps[kPacketBits];  // where each bit of the packet was read
+  for (int k = kFirstBit; k < kFrameStart; ++k) steps[k - kFirstBit] = std::llround(best_start + (k + 1) * best_period - 1.0);
   for (int k = kFrameStart; k < kEndBit; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
+    steps[k - kFirstBit] = at;
     const double d = D(at), e = E(at);
     // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
     // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
@@ -474,6 +482,21 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   ev.rate_error = per_bit_ / best_period - 1.0;
   std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, options_.max_fixed_bits);
   if (!repaired) repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+  if (!repaired) {
+    std::vector<std::complex<double>> complex_heard[2];
+    double at[kPacketBits];
+    for (int t = 0; t < 2; ++t) complex_heard[t].resize(kPacketBits);
+    for (int k = 0; k < kPacketBits; ++k) {
+      complex_heard[0][k] = MC(steps[k]);
+      complex_heard[1][k] = SC(steps[k]);
+      at[k] = static_cast<double>(steps[k]) * filters_.step();
+    }
+    const std::complex<double>* const ptrs[2] = {complex_heard[0].data(), complex_heard[1].data()};
+    for (const SoftFrame& s : equalizer_.Equalize(ptrs, at, hard, ev.rate_error)) {
+      repaired = RepairFrame(s, modem_.crc, options_.max_fixed_bits);
+      if (repaired) break;
+    }
+  }
   if (repaired) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);

@@ -1,11 +1,13 @@
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "nava_modem/bit_clock.h"
 #include "nava_modem/frame_repair.h"
+#include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
@@ -38,6 +40,9 @@ class FskReceiver : public PacketReceiver {
   // Before the first sample, the air was silent.
   double M(std::int64_t n) const { return n < 0 ? 0.0 : m_[static_cast<std::size_t>(n) & mask_]; }
   double S(std::int64_t n) const { return n < 0 ? 0.0 : s_[static_cast<std::size_t>(n) & mask_]; }
+  // The filters' complex outputs (for the equaliser).
+  std::complex<double> MC(std::int64_t n) const { return n < 0 ? 0.0 : std::complex<double>(mc_[static_cast<std::size_t>(n) & mask_]); }
+  std::complex<double> SC(std::int64_t n) const { return n < 0 ? 0.0 : std::complex<double>(sc_[static_cast<std::size_t>(n) & mask_]); }
   double D(std::int64_t n) const { return M(n) - S(n); }
   double E(std::int64_t n) const { return M(n) + S(n); }
   // What the break before a packet tells of how each tone arrives (see FitToneModel): each
@@ -82,6 +87,8 @@ class FskReceiver : public PacketReceiver {
   double seconds_per_step_;
   std::int64_t w_;    // steps in each half of the break detector
   std::vector<float> m_, s_;  // MARK^2 and SPACE^2, per step, a ring
+  std::vector<std::complex<float>> mc_, sc_;  // MARK and SPACE as complex amplitudes, a ring
+  FskEqualizer equalizer_;
   std::size_t mask_;
   std::int64_t n_ = 0;  // steps processed
   double after_ = 0.0, before_ = 0.0, after_power_ = 0.0, before_power_ = 0.0;  // break detector sums
