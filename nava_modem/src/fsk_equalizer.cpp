@@ -13,9 +13,10 @@ namespace {
 using Complex = std::complex<double>;
 constexpr double kPi = 3.141592653589793;
 // The taps: each filter sees its own tone from kEarly bits early (the bit clock a little late)
-// to kLate bits late (the early reflections reach 40 ms, 12 bits); the other tone only through
-// its sidelobes, from the bits around the present one.
-constexpr int kEarly = 1, kLate = 12, kCrossLate = 2;
+// to kLate bits late (the early reflections reach 40 ms, 12 bits; the diffuse tail's first
+// 8 bits after them still help in rooms with RT60 0.5 s); the other tone only through its
+// sidelobes, from the bits around the present one.
+constexpr int kEarly = 1, kLate = 20, kCrossLate = 2;
 constexpr int kOwnTaps = kEarly + kLate + 1;
 constexpr int kCrossTaps = kEarly + kCrossLate + 1;
 constexpr int kTaps = kOwnTaps + kCrossTaps;
@@ -33,6 +34,8 @@ constexpr double kRidge = 1e-3;
 constexpr double kOffsetSpan = 0.003;
 constexpr double kOffsetSteps[] = {0.0005, 0.0001, 0.00002};
 constexpr int kPasses = 4;
+// Start and stop bits (of 14) a first pass may get wrong and still be refitted.
+constexpr int kMaxMisframedFirst = 3;
 
 using Matrix = Eigen::Matrix<Complex, Eigen::Dynamic, kTaps>;
 using Square = Eigen::Matrix<Complex, kTaps, kTaps>;
@@ -61,8 +64,8 @@ struct Fit {
 
 FskEqualizer::FskEqualizer(const ModemOptions& modem) : modem_(modem) {}
 
-std::vector<SoftFrame> FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at,
-                                              const std::uint8_t* first, double frequency_error) {
+bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
+                            double frequency_error, const std::function<bool(const SoftFrame&)>& accept) const {
   const double freq[2] = {modem_.mark_hz, modem_.space_hz};
   // rot[t][tone]: how far a bit of `tone` turns the phase in filter t's frame.
   Complex rot[2][2];
@@ -108,7 +111,6 @@ std::vector<SoftFrame> FskEqualizer::Equalize(const std::complex<double>* const 
   int known_rows = 0;
   while (known_rows + kEarly < kPacketBits && KnownBit(known_rows + kEarly) >= 0) ++known_rows;
 
-  std::vector<SoftFrame> out;
   double offset = frequency_error;
   Vector taps[2];
   double noise[2];
@@ -123,31 +125,37 @@ std::vector<SoftFrame> FskEqualizer::Equalize(const std::complex<double>* const 
       g.diagonal().array() += ridge;
       fit[t].gram.compute(g);
     }
-    // The residual of both filters' fits for an offset: the sum of the logs of their residual
-    // powers (the likelihood with each filter's noise unknown).
+    // The offset: the one whose fits leave the least residual in both filters (the sum of the
+    // logs of their residual powers: the likelihood with each filter's noise unknown).
     Eigen::Matrix<Complex, Eigen::Dynamic, 1> z;
-    auto misfit = [&](double eps) {
-      double sum = 0.0;
-      for (int t = 0; t < 2; ++t) {
-        derotated(t, eps, z);
-        z.conservativeResize(rows);
-        const Vector b = fit[t].a.adjoint() * z;
-        const Vector h = fit[t].gram.solve(b);
-        const double rss = std::max(z.squaredNorm() - (b.adjoint() * h)(0, 0).real(), 1e-30);
-        sum += std::log(rss);
-      }
-      return sum;
-    };
     if (pass < 2) {
+      // Each grid's offsets in turn: the observations turned by a rotor per observation, so
+      // that the grid costs no sines.
       double center = pass == 0 ? frequency_error : offset, span = pass == 0 ? kOffsetSpan : kOffsetSteps[1];
+      Eigen::Matrix<Complex, Eigen::Dynamic, 1> turned[2], rotor[2];
       for (const double step : kOffsetSteps) {
         if (step > span) continue;
+        const double lowest = center - span;
+        for (int t = 0; t < 2; ++t) {
+          derotated(t, lowest, turned[t]);
+          turned[t].conservativeResize(rows);
+          rotor[t].resize(rows);
+          const double w = 2.0 * kPi * freq[t] / modem_.sample_rate * step;
+          for (int k = 0; k < rows; ++k) rotor[t](k) = std::polar(1.0, -w * (at[k] - at[0]));
+        }
         double best = std::numeric_limits<double>::infinity(), best_eps = center;
-        for (double eps = center - span; eps <= center + span + 1e-12; eps += step) {
-          const double m = misfit(eps);
-          if (m < best) {
-            best = m;
-            best_eps = eps;
+        const int points = static_cast<int>(std::lround(2.0 * span / step));
+        for (int i = 0; i <= points; ++i) {
+          double sum = 0.0;
+          for (int t = 0; t < 2; ++t) {
+            const Vector b = fit[t].a.adjoint() * turned[t];
+            const Vector h = fit[t].gram.solve(b);
+            sum += std::log(std::max(turned[t].squaredNorm() - (b.adjoint() * h)(0, 0).real(), 1e-30));
+            turned[t].array() *= rotor[t].array();
+          }
+          if (sum < best) {
+            best = sum;
+            best_eps = lowest + i * step;
           }
         }
         center = best_eps;
@@ -277,14 +285,17 @@ std::vector<SoftFrame> FskEqualizer::Equalize(const std::complex<double>* const 
       misframed += best->bits[kBreakBits + c * kBitsPerByte] != 0;
       misframed += best->bits[kBreakBits + c * kBitsPerByte + 9] != 1;
     }
-    if (misframed == 0) out.push_back(soft);
+    if (misframed == 0 && accept(soft)) return true;
+    // A first pass this far off is not a packet the later passes could save (a wrong clock,
+    // or noise), and they cost.
+    if (pass == 0 && misframed > kMaxMisframedFirst) return false;
     std::array<std::uint8_t, kPacketBits> decided = best->bits;
     for (int k = 0; k < kPacketBits; ++k)
       if (KnownBit(k) >= 0) decided[k] = static_cast<std::uint8_t>(KnownBit(k));
     if (pass > 0 && decided == bits) break;
     bits = decided;
   }
-  return out;
+  return false;
 }
 
 }  // namespace nava_modem

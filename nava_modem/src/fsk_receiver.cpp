@@ -373,11 +373,41 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   std::sort(candidates.begin(), candidates.end(), [](const ClockFit& a, const ClockFit& b) { return a.metric > b.metric; });
   if (candidates.size() > kClockHypotheses) candidates.resize(kClockHypotheses);
   RxEvent first;
+  std::int64_t first_at[kPacketBits];
+  std::uint8_t first_hard[kFrameBits];
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ClockFit fine = BestFit(candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, rate_step, 0.0005);
     RxEvent ev = ReadFrame(fine.start, fine.period);
     if (ev.kind == RxEvent::Kind::kPacket) return ev;
-    if (k == 0) first = ev;
+    if (k == 0) {
+      first = ev;
+      std::copy(read_at_, read_at_ + kPacketBits, first_at);
+      std::copy(read_hard_, read_hard_ + kFrameBits, first_hard);
+    }
+  }
+  // No clock read a frame: the room's echoes, perhaps. The equaliser models them on the best
+  // clock's readings (it is rarely another clock that an equalised packet needs, and the
+  // equaliser costs more than a read).
+  if (!candidates.empty()) {
+    std::complex<double> heard[2][kPacketBits];
+    double at[kPacketBits];
+    for (int k = 0; k < kPacketBits; ++k) {
+      heard[0][k] = MC(first_at[k]);
+      heard[1][k] = SC(first_at[k]);
+      at[k] = static_cast<double>(first_at[k]) * filters_.step();
+    }
+    const std::complex<double>* const outputs[2] = {heard[0], heard[1]};
+    std::optional<RepairedFrame> repaired;
+    equalizer_.Equalize(outputs, at, first_hard, first.rate_error, [&](const SoftFrame& soft) {
+      repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+      return repaired.has_value();
+    });
+    if (repaired) {
+      first.kind = RxEvent::Kind::kPacket;
+      first.noise = RxEvent::Noise{};
+      first.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);
+      first.fixed_bits = repaired->fixed_bits;
+    }
   }
   return first;
 }
@@ -430,11 +460,11 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   double previous_soft = 1.0;
   double tail[2] = {model_.tail[0], model_.tail[1]};
   double heard[2][kFrameBits];  // MARK's and SPACE's filters at each bit
-  std::int64_t steps[kPacketBits];  // where each bit of the packet was read
-  for (int k = kFirstBit; k < kFrameStart; ++k) steps[k - kFirstBit] = std::llround(best_start + (k + 1) * best_period - 1.0);
+  // Where each bit of the packet was read, for the equaliser.
+  for (int k = kFirstBit; k < kFrameStart; ++k) read_at_[k - kFirstBit] = std::llround(best_start + (k + 1) * best_period - 1.0);
   for (int k = kFrameStart; k < kEndBit; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
-    steps[k - kFirstBit] = at;
+    read_at_[k - kFirstBit] = at;
     const double d = D(at), e = E(at);
     // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
     // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
@@ -450,6 +480,7 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
     tail[1] = model_.decay * tail[1] + model_.gain * model_.level[1] * (1.0 - mark);
     const int j = k - kFrameStart, pos = j % kBitsPerByte;
     hard[j] = llr > 0.0;
+    read_hard_[j] = hard[j];
     if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(llr);
     power += e;
     quality += FilterSum(d, e);
@@ -482,21 +513,6 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   ev.rate_error = per_bit_ / best_period - 1.0;
   std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, options_.max_fixed_bits);
   if (!repaired) repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
-  if (!repaired) {
-    std::vector<std::complex<double>> complex_heard[2];
-    double at[kPacketBits];
-    for (int t = 0; t < 2; ++t) complex_heard[t].resize(kPacketBits);
-    for (int k = 0; k < kPacketBits; ++k) {
-      complex_heard[0][k] = MC(steps[k]);
-      complex_heard[1][k] = SC(steps[k]);
-      at[k] = static_cast<double>(steps[k]) * filters_.step();
-    }
-    const std::complex<double>* const ptrs[2] = {complex_heard[0].data(), complex_heard[1].data()};
-    for (const SoftFrame& s : equalizer_.Equalize(ptrs, at, hard, ev.rate_error)) {
-      repaired = RepairFrame(s, modem_.crc, options_.max_fixed_bits);
-      if (repaired) break;
-    }
-  }
   if (repaired) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);

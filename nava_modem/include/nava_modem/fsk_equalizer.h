@@ -2,6 +2,7 @@
 
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "nava_modem/frame.h"
@@ -41,11 +42,11 @@ class FskEqualizer {
   // heard[t][k], k = 0 .. kPacketBits - 1 (bit 0: the break's first SPACE bit): tone t's
   // (0 MARK, 1 SPACE) complex filter output at the end of bit k, taken at sample at[k].
   // `first`: first decisions on the kFrameBits frame bits. `frequency_error`: the sender's
-  // estimated clock offset (fraction). Returns soft decisions on the frame, one per pass of
-  // fitting and deciding whose start and stop bits all came out right (later ones after refits
-  // on the earlier decisions); none when no pass framed.
-  std::vector<SoftFrame> Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
-                                  double frequency_error);
+  // estimated clock offset (fraction). Each pass of fitting and deciding whose start and stop
+  // bits all came out right offers its soft decisions on the frame to `accept`, until it
+  // returns true (later passes refit on the earlier decisions). True when one was accepted.
+  bool Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
+                double frequency_error, const std::function<bool(const SoftFrame&)>& accept) const;
 
  private:
   ModemOptions modem_;

@@ -98,6 +98,9 @@ class FskReceiver : public PacketReceiver {
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
   ToneModel model_;          // of the packet being decoded
   std::vector<float> normalized_;
+  // The last ReadFrame's step for each bit of the packet, and its first decisions on the frame.
+  std::int64_t read_at_[kPacketBits] = {};
+  std::uint8_t read_hard_[kFrameBits] = {};
   std::int64_t normalized_start_ = 0;
   bool muted_ = false;
   double carrier_threshold_power_ = 0.0;  // the carrier threshold as a power
