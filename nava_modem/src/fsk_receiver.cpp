@@ -404,7 +404,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
     });
     if (repaired) {
       first.kind = RxEvent::Kind::kPacket;
-      first.noise = RxEvent::Noise{};
+      first.noise = RxEvent::Noise::kNone;
       first.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);
       first.fixed_bits = repaired->fixed_bits;
     }

@@ -22,7 +22,9 @@ namespace nava_modem {
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
 // against their levels and floors (read again from the frame itself, as a room colours the
 // break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
-// repairs up to two unsure bits.
+// repairs up to two unsure bits. When no clock's reading passes, the equaliser (FskEqualizer)
+// reads the packet again from the filters' complex outputs on the best clock, with a model of
+// the room's echoes fitted to the packet itself.
 class FskReceiver : public PacketReceiver {
  public:
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
