@@ -116,12 +116,15 @@ std::size_t RingSize(double per_bit) {
 
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem), options_(options), filters_(modem),
-      per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate) {
+      per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
+      equalizer_(modem) {
   ValidateModemOptions(modem_);
   w_ = static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_));
   const std::size_t size = RingSize(per_bit_);
   m_.assign(size, 0.0f);
   s_.assign(size, 0.0f);
+  mc_.assign(size, 0.0f);
+  sc_.assign(size, 0.0f);
   mask_ = size - 1;
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
@@ -159,6 +162,8 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
   const std::int64_t n = n_;
   m_[n & mask_] = static_cast<float>(filters_.mark_power());
   s_[n & mask_] = static_cast<float>(filters_.space_power());
+  mc_[n & mask_] = std::complex<float>(static_cast<float>(filters_.mark_re()), static_cast<float>(filters_.mark_im()));
+  sc_[n & mask_] = std::complex<float>(static_cast<float>(filters_.space_re()), static_cast<float>(filters_.space_im()));
   const double d = D(n), e = E(n);
   // The break detector's running sums over the last w samples and the w before them.
   after_ += d - D(n - w_);
@@ -368,11 +373,41 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   std::sort(candidates.begin(), candidates.end(), [](const ClockFit& a, const ClockFit& b) { return a.metric > b.metric; });
   if (candidates.size() > kClockHypotheses) candidates.resize(kClockHypotheses);
   RxEvent first;
+  std::int64_t first_at[kPacketBits];
+  std::uint8_t first_hard[kFrameBits];
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ClockFit fine = BestFit(candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, rate_step, 0.0005);
     RxEvent ev = ReadFrame(fine.start, fine.period);
     if (ev.kind == RxEvent::Kind::kPacket) return ev;
-    if (k == 0) first = ev;
+    if (k == 0) {
+      first = ev;
+      std::copy(read_at_, read_at_ + kPacketBits, first_at);
+      std::copy(read_hard_, read_hard_ + kFrameBits, first_hard);
+    }
+  }
+  // No clock read a frame: the room's echoes, perhaps. The equaliser models them on the best
+  // clock's readings (it is rarely another clock that an equalised packet needs, and the
+  // equaliser costs more than a read).
+  if (!candidates.empty()) {
+    std::complex<double> heard[2][kPacketBits];
+    double at[kPacketBits];
+    for (int k = 0; k < kPacketBits; ++k) {
+      heard[0][k] = MC(first_at[k]);
+      heard[1][k] = SC(first_at[k]);
+      at[k] = static_cast<double>(first_at[k]) * filters_.step();
+    }
+    const std::complex<double>* const outputs[2] = {heard[0], heard[1]};
+    std::optional<RepairedFrame> repaired;
+    equalizer_.Equalize(outputs, at, first_hard, first.rate_error, [&](const SoftFrame& soft) {
+      repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+      return repaired.has_value();
+    });
+    if (repaired) {
+      first.kind = RxEvent::Kind::kPacket;
+      first.noise = RxEvent::Noise::kNone;
+      first.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);
+      first.fixed_bits = repaired->fixed_bits;
+    }
   }
   return first;
 }
@@ -425,8 +460,11 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   double previous_soft = 1.0;
   double tail[2] = {model_.tail[0], model_.tail[1]};
   double heard[2][kFrameBits];  // MARK's and SPACE's filters at each bit
+  // Where each bit of the packet was read, for the equaliser.
+  for (int k = kFirstBit; k < kFrameStart; ++k) read_at_[k - kFirstBit] = std::llround(best_start + (k + 1) * best_period - 1.0);
   for (int k = kFrameStart; k < kEndBit; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
+    read_at_[k - kFirstBit] = at;
     const double d = D(at), e = E(at);
     // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
     // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
@@ -442,6 +480,7 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
     tail[1] = model_.decay * tail[1] + model_.gain * model_.level[1] * (1.0 - mark);
     const int j = k - kFrameStart, pos = j % kBitsPerByte;
     hard[j] = llr > 0.0;
+    read_hard_[j] = hard[j];
     if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(llr);
     power += e;
     quality += FilterSum(d, e);

@@ -18,8 +18,8 @@ int ToneFilters::Step(const ModemOptions& options) {
 
 ToneFilters::ToneFilters(const ModemOptions& options)
     : step_(Step(options)), window_(static_cast<int>(std::lround(SamplesPerBit(options) / step_))) {
-  const double scale = 2.0 / (window_ * step_);
-  scale2_ = scale * scale;
+  scale_ = 2.0 / (window_ * step_);
+  scale2_ = scale_ * scale_;
   const double freq[2] = {options.mark_hz, options.space_hz};
   for (int k = 0; k < 2; ++k) {
     const double w = 2.0 * M_PI * freq[k] / options.sample_rate;

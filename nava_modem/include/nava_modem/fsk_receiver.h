@@ -1,11 +1,13 @@
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "nava_modem/bit_clock.h"
 #include "nava_modem/frame_repair.h"
+#include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
@@ -20,7 +22,9 @@ namespace nava_modem {
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
 // against their levels and floors (read again from the frame itself, as a room colours the
 // break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
-// repairs up to two unsure bits.
+// repairs up to two unsure bits. When no clock's reading passes, the equaliser (FskEqualizer)
+// reads the packet again from the filters' complex outputs on the best clock, with a model of
+// the room's echoes fitted to the packet itself.
 class FskReceiver : public PacketReceiver {
  public:
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
@@ -38,6 +42,9 @@ class FskReceiver : public PacketReceiver {
   // Before the first sample, the air was silent.
   double M(std::int64_t n) const { return n < 0 ? 0.0 : m_[static_cast<std::size_t>(n) & mask_]; }
   double S(std::int64_t n) const { return n < 0 ? 0.0 : s_[static_cast<std::size_t>(n) & mask_]; }
+  // The filters' complex outputs (for the equaliser).
+  std::complex<double> MC(std::int64_t n) const { return n < 0 ? 0.0 : std::complex<double>(mc_[static_cast<std::size_t>(n) & mask_]); }
+  std::complex<double> SC(std::int64_t n) const { return n < 0 ? 0.0 : std::complex<double>(sc_[static_cast<std::size_t>(n) & mask_]); }
   double D(std::int64_t n) const { return M(n) - S(n); }
   double E(std::int64_t n) const { return M(n) + S(n); }
   // What the break before a packet tells of how each tone arrives (see FitToneModel): each
@@ -82,6 +89,8 @@ class FskReceiver : public PacketReceiver {
   double seconds_per_step_;
   std::int64_t w_;    // steps in each half of the break detector
   std::vector<float> m_, s_;  // MARK^2 and SPACE^2, per step, a ring
+  std::vector<std::complex<float>> mc_, sc_;  // MARK and SPACE as complex amplitudes, a ring
+  FskEqualizer equalizer_;
   std::size_t mask_;
   std::int64_t n_ = 0;  // steps processed
   double after_ = 0.0, before_ = 0.0, after_power_ = 0.0, before_power_ = 0.0;  // break detector sums
@@ -91,6 +100,9 @@ class FskReceiver : public PacketReceiver {
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
   ToneModel model_;          // of the packet being decoded
   std::vector<float> normalized_;
+  // The last ReadFrame's step for each bit of the packet, and its first decisions on the frame.
+  std::int64_t read_at_[kPacketBits] = {};
+  std::uint8_t read_hard_[kFrameBits] = {};
   std::int64_t normalized_start_ = 0;
   bool muted_ = false;
   double carrier_threshold_power_ = 0.0;  // the carrier threshold as a power

@@ -25,6 +25,13 @@ class ToneFilters {
   // Squared outputs (the demodulator works on powers; no square roots per sample).
   double mark_power() const { return mark_power_; }
   double space_power() const { return space_power_; }
+  // The outputs as complex amplitudes (real, imaginary), on the same scale: the correlation with
+  // e^{-j w n}, n counted from the first sample, so that a steady tone keeps its phase from one
+  // output to the next (the equaliser, fsk_equalizer.h, models the room on them).
+  double mark_re() const { return tones_[0].sum_re * scale_; }
+  double mark_im() const { return tones_[0].sum_im * scale_; }
+  double space_re() const { return tones_[1].sum_re * scale_; }
+  double space_im() const { return tones_[1].sum_im * scale_; }
   int window() const { return window_; }  // in steps
   int step() const { return step_; }
 
@@ -43,7 +50,7 @@ class ToneFilters {
   int step_;
   int window_;
   int filled_ = 0;  // samples in the current step
-  double scale2_;  // squared output to squared amplitude
+  double scale_, scale2_;  // output to amplitude, squared output to squared amplitude
   std::size_t at_ = 0;  // ring position
   std::size_t pushed_ = 0;
   Tone tones_[2];

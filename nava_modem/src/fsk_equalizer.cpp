@@ -1,0 +1,301 @@
+#include "nava_modem/fsk_equalizer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+
+namespace nava_modem {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kPi = 3.141592653589793;
+// The taps: each filter sees its own tone from kEarly bits early (the bit clock a little late)
+// to kLate bits late (the early reflections reach 40 ms, 12 bits; the diffuse tail's first
+// 8 bits after them still help in rooms with RT60 0.5 s); the other tone only through its
+// sidelobes, from the bits around the present one.
+constexpr int kEarly = 1, kLate = 20, kCrossLate = 2;
+constexpr int kOwnTaps = kEarly + kLate + 1;
+constexpr int kCrossTaps = kEarly + kCrossLate + 1;
+constexpr int kTaps = kOwnTaps + kCrossTaps;
+// The Viterbi search's state: the last few bits; older ones come from each survivor's path.
+constexpr int kStateBits = 4;
+constexpr int kStates = 1 << kStateBits;
+constexpr int kBreakBits = kBreakSpaceBits + kBreakMarkBits;
+// A bit no competitor path ever challenged is this sure (log-likelihood ratio).
+constexpr float kMaxSoft = 60.0f;
+// Ridge on the least squares, relative to the mean diagonal: keeps taps that the bits do not
+// excite (a late tap of a tone the packet rarely holds long) from fitting noise.
+constexpr double kRidge = 1e-3;
+// The sender's clock offset is searched this far either side of the bit clock's estimate,
+// coarse then finer (a 1e-4 error turns the SPACE filter's phase by 0.4 rad over a packet).
+constexpr double kOffsetSpan = 0.003;
+constexpr double kOffsetSteps[] = {0.0005, 0.0001, 0.00002};
+constexpr int kPasses = 4;
+// Start and stop bits (of 14) a first pass may get wrong and still be refitted.
+constexpr int kMaxMisframedFirst = 3;
+
+using Matrix = Eigen::Matrix<Complex, Eigen::Dynamic, kTaps>;
+using Square = Eigen::Matrix<Complex, kTaps, kTaps>;
+using Vector = Eigen::Matrix<Complex, kTaps, 1>;
+
+int KnownBit(int k) {
+  if (k < kBreakSpaceBits) return 0;
+  if (k < kBreakBits) return 1;
+  const int j = k - kBreakBits, pos = j % kBitsPerByte, byte = j / kBitsPerByte;
+  if (pos == 0) return 0;
+  if (pos == 9) return 1;
+  if (byte == 0) return (kHeader >> (pos - 1)) & 1;
+  return -1;
+}
+
+// The tone a bit sends: 0 MARK (bit 1), 1 SPACE (bit 0).
+int ToneOf(int bit) { return bit ? 0 : 1; }
+
+// One filter's fit: the regressors of the packet's bits, and their Gram matrix factored.
+struct Fit {
+  Matrix a;
+  Eigen::LDLT<Square> gram;
+};
+
+}  // namespace
+
+FskEqualizer::FskEqualizer(const ModemOptions& modem) : modem_(modem) {}
+
+bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
+                            double frequency_error, const std::function<bool(const SoftFrame&)>& accept) const {
+  const double freq[2] = {modem_.mark_hz, modem_.space_hz};
+  // rot[t][tone]: how far a bit of `tone` turns the phase in filter t's frame.
+  Complex rot[2][2];
+  for (int t = 0; t < 2; ++t)
+    for (int tone = 0; tone < 2; ++tone) rot[t][tone] = std::polar(1.0, 2.0 * kPi * (freq[tone] - freq[t]) / modem_.baud);
+
+  std::array<std::uint8_t, kPacketBits> bits;
+  for (int k = 0; k < kPacketBits; ++k) {
+    const int known = KnownBit(k);
+    bits[k] = static_cast<std::uint8_t>(known >= 0 ? known : first[k - kBreakBits]);
+  }
+
+  // Regressors of observation k in filter t, into row.
+  auto regressors = [&](const std::array<std::uint8_t, kPacketBits>& b, int t, Matrix& a) {
+    std::array<Complex, kPacketBits> phasor;
+    Complex p(1.0, 0.0);
+    for (int k = 0; k < kPacketBits; ++k) {
+      phasor[k] = p;
+      p *= rot[t][ToneOf(b[k])];
+    }
+    a.setZero(kPacketBits, kTaps);
+    for (int k = 0; k < kPacketBits; ++k) {
+      for (int l = -kEarly; l <= kLate; ++l) {
+        const int j = k - l;
+        if (j < 0 || j >= kPacketBits) continue;
+        if (ToneOf(b[j]) == t) {
+          a(k, l + kEarly) = phasor[j];
+        } else if (l <= kCrossLate) {
+          a(k, kOwnTaps + l + kEarly) = phasor[j];
+        }
+      }
+    }
+  };
+  // Observations turned back by the sender's frequency offset.
+  auto derotated = [&](int t, double offset, Eigen::Matrix<Complex, Eigen::Dynamic, 1>& z) {
+    const double w = 2.0 * kPi * freq[t] / modem_.sample_rate * offset;
+    z.resize(kPacketBits);
+    for (int k = 0; k < kPacketBits; ++k) z(k) = heard[t][k] * std::polar(1.0, -w * (at[k] - at[0]));
+  };
+
+  // The observations whose bits are all known: the break, the header and its start and stop
+  // bits; the first fit uses only these, the later ones every bit as decided.
+  int known_rows = 0;
+  while (known_rows + kEarly < kPacketBits && KnownBit(known_rows + kEarly) >= 0) ++known_rows;
+
+  double offset = frequency_error;
+  Vector taps[2];
+  double noise[2];
+  for (int pass = 0; pass < kPasses; ++pass) {
+    const int rows = pass == 0 ? known_rows : kPacketBits;
+    Fit fit[2];
+    for (int t = 0; t < 2; ++t) {
+      regressors(bits, t, fit[t].a);
+      fit[t].a.conservativeResize(rows, kTaps);
+      Square g = fit[t].a.adjoint() * fit[t].a;
+      const double ridge = kRidge * g.diagonal().real().mean() + 1e-30;
+      g.diagonal().array() += ridge;
+      fit[t].gram.compute(g);
+    }
+    // The offset: the one whose fits leave the least residual in both filters (the sum of the
+    // logs of their residual powers: the likelihood with each filter's noise unknown).
+    Eigen::Matrix<Complex, Eigen::Dynamic, 1> z;
+    if (pass < 2) {
+      // Each grid's offsets in turn: the observations turned by a rotor per observation, so
+      // that the grid costs no sines.
+      double center = pass == 0 ? frequency_error : offset, span = pass == 0 ? kOffsetSpan : kOffsetSteps[1];
+      Eigen::Matrix<Complex, Eigen::Dynamic, 1> turned[2], rotor[2];
+      for (const double step : kOffsetSteps) {
+        if (step > span) continue;
+        const double lowest = center - span;
+        for (int t = 0; t < 2; ++t) {
+          derotated(t, lowest, turned[t]);
+          turned[t].conservativeResize(rows);
+          rotor[t].resize(rows);
+          const double w = 2.0 * kPi * freq[t] / modem_.sample_rate * step;
+          for (int k = 0; k < rows; ++k) rotor[t](k) = std::polar(1.0, -w * (at[k] - at[0]));
+        }
+        double best = std::numeric_limits<double>::infinity(), best_eps = center;
+        const int points = static_cast<int>(std::lround(2.0 * span / step));
+        for (int i = 0; i <= points; ++i) {
+          double sum = 0.0;
+          for (int t = 0; t < 2; ++t) {
+            const Vector b = fit[t].a.adjoint() * turned[t];
+            const Vector h = fit[t].gram.solve(b);
+            sum += std::log(std::max(turned[t].squaredNorm() - (b.adjoint() * h)(0, 0).real(), 1e-30));
+            turned[t].array() *= rotor[t].array();
+          }
+          if (sum < best) {
+            best = sum;
+            best_eps = lowest + i * step;
+          }
+        }
+        center = best_eps;
+        span = step;
+      }
+      offset = center;
+    }
+    for (int t = 0; t < 2; ++t) {
+      derotated(t, offset, z);
+      z.conservativeResize(rows);
+      taps[t] = fit[t].gram.solve(fit[t].a.adjoint() * z);
+      const double rss = (z - fit[t].a * taps[t]).squaredNorm();
+      noise[t] = std::max(rss / std::max(rows - kTaps, kTaps), 1e-30);
+    }
+    // The observations, turned back, for the search.
+    Eigen::Matrix<Complex, Eigen::Dynamic, 1> obs[2];
+    for (int t = 0; t < 2; ++t) derotated(t, offset, obs[t]);
+
+    // Per-survivor Viterbi over the frame's bits with soft outputs (SOVA).
+    struct Survivor {
+      double metric = std::numeric_limits<double>::infinity();
+      std::array<std::uint8_t, kPacketBits> bits;
+      std::array<float, kPacketBits> rel;
+      Complex phasor[2];  // each filter's phase of the next bit
+    };
+    std::vector<Survivor> now(kStates), next(kStates);
+    {
+      Survivor& s = now[kStates - 1];  // the break's MARK half
+      s.metric = 0.0;
+      s.bits = bits;
+      s.rel.fill(kMaxSoft);
+      for (int t = 0; t < 2; ++t) {
+        Complex p(1.0, 0.0);
+        for (int k = 0; k < kBreakBits; ++k) p *= rot[t][ToneOf(bits[k])];
+        s.phasor[t] = p;
+      }
+    }
+    // The metric of observation k (filters' outputs at bit k) given the survivor's bits up to
+    // k + kEarly, the last of them `b` (kPacketBits: none, after the packet).
+    auto cost = [&](const Survivor& s, int j, int b) {
+      const int k = j - kEarly;
+      double c = 0.0;
+      for (int t = 0; t < 2; ++t) {
+        Complex pred(0.0, 0.0);
+        Complex p = s.phasor[t];  // phase of bit j
+        for (int l = -kEarly; l <= kLate; ++l) {
+          const int i = k - l;  // the bit at lag l
+          if (i < 0) break;
+          if (i > j) continue;
+          if (i < j) p *= std::conj(rot[t][ToneOf(s.bits[i])]);
+          const int bit = i == j ? b : s.bits[i];
+          if (i == j && b < 0) continue;
+          if (ToneOf(bit) == t) {
+            pred += taps[t](l + kEarly) * p;
+          } else if (l <= kCrossLate) {
+            pred += taps[t](kOwnTaps + l + kEarly) * p;
+          }
+        }
+        c += std::norm(obs[t](k) - pred) / noise[t];
+      }
+      return c;
+    };
+    for (int j = kBreakBits; j < kPacketBits + kEarly; ++j) {
+      for (Survivor& s : next) s.metric = std::numeric_limits<double>::infinity();
+      const int known = j < kPacketBits && j < kBreakBits ? KnownBit(j) : -1;
+      double competitor[kStates];
+      std::fill(competitor, competitor + kStates, std::numeric_limits<double>::infinity());
+      int from[kStates], loser[kStates];
+      std::fill(from, from + kStates, -1);
+      std::fill(loser, loser + kStates, -1);
+      for (int state = 0; state < kStates; ++state) {
+        const Survivor& s = now[state];
+        if (!std::isfinite(s.metric)) continue;
+        for (int b = 0; b < 2; ++b) {
+          if (j >= kPacketBits && b > 0) break;  // after the packet: one branch, no bit
+          if (j < kPacketBits && known >= 0 && b != known) continue;
+          const double m = s.metric + cost(s, j, j < kPacketBits ? b : -1);
+          const int to = j < kPacketBits ? ((state << 1) | b) & (kStates - 1) : state;
+          if (m < next[to].metric) {
+            competitor[to] = next[to].metric;
+            loser[to] = from[to];
+            next[to].metric = m;
+            from[to] = state;
+          } else if (m < competitor[to]) {
+            competitor[to] = m;
+            loser[to] = state;
+          }
+        }
+      }
+      for (int to = 0; to < kStates; ++to) {
+        if (from[to] < 0) continue;
+        const Survivor& s = now[from[to]];
+        Survivor& n = next[to];
+        const double m = n.metric;
+        n.bits = s.bits;
+        n.rel = s.rel;
+        if (j < kPacketBits) {
+          n.bits[j] = static_cast<std::uint8_t>(to & 1);
+          for (int t = 0; t < 2; ++t) n.phasor[t] = s.phasor[t] * rot[t][ToneOf(to & 1)];
+        } else {
+          n.phasor[0] = s.phasor[0];
+          n.phasor[1] = s.phasor[1];
+        }
+        if (loser[to] >= 0) {
+          const float delta = static_cast<float>(competitor[to] - m);
+          const Survivor& other = now[loser[to]];
+          for (int i = kBreakBits; i < std::min(j, kPacketBits); ++i) {
+            if (other.bits[i] != n.bits[i]) n.rel[i] = std::min(n.rel[i], delta);
+          }
+        }
+      }
+      std::swap(now, next);
+    }
+    const Survivor* best = &now[0];
+    for (const Survivor& s : now)
+      if (s.metric < best->metric) best = &s;
+    SoftFrame soft{};
+    for (int j = 0; j < kFrameBits; ++j) {
+      const int pos = j % kBitsPerByte;
+      if (pos < 1 || pos > 8) continue;
+      const int k = kBreakBits + j;
+      soft[(j / kBitsPerByte) * 8 + pos - 1] = best->bits[k] ? best->rel[k] : -best->rel[k];
+    }
+    // The start and stop bits were decided freely: all must be right for the frame to count.
+    int misframed = 0;
+    for (int c = 0; c < kFrameBytes; ++c) {
+      misframed += best->bits[kBreakBits + c * kBitsPerByte] != 0;
+      misframed += best->bits[kBreakBits + c * kBitsPerByte + 9] != 1;
+    }
+    if (misframed == 0 && accept(soft)) return true;
+    // A first pass this far off is not a packet the later passes could save (a wrong clock,
+    // or noise), and they cost.
+    if (pass == 0 && misframed > kMaxMisframedFirst) return false;
+    std::array<std::uint8_t, kPacketBits> decided = best->bits;
+    for (int k = 0; k < kPacketBits; ++k)
+      if (KnownBit(k) >= 0) decided[k] = static_cast<std::uint8_t>(KnownBit(k));
+    if (pass > 0 && decided == bits) break;
+    bits = decided;
+  }
+  return false;
+}
+
+}  // namespace nava_modem
