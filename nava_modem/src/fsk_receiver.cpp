@@ -126,12 +126,14 @@ FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& optio
   mc_.assign(size, 0.0f);
   sc_.assign(size, 0.0f);
   mask_ = size - 1;
+  // Busy air with no frame, at least a bit long, ends after a bit of quiet.
+  busy_ = BusyAir(Seconds(per_bit_), Seconds(per_bit_));
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
 
 void FskReceiver::SetCarrierThreshold(std::optional<double> db) {
   options_.carrier_threshold_db = db;
-  if (db) carrier_threshold_power_ = std::pow(10.0, *db / 10.0);
+  busy_.SetThreshold(db);
 }
 
 double FskReceiver::level_db() const { return 10.0 * std::log10(E(n_ - 1) + kTiny); }
@@ -139,7 +141,7 @@ double FskReceiver::level_db() const { return 10.0 * std::log10(E(n_ - 1) + kTin
 void FskReceiver::SetMuted(bool muted) {
   if (muted && !muted_) {
     state_ = State::kSearching;
-    busy_ = false;
+    busy_.Reset();
   }
   if (!muted && muted_) blank_until_ = std::max(blank_until_, n_ + 2 * w_);
   muted_ = muted;
@@ -218,7 +220,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
       } else if (n >= decode_at_) {
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
-        if (busy_) busy_had_frame_ = true;
+        busy_.FrameFound();
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step. Not after a faint step that decoded to
         // nothing: that was noise, and a packet's break may be arriving just now.
@@ -232,40 +234,9 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
 }
 
 void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
-  if (!options_.carrier_threshold_db) return;
-  const bool loud = e >= carrier_threshold_power_;
-  const std::int64_t n = n_ - 1;
-  if (loud) {
-    if (!busy_) {
-      busy_ = true;
-      busy_had_frame_ = false;
-      busy_start_ = n;
-      busy_power_ = busy_quality_ = 0.0;
-      busy_samples_ = 0;
-    }
-    quiet_run_ = 0;
-  } else if (busy_) {
-    ++quiet_run_;
-  }
-  if (!busy_) return;
-  busy_power_ += e;
-  busy_quality_ += FilterSum(D(n), e);
-  ++busy_samples_;
   // Busy air ends after a bit of quiet; a frame being decoded is waited for.
-  if (quiet_run_ > per_bit_ && state_ == State::kSearching) {
-    const std::int64_t end = n - quiet_run_;
-    if (!busy_had_frame_ && end - busy_start_ >= per_bit_) {
-      RxEvent ev;
-      ev.kind = RxEvent::Kind::kNoise;
-      ev.noise = RxEvent::Noise::kZeroByte;
-      ev.start = Seconds(static_cast<double>(busy_start_));
-      ev.end = Seconds(static_cast<double>(end));
-      ev.level_db = 10.0 * std::log10(busy_power_ / busy_samples_ + kTiny);
-      ev.quality = busy_quality_ / busy_samples_;
-      events.push_back(ev);
-    }
-    busy_ = false;
-  }
+  const std::int64_t n = n_ - 1;
+  busy_.Step(Seconds(static_cast<double>(n)), e, FilterSum(D(n), e), state_ != State::kSearching, events);
 }
 
 double FskReceiver::FitMetric(double first_mark, double period) const {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "nava_modem/bit_clock.h"
+#include "nava_modem/busy_air.h"
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
@@ -105,12 +106,7 @@ class FskReceiver : public PacketReceiver {
   std::uint8_t read_hard_[kFrameBits] = {};
   std::int64_t normalized_start_ = 0;
   bool muted_ = false;
-  double carrier_threshold_power_ = 0.0;  // the carrier threshold as a power
-  // Busy air, for ZERO_BYTE reports.
-  bool busy_ = false, busy_had_frame_ = false;
-  std::int64_t busy_start_ = 0, quiet_run_ = 0;
-  double busy_power_ = 0.0, busy_quality_ = 0.0;
-  std::int64_t busy_samples_ = 0;
+  BusyAir busy_{0.0, 0.0};  // for ZERO_BYTE reports
 };
 
 }  // namespace nava_modem
