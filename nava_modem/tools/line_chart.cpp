@@ -12,7 +12,7 @@ namespace nava_modem::tools {
 namespace {
 
 constexpr int kWidth = 900, kHeight = 560;
-constexpr int kLeft = 80, kRight = 250, kTop = 50, kBottom = 70;
+constexpr int kLeft = 80, kRight = 250, kTop = 64, kBottom = 70;
 const cv::Scalar kInk(40, 40, 40), kGrid(225, 225, 225);
 const cv::Scalar kPalette[] = {{180, 119, 31}, {14, 127, 255}, {44, 160, 44}, {40, 39, 214}, {189, 103, 148}, {75, 86, 140}};
 
@@ -62,16 +62,22 @@ void WriteLineChart(const std::string& path, const LineChart& chart) {
     std::snprintf(label, sizeof label, "%g", y);
     Text(image, label, px(x_min, y) + cv::Point2d(-45, 5));
   }
-  for (int k = 0; k <= 8; ++k) {
-    const double x = x_min + k * (x_max - x_min) / 8.0;
+  // The x ticks: the first series' own x values when they are few, else eight even steps.
+  std::vector<double> ticks;
+  if (!chart.series.empty() && chart.series[0].x.size() <= 12) {
+    ticks = chart.series[0].x;
+  } else {
+    for (int k = 0; k <= 8; ++k) ticks.push_back(x_min + k * (x_max - x_min) / 8.0);
+  }
+  for (double x : ticks) {
     cv::line(image, px(x, chart.y_min), px(x, chart.y_max), kGrid, 1);
     std::snprintf(label, sizeof label, "%g", std::round(x * 10.0) / 10.0);
     Text(image, label, px(x, chart.y_min) + cv::Point2d(-10, 20));
   }
   cv::rectangle(image, px(x_min, chart.y_max), px(x_max, chart.y_min), kInk, 1);
-  Text(image, chart.title, {kLeft, 30}, 0.65);
+  Text(image, chart.title, {kLeft, 26}, 0.65);
   Text(image, chart.x_label, {kLeft + static_cast<int>(plot_w / 2) - 60, kHeight - 20});
-  Text(image, chart.y_label, {10, kTop - 10});
+  Text(image, chart.y_label, {10, kTop - 12});
   int legend_y = kTop + 10;
   for (const LineSeries& s : chart.series) {
     const cv::Scalar colour = kPalette[static_cast<std::size_t>(s.colour) % std::size(kPalette)];
