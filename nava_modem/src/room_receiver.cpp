@@ -23,7 +23,7 @@ constexpr double kBusyRelease = kSymbolSeconds;
 constexpr double kBusyMinimum = kSymbolSeconds;
 // The envelope around each chirp's peak lined up to measure their distance: the direct sound
 // and the early reflections, and lags up to a late reflection's delay either way.
-constexpr double kAlignBefore = 0.010, kAlignAfter = 0.030, kAlignReach = 0.012;
+constexpr double kAlignBefore = 0.010, kAlignAfter = 0.050, kAlignReach = 0.045;
 // A chirp's missing partner is looked for where it must be: the strongest matched-filter
 // output there counts when it is this many times the mean output before it. Far below the
 // detector's own threshold: the window is narrow, and the CRC judges what is decoded.
@@ -241,7 +241,7 @@ void RoomReceiver::SymbolEnergies(std::int64_t first, int length, double* energi
   }
 }
 
-double RoomReceiver::AlignedPost(const ChirpPeak& pre, const ChirpPeak& post) const {
+std::vector<double> RoomReceiver::AlignedPosts(const ChirpPeak& pre, const ChirpPeak& post) const {
   const double fs = modem_.sample_rate;
   const std::int64_t before = std::llround(kAlignBefore * fs), after = std::llround(kAlignAfter * fs);
   const std::int64_t reach = std::llround(kAlignReach * fs);
@@ -251,27 +251,51 @@ double RoomReceiver::AlignedPost(const ChirpPeak& pre, const ChirpPeak& post) co
   std::vector<double> b(static_cast<std::size_t>(before + after + 2 * reach));
   for (std::int64_t i = -before - reach; i < after + reach; ++i) b[static_cast<std::size_t>(i + before + reach)] = std::sqrt(detector_.Envelope(q + i));
   std::vector<double> score(static_cast<std::size_t>(2 * reach + 1));
-  std::size_t best = static_cast<std::size_t>(reach);
   for (std::size_t lag = 0; lag < score.size(); ++lag) {
     double sum = 0.0;
     for (std::size_t i = 0; i < a.size(); ++i) sum += a[i] * b[i + lag];
     score[lag] = sum;
-    if (sum > score[best]) best = lag;
   }
-  double refined = static_cast<double>(best);
-  if (best > 0 && best + 1 < score.size()) {
+  // The best lag and the best one at least a millisecond from it (a reflection in one chirp
+  // lined up with the direct sound in the other scores nearly as well), each to a fraction of
+  // a sample; then the peaks' own distance.
+  const std::int64_t apart = std::llround(0.001 * fs);
+  std::vector<double> out;
+  std::size_t first = score.size();
+  for (int pick = 0; pick < 2; ++pick) {
+    std::size_t best = score.size();
+    for (std::size_t lag = 1; lag + 1 < score.size(); ++lag) {
+      const bool local = score[lag] >= score[lag - 1] && score[lag] >= score[lag + 1];
+      const bool far = first == score.size() || std::llabs(static_cast<std::int64_t>(lag) - static_cast<std::int64_t>(first)) >= apart;
+      if (local && far && (best == score.size() || score[lag] > score[best])) best = lag;
+    }
+    if (best == score.size()) break;
+    if (pick == 0) first = best;
+    double refined = static_cast<double>(best);
     const double l = score[best - 1], c = score[best], r = score[best + 1];
     const double denom = l - 2.0 * c + r;
     if (denom < 0.0) refined += std::clamp(0.5 * (l - r) / denom, -0.5, 0.5);
+    // The pre chirp's fractional part carries over: the lag is between whole samples.
+    out.push_back(pre.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach));
   }
-  // The pre chirp's fractional part carries over: the lag is between whole samples.
-  return pre.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach);
+  out.push_back(post.sample);
+  return out;
 }
 
 RxEvent RoomReceiver::Decode(const ChirpPeak& pre, const ChirpPeak& post) {
+  std::optional<RxEvent> failed;
+  for (double aligned : AlignedPosts(pre, post)) {
+    RxEvent ev = DecodeWith(pre, post, aligned);
+    if (ev.kind == RxEvent::Kind::kPacket) return ev;
+    if (!failed || ev.quality > failed->quality) failed = std::move(ev);
+  }
+  return *failed;
+}
+
+RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, double aligned_post) {
   const double fs = modem_.sample_rate;
   // The sender's durations over ours: symbol windows are this much longer, tones this much lower.
-  const double stretch = (AlignedPost(pre, post) - pre.sample) / packet_length_;
+  const double stretch = (aligned_post - pre.sample) / packet_length_;
   if (std::abs(stretch - 1.0) > MaxStretchError()) {
     // Lined up beyond any clock we look for: not a packet's two chirps.
     RxEvent ev;

@@ -50,15 +50,18 @@ class RoomReceiver : public PacketReceiver {
   void Emit(RxEvent packet, double post, std::vector<RxEvent>& events);
   // Reports the chirps that can no longer pair with a later one.
   void ExpireChirps(std::int64_t now, std::vector<RxEvent>& events);
+  // Decodes the packet between two chirps, trying each of AlignedPosts in turn.
   RxEvent Decode(const ChirpPeak& pre, const ChirpPeak& post);
+  RxEvent DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, double aligned_post);
+  // Where the second chirp starts, to a fraction of a sample, at the lags that best line up the
+  // matched filter's envelope around the two peaks (the best and the runner-up), then at the
+  // peaks' own distance: in a reverberant room the strongest peak can be the direct sound in
+  // one chirp and a reflection in the other, but the room (and so the envelope's pattern of
+  // direct sound and reflections) is the same for both.
+  std::vector<double> AlignedPosts(const ChirpPeak& pre, const ChirpPeak& post) const;
   // The matched filter's strongest output between two sample positions, as a chirp, if it
   // stands out from the output before them (see kSearchRatio).
   std::optional<ChirpPeak> StrongestIn(double from, double to) const;
-  // Where the second chirp starts, to a fraction of a sample, as the lag that best lines up the
-  // matched filter's envelope around the two peaks: in a reverberant room the strongest peak
-  // can be the direct sound in one chirp and a reflection in the other, but the room (and so
-  // the envelope's pattern of direct sound and reflections) is the same for both.
-  double AlignedPost(const ChirpPeak& pre, const ChirpPeak& post) const;
   // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
   void SymbolEnergies(std::int64_t first, int length, double* energies);
   // The largest clock error a decode accepts: the pairing's, and the alignment's reach.
