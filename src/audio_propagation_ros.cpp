@@ -244,23 +244,13 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
   if (!paths.markers.empty()) paths_pub_.publish(paths);
 
   for (const auto& rx : events.received) {
-    multirobot_audio::AudioReception msg;
-    msg.header.stamp = start_ + ros::Duration(rx.time);
-    msg.header.frame_id = options_.robots[rx.receiver] + "/base_link";
     if (rx.kind == audio_propagation::Reception::Kind::kPacket) {
-      msg.kind = multirobot_audio::AudioReception::PACKET;
-      msg.noise = multirobot_audio::AudioReception::NONE;
-      msg.data = rx.data;
       ++packets_heard_;
     } else {
-      msg.kind = multirobot_audio::AudioReception::NOISE;
-      msg.noise = multirobot_audio::AudioReception::COLLISION;
       ++noise_heard_;
     }
-    msg.level_db = static_cast<float>(rx.level_db);
-    msg.direction = static_cast<float>(rx.direction);
-    msg.quality = 1.0f;
-    msg.path_length = static_cast<float>(rx.path_length);
+    const multirobot_audio::AudioReception msg =
+        ToAudioReception(rx, options_.robots[rx.receiver] + "/base_link", start_ + ros::Duration(rx.time));
     rx_pubs_[rx.receiver].publish(msg);
   }
 

@@ -255,4 +255,50 @@ visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
   return out;
 }
 
+multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, const std::string& frame,
+                                                  const ros::Time& stamp) {
+  multirobot_audio::AudioReception msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = frame;
+  if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
+    msg.kind = multirobot_audio::AudioReception::PACKET;
+    msg.noise = multirobot_audio::AudioReception::NONE;
+    msg.data = e.data;
+  } else {
+    msg.kind = multirobot_audio::AudioReception::NOISE;
+    switch (e.noise) {
+      case nava_modem::RxEvent::Noise::kZeroByte: msg.noise = multirobot_audio::AudioReception::ZERO_BYTE; break;
+      case nava_modem::RxEvent::Noise::kOneByte: msg.noise = multirobot_audio::AudioReception::ONE_BYTE; break;
+      default: msg.noise = multirobot_audio::AudioReception::BAD_CRC; break;
+    }
+  }
+  msg.level_db = static_cast<float>(e.level_db);
+  msg.quality = static_cast<float>(e.quality);
+  msg.direction = static_cast<float>(e.direction);
+  msg.direction_confidence = static_cast<float>(std::isfinite(e.direction) ? e.direction_confidence : 0.0);
+  msg.path_length = std::numeric_limits<float>::quiet_NaN();
+  return msg;
+}
+
+multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Reception& rx, const std::string& frame,
+                                                  const ros::Time& stamp) {
+  multirobot_audio::AudioReception msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = frame;
+  if (rx.kind == audio_propagation::Reception::Kind::kPacket) {
+    msg.kind = multirobot_audio::AudioReception::PACKET;
+    msg.noise = multirobot_audio::AudioReception::NONE;
+    msg.data = rx.data;
+  } else {
+    msg.kind = multirobot_audio::AudioReception::NOISE;
+    msg.noise = multirobot_audio::AudioReception::COLLISION;
+  }
+  msg.level_db = static_cast<float>(rx.level_db);
+  msg.direction = static_cast<float>(rx.direction);
+  msg.direction_confidence = static_cast<float>(rx.direction_confidence);
+  msg.quality = 1.0f;
+  msg.path_length = static_cast<float>(rx.path_length);
+  return msg;
+}
+
 }  // namespace multirobot_audio

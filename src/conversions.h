@@ -6,6 +6,7 @@
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <multirobot_audio/AudioReception.h>
 #include <multirobot_audio/FiducialArray.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Odometry.h>
@@ -14,7 +15,9 @@
 #include <sensor_msgs/LaserScan.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "audio_propagation/audio_channel.h"
 #include "grid/occupancy_map.h"
+#include "nava_modem/packet_receiver.h"
 #include "grid/pose2d.h"
 #include "world_sim/fiducial_camera.h"
 #include "world_sim/world.h"
@@ -66,5 +69,13 @@ multirobot_audio::FiducialArray ToFiducialArray(
 // marker as a cube with its id, each charger as a flat green zone.
 visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
                                                const std::string& frame, const ros::Time& stamp);
+
+// What a robot heard, as its audio/rx message, from the real link (nava_modem) and from the
+// simulated one (audio_propagation): the same fields with the same meaning, so a controller
+// cannot tell them apart. Stamped with the end of the reception.
+multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& event, const std::string& frame,
+                                                  const ros::Time& stamp);
+multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Reception& reception,
+                                                  const std::string& frame, const ros::Time& stamp);
 
 }  // namespace multirobot_audio

@@ -7,6 +7,7 @@
 #include <multirobot_audio/AudioReception.h>
 #include <multirobot_audio/CarrierSense.h>
 
+#include "conversions.h"
 #include "nava_modem/frame.h"
 #include "params.h"
 
@@ -180,26 +181,7 @@ void NavaModemRos::AudioLoop() {
 }
 
 void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
-  multirobot_audio::AudioReception msg;
-  msg.header.stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
-  msg.header.frame_id = options_.frame_id;
-  if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
-    msg.kind = multirobot_audio::AudioReception::PACKET;
-    msg.noise = multirobot_audio::AudioReception::NONE;
-    msg.data = e.data;
-  } else {
-    msg.kind = multirobot_audio::AudioReception::NOISE;
-    switch (e.noise) {
-      case nava_modem::RxEvent::Noise::kZeroByte: msg.noise = multirobot_audio::AudioReception::ZERO_BYTE; break;
-      case nava_modem::RxEvent::Noise::kOneByte: msg.noise = multirobot_audio::AudioReception::ONE_BYTE; break;
-      default: msg.noise = multirobot_audio::AudioReception::BAD_CRC; break;
-    }
-  }
-  msg.level_db = static_cast<float>(e.level_db);
-  msg.quality = static_cast<float>(e.quality);
-  msg.direction = std::numeric_limits<float>::quiet_NaN();
-  msg.path_length = std::numeric_limits<float>::quiet_NaN();
-  rx_pub_.publish(msg);
+  rx_pub_.publish(ToAudioReception(e, options_.frame_id, ros::Time::now() - ros::Duration(std::max(0.0, ago))));
 }
 
 void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {

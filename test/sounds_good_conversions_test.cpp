@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "conversions.h"
+#include "sounds_good_explorer/heard_messages.h"
 
 namespace multirobot_audio {
 namespace {
@@ -61,6 +62,48 @@ TEST(SoundsGoodConversions, WorldSimsRingAsRangeReadings) {
   EXPECT_DOUBLE_EQ(r[2].range, 1.0);  // to the left
   EXPECT_TRUE(std::isinf(r[1].range));
   EXPECT_TRUE(ToRangeReadings(sensor_msgs::LaserScan()).empty());
+}
+
+// The explorer reads a reception's direction from the message alone, so the real link's (a
+// two-microphone pair's bit from nava_modem) and the simulated one's (audio_propagation's
+// bidirectional microphone) must give it the same: the same message fields, the same score.
+TEST(SoundsGoodConversions, RealAndSimulatedDirectionsReadAlike) {
+  nava_modem::RxEvent real;
+  real.kind = nava_modem::RxEvent::Kind::kPacket;
+  real.data = {1, 2, 3, 4};
+  real.level_db = -20.0;
+  real.direction = M_PI;  // the pair's rear microphone heard it first
+  real.direction_confidence = 0.8;
+  audio_propagation::Reception simulated;
+  simulated.kind = audio_propagation::Reception::Kind::kPacket;
+  simulated.data = {1, 2, 3, 4};
+  simulated.level_db = 55.0;
+  simulated.direction = M_PI;  // a bidirectional microphone: behind
+  simulated.direction_confidence = 1.0;
+  const AudioReception from_real = ToAudioReception(real, "robot_0/base_link", ros::Time(2.0));
+  const AudioReception from_sim = ToAudioReception(simulated, "robot_0/base_link", ros::Time(2.0));
+  EXPECT_EQ(from_real.kind, from_sim.kind);
+  EXPECT_EQ(from_real.data, from_sim.data);
+  EXPECT_FLOAT_EQ(from_real.direction, from_sim.direction);
+  EXPECT_FLOAT_EQ(from_real.direction_confidence, 0.8f);
+  EXPECT_FLOAT_EQ(from_sim.direction_confidence, 1.0f);
+  // The same level for both, so that only the direction is compared.
+  sounds_good_explorer::HeardMessages heard_real({}), heard_sim({});
+  const double yaw = 0.3;
+  heard_real.Add(7, from_real.direction, yaw, 60.0, 2.0, sounds_good_explorer::ListenMode::kBidirectional);
+  heard_sim.Add(7, from_sim.direction, yaw, 60.0, 2.0, sounds_good_explorer::ListenMode::kBidirectional);
+  for (double cell = -M_PI; cell < M_PI; cell += 0.25) {
+    EXPECT_DOUBLE_EQ(heard_real.Score(7, cell, 3.0), heard_sim.Score(7, cell, 3.0)) << cell;
+  }
+  EXPECT_GT(heard_real.Score(7, yaw + M_PI, 3.0), 0.0);  // behind the robot
+  EXPECT_LT(heard_real.Score(7, yaw, 3.0), 0.0);         // ahead of it
+  // A reception without a direction (one microphone) carries NaN and confidence 0.
+  nava_modem::RxEvent mono = real;
+  mono.direction = std::numeric_limits<double>::quiet_NaN();
+  mono.direction_confidence = 0.0;
+  const AudioReception from_mono = ToAudioReception(mono, "robot_0/base_link", ros::Time(2.0));
+  EXPECT_TRUE(std::isnan(from_mono.direction));
+  EXPECT_EQ(from_mono.direction_confidence, 0.0f);
 }
 
 }  // namespace

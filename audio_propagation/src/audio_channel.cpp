@@ -105,6 +105,7 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   rx.path_length = a.path.length;
   rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
                                 options_.direction_noise, rng_);
+  rx.direction_confidence = std::isfinite(rx.direction) ? 1.0 : 0.0;
   if (a.level_db >= loudest_other + options_.capture_margin_db) {
     rx.kind = Reception::Kind::kPacket;
     rx.data = a.data;

@@ -37,6 +37,7 @@ struct Reception {
   std::vector<std::uint8_t> data;   // empty for noise
   double level_db = 0.0;
   double direction = 0.0;           // rad in the receiver's frame, from its microphone (may be NaN)
+  double direction_confidence = 0.0;  // 1 where the microphone gives a direction, 0 where not
   double path_length = 0.0;         // m
 };
 

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -34,6 +35,10 @@ struct RxEvent {
   int fixed_bits = 0;              // bits (nava) or coded bits (room) the error correction repaired
   double rate_error = 0.0;         // the sender's clock over ours, minus 1
   double clarity = 0.0;            // how clear the synchronisation was; 0 if none
+  // Where it came from (rad, CCW from the receiver's +x; NaN unknown) and how sure that is
+  // (0 to 1), from a microphone array; a single microphone leaves them NaN and 0.
+  double direction = std::numeric_limits<double>::quiet_NaN();
+  double direction_confidence = 0.0;
 };
 const char* NoiseName(RxEvent::Noise noise);  // none, zero_byte, one_byte, bad_crc
 
