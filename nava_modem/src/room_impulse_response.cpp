@@ -16,7 +16,6 @@ namespace {
 constexpr double kTailStartS = 0.005;
 constexpr double kTailFadeS = 0.005;
 constexpr double kEarlyFirstS = 0.005, kEarlyLastS = 0.040;
-constexpr double kEarlyShare = 0.25;  // of the reverberant energy
 constexpr double kLn1000 = 6.907755278982137;  // 60 dB of amplitude decay
 constexpr double kPi = 3.141592653589793;
 
@@ -24,6 +23,37 @@ double Energy(const std::vector<double>& x) {
   double e = 0.0;
   for (double v : x) e += v * v;
   return e;
+}
+
+// The reflections on the sample grid (the nearest sample to each delay).
+std::vector<double> EarlyReflections(std::size_t n, double rt60, double sample_rate, RandomSource& random) {
+  std::vector<double> early(n, 0.0);
+  for (const EarlyReflection& r : DrawEarlyReflections(rt60, random)) {
+    const std::size_t i = std::min(n - 1, static_cast<std::size_t>(std::lround(r.delay_s * sample_rate)));
+    early[i] += r.amplitude;
+  }
+  return early;
+}
+
+}  // namespace
+
+std::vector<EarlyReflection> DrawEarlyReflections(double rt60, RandomSource& random) {
+  double delay[kEarlyReflections], sign[kEarlyReflections], spread[kEarlyReflections];
+  for (int r = 0; r < kEarlyReflections; ++r) {
+    delay[r] = kEarlyFirstS + (kEarlyLastS - kEarlyFirstS) * random.Uniform();
+    sign[r] = random.Uniform() < 0.5 ? -1.0 : 1.0;
+    spread[r] = 0.4 + 0.6 * random.Uniform();
+  }
+  // Decay counted from the first reflection (the caller's scaling removes the factor), so that
+  // however short rt60 is, that one does not underflow to zero.
+  const double first = *std::min_element(delay, delay + kEarlyReflections);
+  const double rate = kLn1000 / rt60;
+  std::vector<EarlyReflection> reflections(kEarlyReflections);
+  for (int r = 0; r < kEarlyReflections; ++r) {
+    reflections[r].delay_s = delay[r];
+    reflections[r].amplitude = sign[r] * spread[r] * std::exp(-rate * (delay[r] - first));
+  }
+  return reflections;
 }
 
 // Gaussian noise of length n split at the crossover into (below, above), each band then given
@@ -53,26 +83,6 @@ std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, 
   return tail;
 }
 
-std::vector<double> EarlyReflections(std::size_t n, double rt60, double sample_rate, RandomSource& random) {
-  double delay[kEarlyReflections], sign[kEarlyReflections], spread[kEarlyReflections];
-  for (int r = 0; r < kEarlyReflections; ++r) {
-    delay[r] = kEarlyFirstS + (kEarlyLastS - kEarlyFirstS) * random.Uniform();
-    sign[r] = random.Uniform() < 0.5 ? -1.0 : 1.0;
-    spread[r] = 0.4 + 0.6 * random.Uniform();
-  }
-  // Decay counted from the first reflection (the caller's scaling removes the factor), so that
-  // however short rt60 is, that one does not underflow to zero.
-  const double first = *std::min_element(delay, delay + kEarlyReflections);
-  const double rate = kLn1000 / rt60;
-  std::vector<double> early(n, 0.0);
-  for (int r = 0; r < kEarlyReflections; ++r) {
-    const std::size_t i = std::min(n - 1, static_cast<std::size_t>(std::lround(delay[r] * sample_rate)));
-    early[i] += sign[r] * spread[r] * std::exp(-rate * (delay[r] - first));
-  }
-  return early;
-}
-
-}  // namespace
 
 std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample_rate, std::uint32_t seed) {
   if (!(sample_rate > 0.0) || !std::isfinite(sample_rate)) {
@@ -86,7 +96,7 @@ std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample
   }
   if (rt60 == 0.0) return {1.0f};
 
-  const std::size_t n = static_cast<std::size_t>(std::ceil(std::max(1.2 * rt60, 0.045) * sample_rate));
+  const std::size_t n = RoomResponseSamples(rt60, sample_rate);
   RandomSource random(seed, kImpulseResponseStream);
   std::vector<double> early = EarlyReflections(n, rt60, sample_rate, random);
   std::vector<double> tail = DiffuseTail(n, rt60, sample_rate, random);
@@ -105,6 +115,10 @@ std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample
   response[0] = 1.0f;
   for (std::size_t i = 1; i < n; ++i) response[i] = static_cast<float>(gain * sum[i]);
   return response;
+}
+
+std::size_t RoomResponseSamples(double rt60, double sample_rate) {
+  return static_cast<std::size_t>(std::ceil(std::max(1.2 * rt60, 0.045) * sample_rate));
 }
 
 double MeasureDrrDb(const std::vector<float>& response) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <sndfile.h>
 
@@ -52,6 +53,32 @@ void WriteWavFile(const std::string& path, const std::vector<float>& samples, do
   sf_command(file.handle, SFC_SET_CLIPPING, nullptr, SF_TRUE);
   if (sf_writef_float(file.handle, samples.data(), static_cast<sf_count_t>(samples.size())) !=
       static_cast<sf_count_t>(samples.size())) {
+    throw std::runtime_error(path + ": write failed (" + sf_strerror(file.handle) + ")");
+  }
+}
+
+void WriteWavChannels(const std::string& path, const std::vector<std::vector<float>>& channels, double sample_rate) {
+  if (channels.empty()) throw std::runtime_error(path + ": no channels to write");
+  const std::size_t frames = channels[0].size();
+  for (std::size_t c = 1; c < channels.size(); ++c) {
+    if (channels[c].size() != frames) {
+      throw std::runtime_error(path + ": channel " + std::to_string(c + 1) + " has " + std::to_string(channels[c].size()) +
+                               " samples, channel 1 has " + std::to_string(frames) + ": expected the same length");
+    }
+  }
+  SF_INFO info{};
+  info.samplerate = static_cast<int>(std::lround(sample_rate));
+  info.channels = static_cast<int>(channels.size());
+  info.format = SF_FORMAT_WAV | SF_FORMAT_PCM_16;
+  SndFile file;
+  file.handle = sf_open(path.c_str(), SFM_WRITE, &info);
+  if (!file.handle) throw std::runtime_error(path + ": cannot write (" + sf_strerror(nullptr) + ")");
+  sf_command(file.handle, SFC_SET_CLIPPING, nullptr, SF_TRUE);
+  std::vector<float> interleaved(frames * channels.size());
+  for (std::size_t f = 0; f < frames; ++f) {
+    for (std::size_t c = 0; c < channels.size(); ++c) interleaved[f * channels.size() + c] = channels[c][f];
+  }
+  if (sf_writef_float(file.handle, interleaved.data(), static_cast<sf_count_t>(frames)) != static_cast<sf_count_t>(frames)) {
     throw std::runtime_error(path + ": write failed (" + sf_strerror(file.handle) + ")");
   }
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # nava_room end to end: a modem WAV through mild rooms still decodes, a speech interferer made by
-# make_speech.sh is resampled and mixed, the summary line; the room profile through a room where
-# the reverberation is louder than the direct sound; then the tools' answers to bad input.
+# make_speech.sh is resampled and mixed, the summary line; a 4-microphone render; the room
+# profile through a room where the reverberation is louder than the direct sound; then the
+# tools' answers to bad input.
 #   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
@@ -38,6 +39,19 @@ grep -q "resampling the interferer .* from 22050 Hz to 48000 Hz" "$out/stderr" |
 grep -q "(SIR -6 dB)" "$out/stderr" || { cat "$out/stderr"; fail "summary line without the SIR"; }
 [ "$(grep -c . "$out/stderr")" -eq 2 ] || { cat "$out/stderr"; fail "expected the resampling note and one summary line"; }
 
+# A 4-microphone array: a 4-channel file, the source placed in the summary line, and each
+# channel alone still decodes.
+mics=0.05,0,0,0.05,-0.05,0,0,-0.05
+"$tool" --in "$out/clean.wav" --out "$out/array.wav" --mics "$mics" --bearing 30 --distance 1.5 --rt60 0.3 --drr 20 \
+  --noise white --snr 20 --seed 5 2>"$out/stderr" || { cat "$out/stderr"; fail "4-microphone render failed"; }
+[ "$(soxi -c "$out/array.wav")" = 4 ] || fail "4-microphone render: $(soxi -c "$out/array.wav") channels, expected 4"
+grep -q "4 channels; source at bearing 30 deg, 1.5 m: direct sound at 4.2.*DRR 20.00 dB at the origin" "$out/stderr" \
+  || { cat "$out/stderr"; fail "array summary line without the source and room"; }
+for c in 1 4; do
+  sox "$out/array.wav" "$out/channel$c.wav" remix $c || fail "sox could not take channel $c"
+  decodes "$out/channel$c.wav"
+done
+
 # Bad input: a clear message and exit status 1.
 in=(--in "$out/clean.wav" --out "$out/x.wav")
 expect_error "--rt60: rt60 -1 s: expected 0 (no reverberation) or above 0 and at most 10" "${in[@]}" --rt60 -1
@@ -58,6 +72,17 @@ expect_error "--in $out/nothing.wav: not a readable audio file" --in "$out/nothi
 expect_error "--interferer $out/decoded: not a readable audio file" "${in[@]}" --interferer "$out/decoded"
 expect_error "--out is required" --in "$out/clean.wav"
 expect_error "unknown option --reverb" "${in[@]}" --reverb 1
+expect_error "--mics 0,0,1: 3 numbers; expected X,Y pairs (an even count)" "${in[@]}" --mics 0,0,1
+expect_error "--mics 0,0: one microphone; expected at least 2" "${in[@]}" --mics 0,0
+expect_error "--mics 0,0,a,1: 'a' is not a number" "${in[@]}" --mics 0,0,a,1
+expect_error "--mics 0,0,,1: '' is not a number" "${in[@]}" --mics 0,0,,1
+expect_error "--mics 0.1,0,0.1,0: microphones 1 and 2 both at (0.1, 0) m: expected distinct positions" "${in[@]}" --mics 0.1,0,0.1,0
+expect_error "--bearing: there is no microphone array to place the source around; add --mics" "${in[@]}" --bearing 30
+expect_error "--distance: there is no microphone array" "${in[@]}" --distance 3
+expect_error "--bearing north: expected a number" "${in[@]}" --mics "$mics" --bearing north
+expect_error "--distance: distance 0 m: expected above 0 and at most 100 m" "${in[@]}" --mics "$mics" --distance 0
+expect_error "--distance: distance 0.05 m: the source is 0 m from microphone 1" "${in[@]}" --mics "$mics" --distance 0.05
+expect_error "--rt60: rt60 -1 s" "${in[@]}" --mics "$mics" --rt60 -1
 [ ! -e "$out/x.wav" ] || fail "a failed run wrote its output"
 # The room profile through nava_encode, an office-like room and nava_decode, at 16 kHz.
 "$encode" --profile room --rate 16000 --out "$out/room_clean.wav" 01020304 a0b0c0d0 || fail "nava_encode --profile room failed"

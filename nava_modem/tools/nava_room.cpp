@@ -1,10 +1,13 @@
 // nava_room: what a robot's microphone in a real room hears of a clean modem WAV (clock offset,
 // spectral tilt, reverberation, noise, an interferer, a motor's whine); see room_channel.h for
-// the model and the level definitions.
+// the model and the level definitions. With --mics, what each microphone of an array hears of a
+// source at --bearing and --distance, one channel per microphone (room_array.h).
 //
 //   nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI]
 //             [--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB]
 //             [--whine HZ] [--whine-sir DB] [--whine-am HZ] [--seed N]
+//             [--mics X1,Y1,X2,Y2,... [--bearing DEG] [--distance M]]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +15,7 @@
 #include <map>
 #include <sstream>
 
+#include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "tool_args/tool_args.h"
@@ -37,8 +41,36 @@ const std::map<std::string, std::string>& FlagOfField() {
       {"rt60", "--rt60"},          {"drr_db", "--drr"},        {"tilt_db", "--tilt"},
       {"tilt_low_hz", "--tilt-band"}, {"tilt_high_hz", "--tilt-band"}, {"clock_offset", "--clock"},
       {"snr_db", "--snr"},         {"sir_db", "--sir"},        {"whine_hz", "--whine"},
-      {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"}};
+      {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"},
+      {"bearing", "--bearing"},    {"distance", "--distance"}};
   return flags;
+}
+
+// --mics X1,Y1,X2,Y2,...: at least two microphones, metres in the robot's frame. Coincident
+// microphones are ValidateArraySource's to find (so the tool and the library agree).
+std::vector<nava_modem::Microphone2D> ParseMics(const ToolArgs& args, const std::string& text) {
+  std::vector<double> values;
+  std::size_t from = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', from);
+    const std::string item = text.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(v)) {
+      args.Fail("--mics " + text + ": '" + item + "' is not a number; expected X1,Y1,X2,Y2,... in metres");
+    }
+    values.push_back(v);
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
+  if (values.size() % 2) {
+    args.Fail("--mics " + text + ": " + std::to_string(values.size()) + (values.size() == 1 ? " number" : " numbers") +
+              "; expected X,Y pairs (an even count)");
+  }
+  if (values.size() < 4) args.Fail("--mics " + text + ": one microphone; expected at least 2 (X1,Y1,X2,Y2,...)");
+  std::vector<nava_modem::Microphone2D> mics;
+  for (std::size_t i = 0; i < values.size(); i += 2) mics.push_back({values[i], values[i + 1]});
+  return mics;
 }
 
 std::string Fixed(double v) {
@@ -49,6 +81,45 @@ std::string Fixed(double v) {
 
 std::string Db(double gain) { return Fixed(20.0 * std::log10(gain)) + " dB"; }
 
+// "lo..hi" of f over the channels, or one value when they agree to the precision shown.
+template <typename F>
+std::string Range(const nava_modem::ArrayRenderInfo& info, F f) {
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const auto& channel : info.channels) lo = std::min(lo, f(channel)), hi = std::max(hi, f(channel));
+  return Fixed(lo) == Fixed(hi) ? Fixed(lo) : Fixed(lo) + ".." + Fixed(hi);
+}
+
+double Degrees(double radians) { return radians * 180.0 / 3.141592653589793; }
+
+// The array render's one summary line: what RenderRoomArray did, the per-channel values as ranges.
+std::string ArraySummary(const nava_modem::Audio& clean, std::size_t frames, const nava_modem::RoomOptions& o,
+                         const std::string& noise, bool interferer, const nava_modem::ArraySource& source,
+                         const nava_modem::ArrayRenderInfo& info) {
+  using nava_modem::ArrayChannelInfo;
+  std::ostringstream s;
+  s.precision(4);
+  s << "nava_room: " << clean.samples.size() / clean.sample_rate << " s in, " << frames / clean.sample_rate << " s out at "
+    << std::lround(clean.sample_rate) << " Hz, " << source.mics.size() << " channels; source at bearing "
+    << Degrees(source.bearing) << " deg, " << source.distance << " m: direct sound at "
+    << Range(info, [](const ArrayChannelInfo& c) { return 1000.0 * c.direct_delay_s; }) << " ms, level "
+    << Range(info, [](const ArrayChannelInfo& c) { return 20.0 * std::log10(c.direct_gain); }) << " dB (1/r);";
+  if (o.rt60 > 0.0) {
+    s << " room rt60 " << o.rt60 << " s, DRR " << Fixed(o.drr_db) << " dB at the origin, "
+      << Range(info, [](const ArrayChannelInfo& c) { return c.drr_db; }) << " dB per channel;";
+  }
+  if (o.tilt_db != 0.0) s << " tilt " << o.tilt_db << " dB over " << o.tilt_low_hz << "-" << o.tilt_high_hz << " Hz;";
+  if (o.clock_offset != 0.0) s << " clock " << 100.0 * o.clock_offset << " %;";
+  s << " signal RMS " << Range(info, [](const ArrayChannelInfo& c) { return 20.0 * std::log10(std::sqrt(c.signal_power)); })
+    << " dB (before the output gain) over " << 100.0 * info.sounding_fraction << " % sounding;";
+  if (o.noise != nava_modem::RoomOptions::Noise::kNone) {
+    s << " " << noise << " noise, independent per channel (SNR " << o.snr_db << " dB);";
+  }
+  if (interferer) s << " interferer from " << Fixed(Degrees(info.interferer_bearing)) << " deg (SIR " << o.sir_db << " dB);";
+  if (o.whine_hz > 0.0) s << " whine from " << Fixed(Degrees(info.whine_bearing)) << " deg (SIR " << o.whine_sir_db << " dB);";
+  s << " output gain " << Db(info.output_gain) << " (loudest peak 0.9)";
+  return s.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,7 +127,7 @@ int main(int argc, char** argv) {
   const std::string usage =
       "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI] "
       "[--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB] [--whine HZ] "
-      "[--whine-sir DB] [--whine-am HZ] [--seed N]";
+      "[--whine-sir DB] [--whine-am HZ] [--seed N] [--mics X1,Y1,X2,Y2,... [--bearing DEG] [--distance M]]";
   const ToolArgs args("nava_room", usage, argc, argv);
   const std::string in = args.Required("--in");
   const std::string out = args.Required("--out");
@@ -89,7 +160,24 @@ int main(int argc, char** argv) {
   o.whine_sir_db = Number(args, "--whine-sir", o.whine_sir_db);
   o.whine_am_hz = Number(args, "--whine-am", o.whine_am_hz);
   o.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
+  const std::string mics = args.String("--mics", "");
+  ArraySource source;
+  source.bearing = Number(args, "--bearing", 0.0) * 3.141592653589793 / 180.0;
+  source.distance = Number(args, "--distance", source.distance);
   args.CheckAllUsed();
+  if (!mics.empty()) {
+    source.mics = ParseMics(args, mics);
+    try {
+      ValidateArraySource(source);
+    } catch (const RoomOptionError& e) {
+      args.Fail(e.field() == "mics" ? "--mics " + mics + ": " + e.what() : FlagOfField().at(e.field()) + ": " + e.what());
+    }
+  }
+  for (const char* flag : {"--bearing", "--distance"}) {
+    if (!args.String(flag, "").empty() && mics.empty()) {
+      args.Fail(std::string(flag) + ": there is no microphone array to place the source around; add --mics X1,Y1,X2,Y2,...");
+    }
+  }
   // A ratio for a disturbance that is not there is a mistake in the command, not a no-op.
   if (!args.String("--snr", "").empty() && o.noise == RoomOptions::Noise::kNone) {
     args.Fail("--snr: there is no noise to set; add --noise white|pink");
@@ -128,6 +216,13 @@ int main(int argc, char** argv) {
         interferer = Resample(interferer, clean.sample_rate / audio.sample_rate);
       }
       if (interferer.empty()) args.Fail("--interferer " + interferer_path + ": no samples");
+    }
+    if (!source.mics.empty()) {
+      ArrayRenderInfo info;
+      const auto channels = RenderRoomArray(clean.samples, clean.sample_rate, o, source, interferer, &info);
+      WriteWavChannels(out, channels, clean.sample_rate);
+      std::cerr << ArraySummary(clean, channels[0].size(), o, noise, !interferer.empty(), source, info) << "\n";
+      return 0;
     }
     RoomRenderInfo info;
     const std::vector<float> mic = RenderRoom(clean.samples, clean.sample_rate, o, interferer, &info);

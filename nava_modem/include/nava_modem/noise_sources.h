@@ -25,8 +25,9 @@ class RandomSource {
   double spare_ = 0.0;
 };
 
-// Streams of RandomSource for the room's random parts.
-enum RandomStream : std::uint32_t { kImpulseResponseStream = 1, kNoiseStream = 2, kWhineStream = 3 };
+// Streams of RandomSource for the room's random parts. kArrayStream: the microphone array's
+// directions (room_array.h), apart from the mono room's so that the same seed keeps its room.
+enum RandomStream : std::uint32_t { kImpulseResponseStream = 1, kNoiseStream = 2, kWhineStream = 3, kArrayStream = 4 };
 
 std::vector<double> WhiteNoise(std::size_t n, std::uint32_t seed);
 

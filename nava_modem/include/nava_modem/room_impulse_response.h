@@ -2,8 +2,11 @@
 
 // A statistical model of a room's impulse response, for rendering what a robot's microphone
 // hears (room_channel.h) and, later, whole scenes.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "nava_modem/noise_sources.h"
 
 namespace nava_modem {
 
@@ -24,9 +27,32 @@ namespace nava_modem {
 // Throws std::invalid_argument for rt60 < 0 or > 10, |drr_db| > 40 or a sample rate <= 0.
 std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample_rate, std::uint32_t seed);
 
+// The length of RoomImpulseResponse's response for rt60 above 0, in samples.
+std::size_t RoomResponseSamples(double rt60, double sample_rate);
+
 constexpr int kEarlyReflections = 8;
+constexpr double kEarlyShare = 0.25;  // of the reverberant energy; the tail has the rest
 constexpr double kRoomCrossoverHz = 4000.0;
 constexpr double kHighBandDecayRatio = 0.7;
+
+// The model's two random parts, for renderers that place them themselves (room_array.h puts
+// each early reflection at a fractional, per-microphone delay and gives every microphone its own
+// tail). RoomImpulseResponse draws the reflections and then the tail from one RandomSource
+// (seed, kImpulseResponseStream).
+
+// One early reflection: its delay after the direct sound and its amplitude before the response's
+// scaling (sign x spread x the decay envelope counted from the first reflection).
+struct EarlyReflection {
+  double delay_s = 0.0;
+  double amplitude = 0.0;
+};
+
+// kEarlyReflections reflections as above; rt60 above 0.
+std::vector<EarlyReflection> DrawEarlyReflections(double rt60, RandomSource& random);
+
+// The diffuse tail as above, n samples from the direct sound (index 0), before scaling: zero
+// before 5 ms; rt60 above 0.
+std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, RandomSource& random);
 
 // Direct-to-reverberant ratio of a response whose direct sound is at index 0, in dB
 // (energy of index 0 over the energy of everything after it); +infinity when nothing follows.

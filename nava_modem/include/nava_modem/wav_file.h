@@ -18,4 +18,9 @@ Audio ReadAudioFile(const std::string& path);
 // Writes 16-bit PCM WAV, clipping to full scale. Throws std::runtime_error naming the file.
 void WriteWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate);
 
+// Writes several channels (channels[c] is channel c) as one interleaved 16-bit PCM WAV, clipping
+// to full scale. Throws std::runtime_error naming the file when there are no channels, when
+// they differ in length, or when it cannot be written.
+void WriteWavChannels(const std::string& path, const std::vector<std::vector<float>>& channels, double sample_rate);
+
 }  // namespace nava_modem
