@@ -56,4 +56,26 @@ void WriteWavFile(const std::string& path, const std::vector<float>& samples, do
   }
 }
 
+MultiAudio ReadAudioChannels(const std::string& path) {
+  SF_INFO info{};
+  SndFile file;
+  file.handle = sf_open(path.c_str(), SFM_READ, &info);
+  if (!file.handle) {
+    throw std::runtime_error(path + ": not a readable audio file (" + sf_strerror(nullptr) + ")");
+  }
+  if (info.channels < 1 || info.samplerate <= 0) {
+    throw std::runtime_error(path + ": no audio channels or no sample rate");
+  }
+  const std::size_t channels = static_cast<std::size_t>(info.channels);
+  std::vector<float> interleaved(static_cast<std::size_t>(info.frames) * channels);
+  const std::size_t got = static_cast<std::size_t>(sf_readf_float(file.handle, interleaved.data(), info.frames));
+  MultiAudio audio;
+  audio.sample_rate = info.samplerate;
+  audio.channels.assign(channels, std::vector<float>(got));
+  for (std::size_t f = 0; f < got; ++f) {
+    for (std::size_t c = 0; c < channels; ++c) audio.channels[c][f] = interleaved[f * channels + c];
+  }
+  return audio;
+}
+
 }  // namespace nava_modem
