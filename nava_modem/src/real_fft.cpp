@@ -9,13 +9,6 @@
 namespace nava_modem {
 namespace {
 
-// FFTW's planner is not thread-safe (only fftw_execute is); the later scene renderer may
-// render rooms on several threads.
-std::mutex& PlannerMutex() {
-  static std::mutex m;
-  return m;
-}
-
 bool HasOnlySmallFactors(std::size_t n) {
   for (std::size_t p : {2, 3, 5, 7}) {
     while (n % p == 0) n /= p;
@@ -24,6 +17,12 @@ bool HasOnlySmallFactors(std::size_t n) {
 }
 
 }  // namespace
+
+// The scene renderer may render rooms on several threads.
+std::mutex& FftwPlannerMutex() {
+  static std::mutex m;
+  return m;
+}
 
 std::size_t FftSize(std::size_t n) {
   if (n <= 1) return 1;
@@ -38,14 +37,14 @@ std::vector<std::complex<double>> ForwardFft(const std::vector<double>& x, std::
   std::vector<std::complex<double>> out(n / 2 + 1);
   fftw_plan plan;
   {
-    const std::lock_guard<std::mutex> lock(PlannerMutex());
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     // FFTW_ESTIMATE: each size is used once or twice, so measuring would cost more than it saves.
     plan = fftw_plan_dft_r2c_1d(static_cast<int>(n), in.data(), reinterpret_cast<fftw_complex*>(out.data()),
                                 FFTW_ESTIMATE);
   }
   fftw_execute(plan);
   {
-    const std::lock_guard<std::mutex> lock(PlannerMutex());
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     fftw_destroy_plan(plan);
   }
   return out;
@@ -57,13 +56,13 @@ std::vector<double> InverseFft(const std::vector<std::complex<double>>& spectrum
   std::vector<double> out(n);
   fftw_plan plan;
   {
-    const std::lock_guard<std::mutex> lock(PlannerMutex());
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     plan = fftw_plan_dft_c2r_1d(static_cast<int>(n), reinterpret_cast<fftw_complex*>(in.data()), out.data(),
                                 FFTW_ESTIMATE);
   }
   fftw_execute(plan);
   {
-    const std::lock_guard<std::mutex> lock(PlannerMutex());
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     fftw_destroy_plan(plan);
   }
   const double scale = 1.0 / static_cast<double>(n);

@@ -20,24 +20,13 @@ struct SndFile {
 }  // namespace
 
 Audio ReadAudioFile(const std::string& path) {
-  SF_INFO info{};
-  SndFile file;
-  file.handle = sf_open(path.c_str(), SFM_READ, &info);
-  if (!file.handle) {
-    throw std::runtime_error(path + ": not a readable audio file (" + sf_strerror(nullptr) + ")");
-  }
-  if (info.channels < 1 || info.samplerate <= 0) {
-    throw std::runtime_error(path + ": no audio channels or no sample rate");
-  }
-  std::vector<float> interleaved(static_cast<std::size_t>(info.frames) * info.channels);
-  const sf_count_t got = sf_readf_float(file.handle, interleaved.data(), info.frames);
+  const MultiAudio multi = ReadAudioChannels(path);
   Audio audio;
-  audio.sample_rate = info.samplerate;
-  audio.samples.resize(static_cast<std::size_t>(got));
-  for (sf_count_t f = 0; f < got; ++f) {
-    float sum = 0.0f;
-    for (int c = 0; c < info.channels; ++c) sum += interleaved[f * info.channels + c];
-    audio.samples[f] = sum / info.channels;
+  audio.sample_rate = multi.sample_rate;
+  audio.samples.assign(multi.channels[0].size(), 0.0f);
+  const float share = 1.0f / static_cast<float>(multi.channels.size());
+  for (const std::vector<float>& channel : multi.channels) {
+    for (std::size_t k = 0; k < channel.size(); ++k) audio.samples[k] += share * channel[k];
   }
   return audio;
 }
@@ -81,6 +70,28 @@ void WriteWavChannels(const std::string& path, const std::vector<std::vector<flo
   if (sf_writef_float(file.handle, interleaved.data(), static_cast<sf_count_t>(frames)) != static_cast<sf_count_t>(frames)) {
     throw std::runtime_error(path + ": write failed (" + sf_strerror(file.handle) + ")");
   }
+}
+
+MultiAudio ReadAudioChannels(const std::string& path) {
+  SF_INFO info{};
+  SndFile file;
+  file.handle = sf_open(path.c_str(), SFM_READ, &info);
+  if (!file.handle) {
+    throw std::runtime_error(path + ": not a readable audio file (" + sf_strerror(nullptr) + ")");
+  }
+  if (info.channels < 1 || info.samplerate <= 0) {
+    throw std::runtime_error(path + ": no audio channels or no sample rate");
+  }
+  const std::size_t channels = static_cast<std::size_t>(info.channels);
+  std::vector<float> interleaved(static_cast<std::size_t>(info.frames) * channels);
+  const std::size_t got = static_cast<std::size_t>(sf_readf_float(file.handle, interleaved.data(), info.frames));
+  MultiAudio audio;
+  audio.sample_rate = info.samplerate;
+  audio.channels.assign(channels, std::vector<float>(got));
+  for (std::size_t f = 0; f < got; ++f) {
+    for (std::size_t c = 0; c < channels; ++c) audio.channels[c][f] = interleaved[f * channels + c];
+  }
+  return audio;
 }
 
 }  // namespace nava_modem

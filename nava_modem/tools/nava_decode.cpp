@@ -2,28 +2,71 @@
 //   {"t": 1.234, "kind": "packet", "noise": "none", "data": "01020304", "level_db": -20.5, "quality": 0.83, ...}
 // t is the end of the reception in seconds from the start of the file.
 //
-//   nava_decode [--threshold-db -40] [--max-fixed-bits 2] [modem options] FILE.wav
-// --rate, if given, must be the file's rate.
+//   nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] [modem options] FILE.wav
+// --rate, if given, must be the file's rate. --mics: the file is a microphone array's recording,
+// channel i from the microphone at (xi, yi) m in the robot's frame; each line then also gives
+// "direction" (rad, CCW from the robot's +x, null when the array cannot tell) and
+// "direction_confidence" (0..1), estimated from that event's samples on all channels.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "modem_args.h"
+#include "nava_modem/array_decode.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/wav_file.h"
 
+namespace {
+
+using namespace nava_modem;
+
+// JSON has no NaN: a direction the array cannot tell is null.
+std::string DirectionJson(const RxEvent& e) {
+  char text[80];
+  if (std::isnan(e.direction)) {
+    std::snprintf(text, sizeof text, ", \"direction\": null, \"direction_confidence\": %.2f", e.direction_confidence);
+  } else {
+    std::snprintf(text, sizeof text, ", \"direction\": %.4f, \"direction_confidence\": %.2f", e.direction, e.direction_confidence);
+  }
+  return text;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace nava_modem;
-  const std::string usage = std::string("nava_decode [--threshold-db -40] [--max-fixed-bits 2] ") + tools::kModemUsage + " FILE.wav";
+  const std::string usage = std::string("nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] ") +
+                            tools::kModemUsage + " FILE.wav";
   const multirobot_audio::tools::ToolArgs args("nava_decode", usage, argc, argv);
   const double threshold = args.Double("--threshold-db", -40.0, -200.0, 20.0);
   const int fixed = static_cast<int>(args.Int("--max-fixed-bits", 2, 0, 2));
   const std::string given_rate = args.String("--rate", "");
+  std::optional<std::vector<Microphone2D>> mics;
+  if (const std::string text = args.String("--mics", ""); !text.empty()) {
+    try {
+      mics = ParseMicPositions(text);
+    } catch (const std::exception& e) {
+      args.Fail(std::string("--mics: ") + e.what());
+    }
+  }
   const std::vector<std::string>& files = args.positional();
   if (files.size() != 1) args.Fail("expected one audio file");
   Audio audio;
+  MultiAudio array;
   try {
-    audio = ReadAudioFile(files[0]);
+    if (mics) {
+      array = ReadAudioChannels(files[0]);
+      if (array.channels.size() != mics->size()) {
+        std::cerr << "nava_decode: " << files[0] << " has " << array.channels.size() << " channels, but --mics gives "
+                  << mics->size() << " microphones\n";
+        return 1;
+      }
+      audio.sample_rate = array.sample_rate;
+    } else {
+      audio = ReadAudioFile(files[0]);
+    }
   } catch (const std::exception& e) {
     std::cerr << "nava_decode: " << e.what() << "\n";
     return 1;
@@ -41,18 +84,25 @@ int main(int argc, char** argv) {
   rx.max_fixed_bits = fixed;
   std::vector<RxEvent> events;
   try {
-    const auto receiver = MakeProfile(modem.profile, options)->MakeReceiver(rx);
-    receiver->Process(audio.samples.data(), audio.samples.size(), events);
-    receiver->Flush(events);
+    const auto profile = MakeProfile(modem.profile, options);
+    if (mics) {
+      events = DecodeArray(*profile, rx, array.channels, *mics);
+    } else {
+      const auto receiver = profile->MakeReceiver(rx);
+      receiver->Process(audio.samples.data(), audio.samples.size(), events);
+      receiver->Flush(events);
+    }
   } catch (const std::exception& e) {
     std::cerr << "nava_decode: " << files[0] << ": " << e.what() << "\n";
     return 1;
   }
-  for (const RxEvent& e : events) {
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const RxEvent& e = events[k];
     std::printf("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"level_db\": %.1f, "
-                "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f}\n",
+                "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s}\n",
                 e.end, e.kind == RxEvent::Kind::kPacket ? "packet" : "noise", NoiseName(e.noise),
-                tools::HexBytes(e.data).c_str(), e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error);
+                tools::HexBytes(e.data).c_str(), e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error,
+                mics ? DirectionJson(e).c_str() : "");
   }
   return 0;
 }

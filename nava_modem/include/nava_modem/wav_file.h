@@ -23,4 +23,15 @@ void WriteWavFile(const std::string& path, const std::vector<float>& samples, do
 // they differ in length, or when it cannot be written.
 void WriteWavChannels(const std::string& path, const std::vector<std::vector<float>>& channels, double sample_rate);
 
+// Every channel of an audio file, apart: channels[c][k] is channel c's sample k (floats in
+// [-1, 1]), for a microphone array's recording.
+struct MultiAudio {
+  std::vector<std::vector<float>> channels;
+  double sample_rate = 0.0;
+};
+
+// Reads any audio file libsndfile knows, keeping its channels. Throws std::runtime_error naming
+// the file when it cannot be read or is not audio.
+MultiAudio ReadAudioChannels(const std::string& path);
+
 }  // namespace nava_modem
