@@ -1,5 +1,6 @@
 #include "conversions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -299,6 +300,32 @@ multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Recep
   msg.quality = 1.0f;
   msg.path_length = static_cast<float>(rx.path_length);
   return msg;
+}
+
+visualization_msgs::Marker ToDirectionMarker(double direction, double confidence, bool packet, const std::string& frame,
+                                             const ros::Time& stamp, int id) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame;
+  m.header.stamp = stamp;
+  m.ns = "direction";
+  m.id = id;
+  m.type = visualization_msgs::Marker::ARROW;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  const double length = 0.3 + 0.7 * std::clamp(confidence, 0.0, 1.0);
+  geometry_msgs::Point tail, head;
+  head.x = length * std::cos(direction);
+  head.y = length * std::sin(direction);
+  m.points = {tail, head};
+  m.scale.x = 0.04;  // shaft diameter
+  m.scale.y = 0.08;  // head diameter
+  m.scale.z = 0.1;   // head length
+  m.color.a = 1.0f;
+  m.color.r = packet ? 0.1f : 1.0f;
+  m.color.g = packet ? 0.8f : 0.5f;
+  m.color.b = 0.1f;
+  m.lifetime = ros::Duration(3.0);
+  return m;
 }
 
 }  // namespace multirobot_audio

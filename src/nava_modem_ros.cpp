@@ -18,6 +18,28 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   o.alsa.device = StringParam(pnh, "device", o.alsa.device);
   o.alsa.sample_rate = NumberParam(pnh, "sample_rate", o.alsa.sample_rate, 4000.0, 384000.0);
   o.alsa.latency = NumberParam(pnh, "latency", o.alsa.latency, 0.001, 2.0);
+  o.alsa.capture_channels = IntParam(pnh, "channels", 1, 1, 64);
+  if (pnh.hasParam("mic_positions")) {
+    std::vector<double> xy;
+    if (!pnh.getParam("mic_positions", xy)) {
+      throw ParamError(pnh.resolveName("mic_positions") + ": expected a list of numbers x1, y1, x2, y2, ... (m)");
+    }
+    if (xy.size() != 2u * static_cast<std::size_t>(o.alsa.capture_channels)) {
+      throw ParamError(pnh.resolveName("mic_positions") + ": " + std::to_string(xy.size()) +
+                       " numbers, expected 2 x ~channels = " + std::to_string(2 * o.alsa.capture_channels) +
+                       " (x, y in m of each microphone, in channel order)");
+    }
+    std::string text;
+    for (double v : xy) text += (text.empty() ? "" : ",") + std::to_string(v);
+    try {
+      o.link.microphones = nava_modem::ParseMicPositions(text);
+    } catch (const std::invalid_argument& e) {
+      throw ParamError(pnh.resolveName("mic_positions") + ": " + e.what());
+    }
+  } else if (o.alsa.capture_channels > 1) {
+    throw ParamError(pnh.resolveName("mic_positions") + ": required with ~channels " +
+                     std::to_string(o.alsa.capture_channels) + " (x, y in m of each microphone, in channel order)");
+  }
   o.frame_id = StringParam(pnh, "frame_id", o.frame_id);
   o.carrier_rate = NumberParam(pnh, "carrier_rate", o.carrier_rate, 0.1, 1000.0);
 
@@ -79,6 +101,7 @@ NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaMo
   tx_sub_ = nh_.subscribe("audio/tx", 20, &NavaModemRos::OnTx, this);
   rx_pub_ = nh_.advertise<multirobot_audio::AudioReception>("audio/rx", 50);
   carrier_pub_ = nh_.advertise<multirobot_audio::CarrierSense>("audio/carrier", 20);
+  direction_pub_ = pnh_.advertise<visualization_msgs::Marker>("directions", 20);
   updater_.setHardwareID("alsa:" + options_.alsa.device);
   updater_.add("audio link", this, &NavaModemRos::Diagnose);
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
@@ -181,7 +204,12 @@ void NavaModemRos::AudioLoop() {
 }
 
 void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
-  rx_pub_.publish(ToAudioReception(e, options_.frame_id, ros::Time::now() - ros::Duration(std::max(0.0, ago))));
+  const ros::Time stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
+  rx_pub_.publish(ToAudioReception(e, options_.frame_id, stamp));
+  if (std::isfinite(e.direction)) {
+    direction_pub_.publish(ToDirectionMarker(e.direction, e.direction_confidence, e.kind == nava_modem::RxEvent::Kind::kPacket,
+                                             options_.frame_id, stamp, direction_id_++ % 100));
+  }
 }
 
 void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {

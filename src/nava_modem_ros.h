@@ -53,7 +53,8 @@ class NavaModemRos {
   std::unique_ptr<nava_modem::AlsaDevice> device_;
   std::unique_ptr<nava_modem::NavaLink> link_;
   ros::Subscriber tx_sub_;
-  ros::Publisher rx_pub_, carrier_pub_;
+  ros::Publisher rx_pub_, carrier_pub_, direction_pub_;  // ~directions: an arrow per reception with a direction
+  std::uint32_t direction_id_ = 0;
   diagnostic_updater::Updater updater_;
   ros::WallTimer diagnostics_timer_;
   std::mutex mutex_;  // guards inbox_ and counts_

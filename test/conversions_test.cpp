@@ -118,6 +118,19 @@ TEST(Conversions, FiducialArray) {
   EXPECT_FLOAT_EQ(msg.fiducials[0].bearing, 0.5f);
 }
 
+TEST(Conversions, DirectionArrowPointsWhereTheSoundCameFrom) {
+  const visualization_msgs::Marker m = ToDirectionMarker(M_PI / 2.0, 1.0, true, "robot_3/base_link", ros::Time(4.0), 7);
+  EXPECT_EQ(m.header.frame_id, "robot_3/base_link");
+  EXPECT_EQ(m.type, visualization_msgs::Marker::ARROW);
+  EXPECT_EQ(m.id, 7);
+  ASSERT_EQ(m.points.size(), 2u);
+  EXPECT_NEAR(m.points[1].x, 0.0, 1e-9);  // to the left, 1 m at full confidence
+  EXPECT_NEAR(m.points[1].y, 1.0, 1e-9);
+  const visualization_msgs::Marker unsure = ToDirectionMarker(M_PI, 0.0, false, "robot_3/base_link", ros::Time(4.0), 8);
+  EXPECT_NEAR(unsure.points[1].x, -0.3, 1e-9);  // behind, short
+  EXPECT_GT(unsure.color.r, unsure.color.g);    // noise is drawn orange
+}
+
 }  // namespace
 }  // namespace multirobot_audio
 

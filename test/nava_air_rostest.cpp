@@ -1,6 +1,7 @@
 // Over the air through ALSA: three nava_modem nodes and two jammers on one PulseAudio null sink
 // (see test/nava_air.test and test/nava_air.sh), on the modem profile given as ~profile.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -87,6 +88,11 @@ Air* air = nullptr;
 
 TEST(NavaAir, EveryRobotHearsEveryOther) {
   ASSERT_TRUE(air->Ready()) << "the nava_modem nodes did not come up";
+  // robot_0 captures two channels (its node is required: had the capture failed, the test
+  // would have ended), and must go on decoding on them.
+  int channels = 0;
+  ASSERT_TRUE(ros::param::get("/robot_0/nava_modem/channels", channels));
+  ASSERT_EQ(channels, 2);
   for (std::size_t s = 0; s < kRobots.size(); ++s) {
     air->Forget();
     const std::vector<std::uint8_t> data = {0x10, static_cast<std::uint8_t>(s), 0xAB, 0xCD};
@@ -99,6 +105,13 @@ TEST(NavaAir, EveryRobotHearsEveryOther) {
     ros::WallDuration(0.5 + PacketSeconds()).sleep();
     ros::spinOnce();
     EXPECT_TRUE(air->Packets(kRobots[s], data).empty()) << kRobots[s] << " heard itself";
+    // robot_0 captures two channels of the mono air: its pair hears no delay, and says so.
+    for (const AudioReception& r : air->Packets("robot_0", data)) {
+      EXPECT_TRUE(std::isnan(r.direction)) << "robot_0 guessed direction " << r.direction;
+      EXPECT_EQ(r.direction_confidence, 0.0f);
+    }
+    // The one-microphone robots report no direction.
+    for (const AudioReception& r : air->Packets("robot_1", data)) EXPECT_TRUE(std::isnan(r.direction));
   }
 }
 

@@ -1,5 +1,6 @@
 #include "nava_modem/nava_link.h"
 
+#include "nava_modem/array_decode.h"
 #include "nava_modem/frame.h"
 
 #include <algorithm>
@@ -12,11 +13,19 @@ namespace {
 // Audio moves to and from the device in blocks this long: short against the back-off and the
 // deaf time, long enough that the system calls do not dominate.
 constexpr double kBlockSeconds = 0.005;
+// How long after a packet ends its receiver may report it (the room profile's matched filter
+// works in blocks of up to a third of a second), and a little more.
+constexpr double kDirectionMarginSeconds = 1.5;
 
 LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
   if (std::abs(device.sample_rate() - o.modem.sample_rate) > 0.5) {
     throw std::invalid_argument("the audio device runs at " + std::to_string(device.sample_rate()) +
                                 " Hz, the modem at " + std::to_string(o.modem.sample_rate) + " Hz");
+  }
+  const std::size_t channels = static_cast<std::size_t>(device.capture_channels());
+  if (!o.microphones.empty() && o.microphones.size() != channels) {
+    throw std::invalid_argument("the audio device captures " + std::to_string(channels) + " channels, but " +
+                                std::to_string(o.microphones.size()) + " microphone positions were given (one per channel)");
   }
   UseProfileTiming(o.profile, o.modem, o.mac);
   return o;
@@ -31,7 +40,18 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
       receiver_(profile_->MakeReceiver(options_.receiver)),
       mac_(options_.mac, options_.seed),
       samples_per_tick_(mac_.tick_seconds() * options_.modem.sample_rate),
-      block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))) {}
+      block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))),
+      channels_(static_cast<std::size_t>(device.capture_channels())) {
+  if (options_.microphones.size() >= 2) {
+    estimator_ = std::make_unique<DirectionEstimator>(DirectionOptionsFor(options_.profile, options_.modem, options_.microphones));
+    // A packet and what it takes the receiver to report it.
+    std::size_t size = 1;
+    while (size < (profile_->Airtime() * 1.1 + kDirectionMarginSeconds) * options_.modem.sample_rate) size <<= 1;
+    history_.assign(channels_, std::vector<float>(size, 0.0f));
+    history_mask_ = size - 1;
+    span_.resize(channels_);
+  }
+}
 
 bool NavaLink::Send(std::vector<std::uint8_t> data) {
   if (data.size() != static_cast<std::size_t>(kDataBytes)) {
@@ -51,7 +71,9 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
 
   const MacState before = mac_.state();
   receiver_->SetMuted(before == MacState::kSending || before == MacState::kDeaf);
+  const std::size_t first_new = events.size();
   receiver_->Process(in_.data(), count, events);
+  if (estimator_) EstimateDirections(events, first_new);
   // The thesis's receiver threshold is the MAC's, known once calibration ends: from then on,
   // busy air with no packet is ZERO_BYTE noise.
   if (!threshold_shared_ && before != MacState::kCalibrating) {
@@ -83,16 +105,42 @@ bool NavaLink::Take(float* out, std::size_t count) {
     // Whole blocks from the device: a system call per tick would cost more than the modem.
     captured_.erase(captured_.begin(), captured_.begin() + static_cast<std::ptrdiff_t>(captured_at_));
     captured_at_ = 0;
-    const std::size_t have = captured_.size();
-    captured_.resize(have + block_);
-    if (!device_.Read(captured_.data() + have, block_)) {
-      captured_.resize(have);
-      return false;
+    frames_.resize(block_ * channels_);
+    if (!device_.Read(frames_.data(), block_)) return false;
+    // The receiver hears the first microphone: summing a small array's channels, each a little
+    // delayed, would comb-filter the band; the others are kept for the direction.
+    for (std::size_t f = 0; f < block_; ++f) {
+      captured_.push_back(frames_[f * channels_]);
+      if (!history_.empty()) {
+        const std::size_t at = static_cast<std::size_t>(frames_read_ + static_cast<std::int64_t>(f)) & history_mask_;
+        for (std::size_t c = 0; c < channels_; ++c) history_[c][at] = frames_[f * channels_ + c];
+      }
     }
+    frames_read_ += static_cast<std::int64_t>(block_);
   }
   std::copy(captured_.begin() + captured_at_, captured_.begin() + captured_at_ + count, out);
   captured_at_ += count;
   return true;
+}
+
+void NavaLink::EstimateDirections(std::vector<RxEvent>& events, std::size_t first) {
+  const double rate = options_.modem.sample_rate;
+  const std::int64_t oldest = frames_read_ - static_cast<std::int64_t>(history_mask_);
+  for (std::size_t k = first; k < events.size(); ++k) {
+    RxEvent& e = events[k];
+    const std::int64_t from = std::max<std::int64_t>(oldest, std::llround(e.start * rate));
+    const std::int64_t to = std::min<std::int64_t>(frames_read_, std::llround(e.end * rate));
+    if (to - from < 64) continue;  // too little of it left to tell
+    std::vector<const float*> channels;
+    for (std::size_t c = 0; c < channels_; ++c) {
+      span_[c].resize(static_cast<std::size_t>(to - from));
+      for (std::int64_t n = from; n < to; ++n) span_[c][static_cast<std::size_t>(n - from)] = history_[c][static_cast<std::size_t>(n) & history_mask_];
+      channels.push_back(span_[c].data());
+    }
+    const Direction d = estimator_->Estimate(channels, static_cast<std::size_t>(to - from));
+    e.direction = d.bearing;
+    e.direction_confidence = std::isfinite(d.bearing) ? d.confidence : 0.0;
+  }
 }
 
 void NavaLink::Put(const float* in, std::size_t count) {

@@ -8,9 +8,15 @@
 namespace nava_modem {
 
 WavDevice::WavDevice(const std::string& input, const std::string& output) : output_(output) {
-  Audio audio = ReadAudioFile(input);
+  // Every channel, interleaved as a sound card captures them (one per microphone).
+  const MultiAudio audio = ReadAudioChannels(input);
   rate_ = audio.sample_rate;
-  input_ = std::move(audio.samples);
+  channels_ = static_cast<int>(audio.channels.size());
+  const std::size_t frames = audio.channels[0].size();
+  input_.resize(frames * audio.channels.size());
+  for (std::size_t f = 0; f < frames; ++f) {
+    for (std::size_t c = 0; c < audio.channels.size(); ++c) input_[f * audio.channels.size() + c] = audio.channels[c][f];
+  }
 }
 
 WavDevice::~WavDevice() {
@@ -22,9 +28,10 @@ WavDevice::~WavDevice() {
 }
 
 bool WavDevice::Read(float* out, std::size_t count) {
-  if (read_ + count > input_.size()) return false;
-  std::copy(input_.begin() + read_, input_.begin() + read_ + count, out);
-  read_ += count;
+  const std::size_t samples = count * static_cast<std::size_t>(channels_);
+  if (read_ + samples > input_.size()) return false;
+  std::copy(input_.begin() + read_, input_.begin() + read_ + samples, out);
+  read_ += samples;
   return true;
 }
 

@@ -6,6 +6,8 @@
 //   nava_bench --rooms [--profile nava|room|both] [--packets 60] [--rooms-per-row 6] [--plot-packets 30]
 //              [--plot FILE.png] [--seed 1] [--rate 48000] [--dir DIR] [--minimodem minimodem|none]
 //
+//   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
+//
 // Without --rooms: a WAV of N random packets for every full-band SNR (tone power over
 // white-noise power across the whole band) from --snr-max down to --snr-min in 1 dB steps.
 // With --rooms: the same packets through nava_room's renderer under each room condition of
@@ -14,18 +16,29 @@
 // RT60 0.3, 0.6 and 1.0 s. Either way each file is decoded by nava_decode (beside this program)
 // and by minimodem as child processes, and the table gives the packets each decoded correctly,
 // those decoded wrong (CRC-passing but never sent), and each decoder's CPU time; it ends with
-// each decoder's speed (seconds of audio per CPU second) and the targets.
+// each decoder's speed (seconds of audio per CPU second) and the targets. With --doa: for each
+// profile, a two-microphone pair and a four-microphone square, anechoic and in a reverberant
+// room, N packets from random bearings at 2 m (nava_room's array renderer), decoded as the link
+// does it (DecodeArray): the share of right front/back bits or the median and 90th-percentile
+// bearing error, the estimator's CPU time against the decoding's, the targets, and a polar PNG.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <random>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bench_support.h"
 #include "line_chart.h"
 #include "modem_args.h"
+#include "nava_modem/array_decode.h"
+#include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "room_conditions.h"
@@ -362,12 +375,191 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
   return 0;
 }
 
+
+// Where each profile's receptions come from, as a microphone array on a robot would tell it.
+struct Geometry {
+  const char* name;
+  std::vector<Microphone2D> mics;
+  bool pair;  // two microphones: a front/back bit
+};
+struct DoaCondition {
+  const char* name;
+  RoomOptions room;
+};
+struct DoaResult {
+  int packets = 0, decoded = 0, eligible = 0, bit_right = 0, unresolved = 0;
+  std::vector<double> errors_deg;  // full bearings: |error| per decoded packet (180 when NaN)
+  std::vector<std::pair<double, double>> truth_and_estimate;  // rad, for the polar plot
+  double decode_cpu = 0.0, estimate_cpu = 0.0;
+};
+
+double Percentile(std::vector<double> v, double p) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)))];
+}
+
+double CpuNow() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, const DoaCondition& c, int packets,
+                     unsigned seed) {
+  const auto profile = MakeProfile(p, options);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> bearing(-M_PI, M_PI);
+  std::uniform_int_distribution<int> byte(0, 255);
+  const double rate = options.sample_rate;
+  DoaResult r;
+  for (int k = 0; k < packets; ++k) {
+    std::vector<std::uint8_t> data(kDataBytes);
+    for (auto& b : data) b = static_cast<std::uint8_t>(byte(rng));
+    std::vector<float> clean(static_cast<std::size_t>(0.4 * rate), 0.0f);
+    const std::vector<float> burst = profile->ModulatePacket(data);
+    clean.insert(clean.end(), burst.begin(), burst.end());
+    clean.insert(clean.end(), static_cast<std::size_t>(0.4 * rate), 0.0f);
+    ArraySource source;
+    source.mics = g.mics;
+    source.bearing = bearing(rng);
+    source.distance = 2.0;
+    RoomOptions room = c.room;
+    room.seed = seed * 1000u + static_cast<unsigned>(k);
+    const std::vector<std::vector<float>> heard = RenderRoomArray(clean, rate, room, source);
+    double estimate_cpu = 0.0;
+    const double started = CpuNow();
+    const std::vector<RxEvent> events = DecodeArray(*profile, {}, heard, g.mics, &estimate_cpu);
+    r.decode_cpu += CpuNow() - started - estimate_cpu;
+    r.estimate_cpu += estimate_cpu;
+    ++r.packets;
+    const auto it = std::find_if(events.begin(), events.end(),
+                                 [&](const RxEvent& e) { return e.kind == RxEvent::Kind::kPacket && e.data == data; });
+    if (it == events.end()) continue;
+    ++r.decoded;
+    const double truth = source.bearing, estimate = it->direction;
+    r.truth_and_estimate.emplace_back(truth, estimate);
+    if (!std::isfinite(estimate)) ++r.unresolved;
+    if (g.pair) {
+      // The bit is judged where a pair can tell: more than 20 degrees off its broadside.
+      if (std::abs(std::cos(truth)) <= std::sin(20.0 * M_PI / 180.0)) continue;
+      ++r.eligible;
+      r.bit_right += std::isfinite(estimate) && std::cos(truth) * std::cos(estimate) > 0.0;
+    } else {
+      const double error = std::isfinite(estimate) ? std::abs(std::remainder(estimate - truth, 2.0 * M_PI)) * 180.0 / M_PI : 180.0;
+      r.errors_deg.push_back(error);
+    }
+  }
+  return r;
+}
+
+// A polar panel per measurement: each packet a line from its true bearing (on the outer
+// circle) to the estimated one (on the inner); a NaN estimate is a short red tick.
+void WritePolarPlot(const std::string& path, const std::vector<std::string>& titles, const std::vector<DoaResult>& results) {
+  const int panel = 300, columns = 4;
+  const int rows = static_cast<int>((results.size() + columns - 1) / columns);
+  cv::Mat image(rows * panel, columns * panel, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const cv::Point2d centre((k % columns) * panel + panel / 2.0, (k / columns) * panel + panel / 2.0 + 10.0);
+    const double outer = panel * 0.38, inner = panel * 0.28;
+    cv::circle(image, centre, static_cast<int>(outer), cv::Scalar(200, 200, 200), 1, cv::LINE_AA);
+    cv::circle(image, centre, static_cast<int>(inner), cv::Scalar(225, 225, 225), 1, cv::LINE_AA);
+    cv::line(image, centre, centre + cv::Point2d(outer + 8, 0), cv::Scalar(160, 160, 160), 1);  // the robot's +x
+    auto at = [&](double angle, double radius) { return centre + cv::Point2d(radius * std::cos(angle), -radius * std::sin(angle)); };
+    for (const auto& [truth, estimate] : results[k].truth_and_estimate) {
+      if (!std::isfinite(estimate)) {
+        cv::line(image, at(truth, outer), at(truth, outer - 8), cv::Scalar(40, 40, 220), 2, cv::LINE_AA);
+        continue;
+      }
+      cv::line(image, at(truth, outer), at(estimate, inner), cv::Scalar(180, 119, 31), 1, cv::LINE_AA);
+    }
+    cv::putText(image, titles[k], cv::Point(static_cast<int>(centre.x) - panel / 2 + 8, static_cast<int>(centre.y) - panel / 2 + 8),
+                cv::FONT_HERSHEY_SIMPLEX, 0.42, cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
+  }
+  if (!cv::imwrite(path, image)) throw std::runtime_error(path + ": cannot write the PNG");
+}
+
+int DoaTable(const multirobot_audio::tools::ToolArgs& args) {
+  const int packets = static_cast<int>(args.Int("--packets", 100, 1, 100000));
+  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  const std::string dir = TempDir(args, args.String("--dir", ""));
+  const std::string plot = args.String("--plot", dir + "/doa_polar.png");
+  ModemOptions options = ModemArgs(args);
+  args.CheckAllUsed();
+  const double half = 0.1 / std::sqrt(2.0);
+  const std::vector<Geometry> geometries = {
+      {"pair 0.2 m on x", {{0.1, 0.0}, {-0.1, 0.0}}, true},
+      {"square 0.1 m", {{half, half}, {-half, half}, {-half, -half}, {half, -half}}, false}};
+  DoaCondition anechoic{"anechoic", {}};
+  anechoic.room.noise = RoomOptions::Noise::kWhite;
+  anechoic.room.snr_db = 10.0;
+  DoaCondition room{"rt60 0.5 s drr 0 dB", anechoic.room};
+  room.room.rt60 = 0.5;
+  room.room.drr_db = 0.0;
+  std::printf("nava_bench --doa: %d packets per line from random bearings at 2 m, SNR 10 dB, %.0f Hz\n", packets,
+              options.sample_rate);
+  std::printf("%-8s %-16s %-22s %8s %12s %10s %10s %10s %9s\n", "profile", "geometry", "condition", "decoded", "front/back",
+              "median_deg", "p90_deg", "no_dir", "cpu_est");
+  std::vector<std::string> titles;
+  std::vector<DoaResult> results;
+  bool pair_anechoic = true, pair_room = true, square_anechoic = true, square_room = true;
+  for (Profile p : {Profile::kNava, Profile::kRoom}) {
+    for (const Geometry& g : geometries) {
+      for (const DoaCondition* c : {&anechoic, &room}) {
+        const DoaResult r = MeasureDoa(p, options, g, *c, packets, seed);
+        const double share = r.eligible ? 100.0 * r.bit_right / r.eligible : 0.0;
+        const double median = Percentile(r.errors_deg, 0.5), p90 = Percentile(r.errors_deg, 0.9);
+        char bits[32] = "-", med[32] = "-", ninety[32] = "-";
+        if (g.pair) std::snprintf(bits, sizeof bits, "%.1f%% of %d", share, r.eligible);
+        if (!g.pair) {
+          std::snprintf(med, sizeof med, "%.1f", median);
+          std::snprintf(ninety, sizeof ninety, "%.1f", p90);
+        }
+        std::printf("%-8s %-16s %-22s %5d/%-3d %12s %10s %10s %10d %8.1f%%\n", ProfileName(p), g.name, c->name, r.decoded,
+                    r.packets, bits, med, ninety, r.unresolved, 100.0 * r.estimate_cpu / std::max(1e-9, r.decode_cpu));
+        std::fflush(stdout);
+        const bool reverberant = c == &room;
+        if (g.pair && !reverberant) pair_anechoic = pair_anechoic && share >= 97.0;
+        if (g.pair && reverberant && p == Profile::kRoom) pair_room = share >= 90.0;
+        if (!g.pair && p == Profile::kRoom) {
+          if (reverberant) {
+            square_room = median <= 10.0 && p90 <= 25.0;
+          } else {
+            square_anechoic = median <= 3.0;
+          }
+        }
+        titles.push_back(std::string(ProfileName(p)) + ", " + g.name + ", " + c->name);
+        results.push_back(r);
+      }
+    }
+  }
+  double decode = 0.0, estimate = 0.0;
+  for (const DoaResult& r : results) {
+    decode += r.decode_cpu;
+    estimate += r.estimate_cpu;
+  }
+  std::printf("targets: pair anechoic >= 97%% (both profiles): %s; pair rt60 0.5 drr 0 >= 90%% (room): %s; "
+              "square anechoic median <= 3 deg (room): %s; square rt60 0.5 drr 0 median <= 10, p90 <= 25 deg (room): %s; "
+              "estimation <= 10%% of decoding CPU (%.1f%%): %s\n",
+              pair_anechoic ? "yes" : "NO", pair_room ? "yes" : "NO", square_anechoic ? "yes" : "NO", square_room ? "yes" : "NO",
+              100.0 * estimate / std::max(1e-9, decode), estimate <= 0.1 * decode ? "yes" : "NO");
+  try {
+    WritePolarPlot(plot, titles, results);
+  } catch (const std::exception& e) {
+    std::cerr << "nava_bench: " << e.what() << "\n";
+    return 1;
+  }
+  std::printf("plot: %s\n", plot.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string usage = std::string(
-      "nava_bench [--rooms] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms | --doa] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms"});
+  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa"});
+  if (args.Switch("--doa")) return DoaTable(args);
   return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);
 }

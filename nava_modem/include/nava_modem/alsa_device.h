@@ -12,6 +12,7 @@ struct AlsaOptions {
   std::string device = "default";  // an ALSA PCM name: default, pulse, plughw:1,0, ...
   double sample_rate = 48000.0;
   double latency = 0.05;  // s of buffering asked of each stream; the own echo comes this late
+  int capture_channels = 1;  // microphones captured (interleaved); playback stays mono
 };
 
 // One capture and one playback stream on an ALSA device, kept open for the link's lifetime.
@@ -25,6 +26,7 @@ class AlsaDevice : public AudioDevice {
   AlsaDevice& operator=(const AlsaDevice&) = delete;
 
   double sample_rate() const override { return options_.sample_rate; }
+  int capture_channels() const override { return options_.capture_channels; }
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
   std::uint64_t overruns() const override { return overruns_; }
@@ -32,7 +34,8 @@ class AlsaDevice : public AudioDevice {
 
  private:
   template <typename Buffer, typename Io>
-  void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, Io io, const char* what, std::uint64_t& xruns);
+  void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, std::size_t width, Io io, const char* what,
+                std::uint64_t& xruns);
 
   AlsaOptions options_;
   snd_pcm_t* capture_ = nullptr;

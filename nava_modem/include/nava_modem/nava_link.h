@@ -5,12 +5,16 @@
 
 #include "nava_modem/audio_device.h"
 #include "nava_modem/csma_mac.h"
+#include "nava_modem/direction_estimator.h"
 #include "nava_modem/modem_profile.h"
 
 namespace nava_modem {
 
 struct LinkOptions {
   Profile profile = Profile::kNava;
+  // Where the capture channels' microphones sit (m, robot frame), one per channel. Two or more
+  // give each reception its direction; none (or one) leaves it NaN.
+  std::vector<Microphone2D> microphones;
   ModemOptions modem;
   MacOptions mac;  // its bit rate and packet length are the profile's (MacTiming)
   ReceiverOptions receiver;
@@ -55,10 +59,20 @@ class NavaLink {
   std::uint64_t ticks_ = 0;
   std::int64_t samples_done_ = 0;
   bool Take(float* out, std::size_t count);  // captured samples, read from the device by blocks
+  // Each event's direction from its own samples on every microphone.
+  void EstimateDirections(std::vector<RxEvent>& events, std::size_t first);
   void Put(const float* in, std::size_t count);  // samples to play, written by blocks
 
   std::size_t block_;
+  std::size_t channels_;          // captured per frame; the receiver hears the first
+  std::vector<float> frames_;     // a block as read, interleaved
   std::vector<float> captured_, playing_;
+  // Every channel's recent samples, by frame number (a ring), for the direction estimator.
+  std::vector<std::vector<float>> history_;
+  std::size_t history_mask_ = 0;
+  std::int64_t frames_read_ = 0;
+  std::unique_ptr<DirectionEstimator> estimator_;
+  std::vector<std::vector<float>> span_;  // scratch: an event's samples per channel
   std::size_t captured_at_ = 0;
   std::vector<float> in_, burst_;
   std::size_t burst_at_ = 0;

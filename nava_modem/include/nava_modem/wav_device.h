@@ -8,7 +8,8 @@
 namespace nava_modem {
 
 // Files in place of a sound card, for offline work and tests: capture reads an audio file
-// (then ends), playback is gathered and written as a WAV file by Save() (or on destruction).
+// (every channel of it, as an array's microphones; then ends), playback is gathered and written
+// as a WAV file by Save() (or on destruction).
 class WavDevice : public AudioDevice {
  public:
   // `input`: the file to hear (its rate is the device's); `output`: where to write what was
@@ -17,6 +18,7 @@ class WavDevice : public AudioDevice {
   ~WavDevice() override;
 
   double sample_rate() const override { return rate_; }
+  int capture_channels() const override { return channels_; }
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
   std::uint64_t overruns() const override { return 0; }
@@ -27,7 +29,8 @@ class WavDevice : public AudioDevice {
 
  private:
   double rate_;
-  std::vector<float> input_, played_;
+  int channels_ = 1;
+  std::vector<float> input_, played_;  // input_: interleaved
   std::size_t read_ = 0;
   std::string output_;
   bool saved_ = false;
