@@ -456,7 +456,7 @@ DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, 
 // A polar panel per measurement: each packet a line from its true bearing (on the outer
 // circle) to the estimated one (on the inner); a NaN estimate is a short red tick.
 void WritePolarPlot(const std::string& path, const std::vector<std::string>& titles, const std::vector<DoaResult>& results) {
-  const int panel = 300, columns = 4;
+  const int panel = 330, columns = 4;
   const int rows = static_cast<int>((results.size() + columns - 1) / columns);
   cv::Mat image(rows * panel, columns * panel, CV_8UC3, cv::Scalar(255, 255, 255));
   for (std::size_t k = 0; k < results.size(); ++k) {
