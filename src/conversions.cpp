@@ -256,23 +256,34 @@ visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
   return out;
 }
 
-multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, const std::string& frame,
-                                                  const ros::Time& stamp) {
+namespace {
+
+// What both links' receptions share: the stamp and frame, a packet's data or the noise's kind.
+multirobot_audio::AudioReception Heard(const std::string& frame, const ros::Time& stamp, bool packet,
+                                       const std::vector<std::uint8_t>& data, std::uint8_t noise) {
   multirobot_audio::AudioReception msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = frame;
-  if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
-    msg.kind = multirobot_audio::AudioReception::PACKET;
-    msg.noise = multirobot_audio::AudioReception::NONE;
-    msg.data = e.data;
-  } else {
-    msg.kind = multirobot_audio::AudioReception::NOISE;
-    switch (e.noise) {
-      case nava_modem::RxEvent::Noise::kZeroByte: msg.noise = multirobot_audio::AudioReception::ZERO_BYTE; break;
-      case nava_modem::RxEvent::Noise::kOneByte: msg.noise = multirobot_audio::AudioReception::ONE_BYTE; break;
-      default: msg.noise = multirobot_audio::AudioReception::BAD_CRC; break;
-    }
+  msg.kind = packet ? multirobot_audio::AudioReception::PACKET : multirobot_audio::AudioReception::NOISE;
+  msg.noise = packet ? multirobot_audio::AudioReception::NONE : noise;
+  if (packet) msg.data = data;
+  return msg;
+}
+
+std::uint8_t NoiseKind(nava_modem::RxEvent::Noise noise) {
+  switch (noise) {
+    case nava_modem::RxEvent::Noise::kZeroByte: return multirobot_audio::AudioReception::ZERO_BYTE;
+    case nava_modem::RxEvent::Noise::kOneByte: return multirobot_audio::AudioReception::ONE_BYTE;
+    default: return multirobot_audio::AudioReception::BAD_CRC;
   }
+}
+
+}  // namespace
+
+multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, const std::string& frame,
+                                                  const ros::Time& stamp) {
+  multirobot_audio::AudioReception msg =
+      Heard(frame, stamp, e.kind == nava_modem::RxEvent::Kind::kPacket, e.data, NoiseKind(e.noise));
   msg.level_db = static_cast<float>(e.level_db);
   msg.quality = static_cast<float>(e.quality);
   msg.direction = static_cast<float>(e.direction);
@@ -283,17 +294,8 @@ multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, 
 
 multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Reception& rx, const std::string& frame,
                                                   const ros::Time& stamp) {
-  multirobot_audio::AudioReception msg;
-  msg.header.stamp = stamp;
-  msg.header.frame_id = frame;
-  if (rx.kind == audio_propagation::Reception::Kind::kPacket) {
-    msg.kind = multirobot_audio::AudioReception::PACKET;
-    msg.noise = multirobot_audio::AudioReception::NONE;
-    msg.data = rx.data;
-  } else {
-    msg.kind = multirobot_audio::AudioReception::NOISE;
-    msg.noise = multirobot_audio::AudioReception::COLLISION;
-  }
+  multirobot_audio::AudioReception msg = Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket,
+                                               rx.data, multirobot_audio::AudioReception::COLLISION);
   msg.level_db = static_cast<float>(rx.level_db);
   msg.direction = static_cast<float>(rx.direction);
   msg.direction_confidence = static_cast<float>(rx.direction_confidence);

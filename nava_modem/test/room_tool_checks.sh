@@ -72,11 +72,11 @@ expect_error "--in $out/nothing.wav: not a readable audio file" --in "$out/nothi
 expect_error "--interferer $out/decoded: not a readable audio file" "${in[@]}" --interferer "$out/decoded"
 expect_error "--out is required" --in "$out/clean.wav"
 expect_error "unknown option --reverb" "${in[@]}" --reverb 1
-expect_error "--mics 0,0,1: 3 numbers; expected X,Y pairs (an even count)" "${in[@]}" --mics 0,0,1
-expect_error "--mics 0,0: one microphone; expected at least 2" "${in[@]}" --mics 0,0
-expect_error "--mics 0,0,a,1: 'a' is not a number" "${in[@]}" --mics 0,0,a,1
-expect_error "--mics 0,0,,1: '' is not a number" "${in[@]}" --mics 0,0,,1
-expect_error "--mics 0.1,0,0.1,0: microphones 1 and 2 both at (0.1, 0) m: expected distinct positions" "${in[@]}" --mics 0.1,0,0.1,0
+expect_error "--mics: microphone positions '0,0,1': 3 numbers; expected an x,y pair per microphone" "${in[@]}" --mics 0,0,1
+expect_error "--mics: microphone positions '0,0': 1 microphone; expected at least 2" "${in[@]}" --mics 0,0
+expect_error "--mics: microphone positions '0,0,a,1': 'a' is not a number" "${in[@]}" --mics 0,0,a,1
+expect_error "--mics: microphone positions '0,0,,1': '' is not a number" "${in[@]}" --mics 0,0,,1
+expect_error "--mics: microphone positions '0.1,0,0.1,0': microphones 0 and 1 are both at (0.1, 0); expected distinct positions" "${in[@]}" --mics 0.1,0,0.1,0
 expect_error "--bearing: there is no microphone array to place the source around; add --mics" "${in[@]}" --bearing 30
 expect_error "--distance: there is no microphone array" "${in[@]}" --distance 3
 expect_error "--bearing north: expected a number" "${in[@]}" --mics "$mics" --bearing north

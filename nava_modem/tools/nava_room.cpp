@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 
+#include "nava_modem/direction_estimator.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
@@ -44,33 +45,6 @@ const std::map<std::string, std::string>& FlagOfField() {
       {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"},
       {"bearing", "--bearing"},    {"distance", "--distance"}};
   return flags;
-}
-
-// --mics X1,Y1,X2,Y2,...: at least two microphones, metres in the robot's frame. Coincident
-// microphones are ValidateArraySource's to find (so the tool and the library agree).
-std::vector<nava_modem::Microphone2D> ParseMics(const ToolArgs& args, const std::string& text) {
-  std::vector<double> values;
-  std::size_t from = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', from);
-    const std::string item = text.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(v)) {
-      args.Fail("--mics " + text + ": '" + item + "' is not a number; expected X1,Y1,X2,Y2,... in metres");
-    }
-    values.push_back(v);
-    if (comma == std::string::npos) break;
-    from = comma + 1;
-  }
-  if (values.size() % 2) {
-    args.Fail("--mics " + text + ": " + std::to_string(values.size()) + (values.size() == 1 ? " number" : " numbers") +
-              "; expected X,Y pairs (an even count)");
-  }
-  if (values.size() < 4) args.Fail("--mics " + text + ": one microphone; expected at least 2 (X1,Y1,X2,Y2,...)");
-  std::vector<nava_modem::Microphone2D> mics;
-  for (std::size_t i = 0; i < values.size(); i += 2) mics.push_back({values[i], values[i + 1]});
-  return mics;
 }
 
 std::string Fixed(double v) {
@@ -166,7 +140,11 @@ int main(int argc, char** argv) {
   source.distance = Number(args, "--distance", source.distance);
   args.CheckAllUsed();
   if (!mics.empty()) {
-    source.mics = ParseMics(args, mics);
+    try {
+      source.mics = nava_modem::ParseMicPositions(mics);
+    } catch (const std::invalid_argument& e) {
+      args.Fail(std::string("--mics: ") + e.what());
+    }
     try {
       ValidateArraySource(source);
     } catch (const RoomOptionError& e) {
