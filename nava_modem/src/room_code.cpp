@@ -46,7 +46,7 @@ std::array<std::uint8_t, kCodedBits> Convolve(const Payload& payload) {
   int state = 0;
   for (int i = 0; i < kSteps; ++i) {
     const int bit = i < kPayloadBits ? (payload[i / 8] >> (7 - i % 8)) & 1 : 0;
-    state = (state << 1) | bit;
+    state = ((state << 1) | bit) & ((1 << room_phy::kConstraint) - 1);  // the encoder remembers K bits
     for (int p = 0; p < room_phy::kCodeRate; ++p) out[room_phy::kCodeRate * i + p] = static_cast<std::uint8_t>(parity(state & kPolys[p]));
   }
   return out;
