@@ -55,6 +55,9 @@ std::vector<RxEvent> DecodeArray(const ModemProfile& profile, const ReceiverOpti
                                  const std::vector<std::vector<float>>& channels, const std::vector<Microphone2D>& mics,
                                  double* estimate_seconds) {
   if (channels.empty()) throw std::invalid_argument("no audio channels to decode");
+  for (const std::vector<float>& c : channels) {
+    if (c.size() != channels[0].size()) throw std::invalid_argument("audio channels of different lengths");
+  }
   if (mics.size() >= 2 && mics.size() != channels.size()) {
     throw std::invalid_argument(std::to_string(channels.size()) + " audio channels, but " + std::to_string(mics.size()) +
                                 " microphone positions (one per channel)");

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <complex>
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 
 #include <fftw3.h>
 
 #include "nava_modem/noise_spectrum.h"
+#include "nava_modem/real_fft.h"
 
 namespace nava_modem {
 namespace {
@@ -40,11 +42,13 @@ struct ChirpDetector::Fftw {
         spectrum(fftw_alloc_complex(n / 2 + 1)),
         analytic(fftw_alloc_complex(n)),
         output(fftw_alloc_complex(n)) {
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());  // FFTW's planner is not thread-safe
     forward = fftw_plan_dft_r2c_1d(static_cast<int>(n), real, spectrum, FFTW_ESTIMATE);
     backward = fftw_plan_dft_1d(static_cast<int>(n), analytic, output, FFTW_BACKWARD, FFTW_ESTIMATE);
     if (!forward || !backward) throw std::runtime_error("chirp detector: FFTW could not plan a transform of " + std::to_string(n));
   }
   ~Fftw() {
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     fftw_destroy_plan(forward);
     fftw_destroy_plan(backward);
     fftw_free(real);

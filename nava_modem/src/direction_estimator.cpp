@@ -76,11 +76,15 @@ double ParabolaOffset(double a, double b, double c) {
   return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
 }
 
+// An array on a robot spans centimetres to a metre or two; farther is a typo (and would ask the
+// correlations for absurd lengths).
+constexpr double kFarthestMicrophone = 10.0;
+
 void CheckDistinct(const std::vector<Microphone2D>& mics, const std::string& context) {
   for (std::size_t i = 0; i < mics.size(); ++i) {
     for (std::size_t j = i + 1; j < mics.size(); ++j) {
       if (std::hypot(mics[i].x - mics[j].x, mics[i].y - mics[j].y) < kSamepoint) {
-        throw std::invalid_argument(context + ": microphones " + std::to_string(i) + " and " + std::to_string(j) +
+        throw std::invalid_argument(context + ": microphones " + std::to_string(i + 1) + " and " + std::to_string(j + 1) +
                                     " are both at (" + Number(mics[i].x) + ", " + Number(mics[i].y) +
                                     "); expected distinct positions");
       }
@@ -133,6 +137,12 @@ std::vector<Microphone2D> ParseMicPositions(const std::string& text) {
   }
   std::vector<Microphone2D> mics;
   for (std::size_t k = 0; k < values.size(); k += 2) mics.push_back({values[k], values[k + 1]});
+  for (const Microphone2D& m : mics) {
+    if (std::abs(m.x) > kFarthestMicrophone || std::abs(m.y) > kFarthestMicrophone) {
+      throw std::invalid_argument(context + ": (" + Number(m.x) + ", " + Number(m.y) + "): expected within " +
+                                  Number(kFarthestMicrophone) + " m of the robot's origin");
+    }
+  }
   CheckDistinct(mics, context);
   return mics;
 }

@@ -1,5 +1,6 @@
 #include "nava_modem/room_modulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -35,7 +36,8 @@ std::vector<float> RoomModulator::ModulatePacket(const std::vector<std::uint8_t>
 
   const double fs = options_.sample_rate;
   auto at = [fs](double seconds) { return static_cast<std::size_t>(std::lround(seconds * fs)); };
-  std::vector<float> out(at(room_phy::kPacketSeconds), 0.0f);
+  // Long enough for the second chirp however its start and length round at this rate.
+  std::vector<float> out(std::max(at(room_phy::kPacketSeconds), at(room_phy::kPostChirpStart) + chirp_.size()), 0.0f);
   const float a = static_cast<float>(options_.amplitude);
   for (std::size_t k = 0; k < chirp_.size(); ++k) {
     out[k] = a * chirp_[k];

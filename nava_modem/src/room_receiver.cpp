@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 
 #include <fftw3.h>
 
 #include "nava_modem/frame.h"
+#include "nava_modem/real_fft.h"
 #include "nava_modem/room_code.h"
 #include "nava_modem/room_modulator.h"
 
@@ -54,6 +56,7 @@ struct RoomReceiver::Fft {
   explicit Fft(std::size_t max_length)
       : in(fftw_alloc_real(max_length)), out(fftw_alloc_complex(max_length / 2 + 1)), capacity(max_length) {}
   ~Fft() {
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());  // FFTW's planner is not thread-safe
     for (auto& [length, plan] : plans) fftw_destroy_plan(plan);
     fftw_free(in);
     fftw_free(out);
@@ -61,6 +64,7 @@ struct RoomReceiver::Fft {
   fftw_plan Plan(int length) {
     auto it = plans.find(length);
     if (it != plans.end()) return it->second;
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     fftw_plan plan = fftw_plan_dft_r2c_1d(length, in, out, FFTW_ESTIMATE);
     if (!plan) throw std::runtime_error("room receiver: FFTW could not plan a transform of " + std::to_string(length));
     return plans[length] = plan;
@@ -81,8 +85,14 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
   if (!(options_.max_rate_error > 0.0 && options_.max_rate_error < 0.2)) {
     throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": expected above 0 and below 0.2");
   }
+  if (kHighestHz * (1.0 + MaxStretchError()) >= modem.sample_rate / 2.0) {
+    throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": a sender that fast would put " +
+                                "the room profile's highest tone above the Nyquist frequency at " +
+                                std::to_string(std::lround(modem.sample_rate)) + " Hz");
+  }
+  lookahead_ = std::llround((kAlignAfter + kAlignReach) * modem.sample_rate) + 1;
   const std::size_t size = PowerOfTwoAtLeast((kPacketSeconds * (1.0 + options_.max_rate_error) + 1.0) * modem.sample_rate +
-                                             4.0 * detector_.length());
+                                             4.0 * detector_.length() + lookahead_);
   history_.assign(size, 0.0f);
   history_mask_ = size - 1;
   level_step_ = std::max<std::int64_t>(1, std::llround(kBusyStepSeconds * modem.sample_rate));
@@ -95,6 +105,7 @@ RoomReceiver::~RoomReceiver() = default;
 void RoomReceiver::SetMuted(bool muted) {
   if (muted && !muted_) {
     heard_.clear();
+    pending_.clear();
     busy_.Reset();
   }
   muted_ = muted;
@@ -119,7 +130,10 @@ void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::ve
     ++n_;
     if (++level_count_ == level_step_) {
       level_count_ = 0;
-      if (!muted_) busy_.Step(time(), level_.power(), 0.0, !heard_.empty(), events);
+      // A frame may still come out of busy air until the detector has judged all of it.
+      const bool judged = detector_.computed() >=
+                          std::llround((busy_.last_loud() + kBusyRelease) * modem_.sample_rate) + lookahead_;
+      if (!muted_) busy_.Step(time(), level_.power(), 0.0, !heard_.empty() || !pending_.empty() || !judged, events);
     }
   }
   peaks_.clear();
@@ -129,8 +143,12 @@ void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::ve
     detector_.Blank(n_);
     return;
   }
-  for (const ChirpPeak& p : peaks_) OnChirp(p, events);
-  ExpireChirps(detector_.computed(), events);
+  pending_.insert(pending_.end(), peaks_.begin(), peaks_.end());
+  while (!pending_.empty() && detector_.computed() >= static_cast<std::int64_t>(pending_.front().sample) + lookahead_) {
+    OnChirp(pending_.front(), events);
+    pending_.pop_front();
+  }
+  ExpireChirps(pending_.empty() ? detector_.computed() : static_cast<std::int64_t>(pending_.front().sample), events);
 }
 
 void RoomReceiver::Flush(std::vector<RxEvent>& events) {

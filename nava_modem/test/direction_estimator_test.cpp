@@ -210,7 +210,7 @@ TEST(DirectionEstimator, CostPerEstimate) {
     for (int k = 0; k < runs; ++k) sink += estimator.Estimate(Pointers(channels, 64), source.size() - 64).bearing;
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - begin).count() / runs;
     std::printf("4 mics, 0.2 s at %.0f Hz: %.0f us per estimate (bearing %.3f)\n", rate, us, sink / runs);
-    EXPECT_LT(us, 20000.0);  // only a guard against something pathological: the cores are shared
+    EXPECT_TRUE(std::isfinite(sink));  // speed is the benchmark's (nava_bench --doa), not a test's
   }
 }
 
@@ -229,14 +229,14 @@ TEST(DirectionEstimator, ParseMicPositions) {
   EXPECT_EQ(ErrorOf([] { ParseMicPositions("0.1,0,0.1x,0"); }),
             "microphone positions '0.1,0,0.1x,0': '0.1x' is not a number; expected x1,y1,x2,y2,... in metres");
   EXPECT_EQ(ErrorOf([] { ParseMicPositions("0.1,0,0,0.1,0.1,0"); }),
-            "microphone positions '0.1,0,0,0.1,0.1,0': microphones 0 and 2 are both at (0.1, 0); expected distinct positions");
+            "microphone positions '0.1,0,0,0.1,0.1,0': microphones 1 and 3 are both at (0.1, 0); expected distinct positions");
 }
 
 TEST(DirectionEstimator, ConstructorErrorsNameTheValue) {
   const auto error = [](DirectionOptions o) { return ErrorOf([&] { DirectionEstimator e(o); }); };
   EXPECT_EQ(error(Options({{0.1, 0.0}})), "DirectionOptions: 1 microphones; expected at least 2");
   EXPECT_EQ(error(Options({{0.1, 0.0}, {0.1, 0.0}})),
-            "DirectionOptions: microphones 0 and 1 are both at (0.1, 0); expected distinct positions");
+            "DirectionOptions: microphones 1 and 2 are both at (0.1, 0); expected distinct positions");
   DirectionOptions o = Options(Square());
   o.low_hz = 7000.0;
   EXPECT_EQ(error(o), "DirectionOptions: low_hz 7000 Hz; expected from 0 to below high_hz 6000 Hz");

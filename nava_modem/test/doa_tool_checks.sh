@@ -68,7 +68,7 @@ tool=$decode
 expect_error "^nava_decode: $out/ahead.wav has 4 channels, but --mics gives 2 microphones$" --mics 0.1,0,-0.1,0 "$out/ahead.wav"
 [ "$(grep -c . "$out/err")" -eq 1 ] || { cat "$out/err"; fail "the channel count error is not one line"; }
 expect_error "--mics: microphone positions '0.1,0,-0.1': 3 numbers; expected an x,y pair per microphone" --mics 0.1,0,-0.1 "$out/ahead.wav"
-expect_error "--mics: microphone positions '0.1,0,0.1,0': microphones 0 and 1 are both at (0.1, 0)" --mics 0.1,0,0.1,0 "$out/ahead.wav"
+expect_error "--mics: microphone positions '0.1,0,0.1,0': microphones 1 and 2 are both at (0.1, 0)" --mics 0.1,0,0.1,0 "$out/ahead.wav"
 expect_error "--mics: microphone positions '1,x': 'x' is not a number" --mics 1,x "$out/ahead.wav"
 expect_error "$out/nothing.wav: not a readable audio file" --mics "$square" "$out/nothing.wav"
 echo "nava_decode --mics checks: all passed"

@@ -4,6 +4,8 @@
 // per-channel noise levels, the interferer's plane wave, one output gain, determinism,
 // validation, and the multi-channel WAV writer.
 #include <algorithm>
+#include <unistd.h>
+
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -333,7 +335,7 @@ TEST(RoomArrayTest, ValidationNamesTheField) {
 }
 
 TEST(WavChannelsTest, WritesInterleavedChannelsAndRefusesRaggedOnes) {
-  const std::string path = ::testing::TempDir() + "/room_array_test_channels.wav";
+  const std::string path = ::testing::TempDir() + "/room_array_test_channels_" + std::to_string(getpid()) + ".wav";
   const std::vector<std::vector<float>> channels = {{0.5f, -0.25f, 0.0f}, {0.25f, 0.25f, -0.5f}, {0.0f, 0.5f, 0.5f}};
   WriteWavChannels(path, channels, 16000.0);
   const Audio mixed = ReadAudioFile(path);  // mixes the channels to one: their mean

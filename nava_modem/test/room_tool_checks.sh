@@ -76,7 +76,7 @@ expect_error "--mics: microphone positions '0,0,1': 3 numbers; expected an x,y p
 expect_error "--mics: microphone positions '0,0': 1 microphone; expected at least 2" "${in[@]}" --mics 0,0
 expect_error "--mics: microphone positions '0,0,a,1': 'a' is not a number" "${in[@]}" --mics 0,0,a,1
 expect_error "--mics: microphone positions '0,0,,1': '' is not a number" "${in[@]}" --mics 0,0,,1
-expect_error "--mics: microphone positions '0.1,0,0.1,0': microphones 0 and 1 are both at (0.1, 0); expected distinct positions" "${in[@]}" --mics 0.1,0,0.1,0
+expect_error "--mics: microphone positions '0.1,0,0.1,0': microphones 1 and 2 are both at (0.1, 0); expected distinct positions" "${in[@]}" --mics 0.1,0,0.1,0
 expect_error "--bearing: there is no microphone array to place the source around; add --mics" "${in[@]}" --bearing 30
 expect_error "--distance: there is no microphone array" "${in[@]}" --distance 3
 expect_error "--bearing north: expected a number" "${in[@]}" --mics "$mics" --bearing north
@@ -102,5 +102,6 @@ tool=$decode
 expect_error "--profile: expected nava or room, got Room" --profile Room "$out/office.wav"
 "$encode" --profile nava --rate 8000 --out "$out/narrow.wav" 01020304 || fail "nava_encode at 8000 Hz failed"
 expect_error "$out/narrow.wav: profile room: sample rate 8000 Hz cannot carry its band" --profile room "$out/narrow.wav"
+expect_error "--mics: microphone positions '1e9,0,0,0': (1e+09, 0): expected within 10 m" "${in[@]}" --mics 1e9,0,0,0
 [ ! -e "$out/x.wav" ] || fail "a failed run wrote its output"
 echo "nava_room checks: all passed"

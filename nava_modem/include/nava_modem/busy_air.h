@@ -26,6 +26,7 @@ class BusyAir {
     if (busy_) had_frame_ = true;
   }
   bool busy() const { return busy_; }
+  double last_loud() const { return last_loud_; }  // s: the busy stretch's last loud step
 
  private:
   double release_, min_;

@@ -85,6 +85,10 @@ class RoomReceiver : public PacketReceiver {
     std::optional<RxEvent> failure;   // the best failed decode it began
   };
   std::deque<Heard> heard_;
+  // Chirps found, held until the matched filter's envelope is known far enough past them to
+  // line them up (AlignedPosts looks up to kAlignAfter + kAlignReach ahead).
+  std::deque<ChirpPeak> pending_;
+  std::int64_t lookahead_;
   double decoded_until_ = -1.0;  // the end of the last packet decoded, in samples
   std::int64_t level_step_, level_count_ = 0;
   struct Fft;
