@@ -9,6 +9,7 @@
 #include <fftw3.h>
 
 #include "nava_modem/noise_spectrum.h"
+#include "nava_modem/power_of_two.h"
 #include "nava_modem/real_fft.h"
 
 namespace nava_modem {
@@ -25,12 +26,6 @@ constexpr double kSmoothHz = 250.0;
 constexpr double kWhiteningSpan = 0.02;
 // Renew the running background sum this often against rounding.
 constexpr std::int64_t kRenewEvery = 1 << 16;
-
-std::size_t PowerOfTwoAtLeast(double n) {
-  std::size_t size = 1;
-  while (size < n) size <<= 1;
-  return size;
-}
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nava_modem/power_of_two.h"
+
 namespace nava_modem {
 namespace {
 
@@ -105,12 +107,8 @@ int KnownBit(int k) {
   return -1;
 }
 
-std::size_t RingSize(double per_bit) {
-  const double needed = 150.0 * per_bit + 64.0;
-  std::size_t size = 1;
-  while (size < needed) size <<= 1;
-  return size;
-}
+// Filter outputs kept: the packet and the clock search's reach either side.
+std::size_t RingSize(double per_bit) { return PowerOfTwoAtLeast(150.0 * per_bit + 64.0); }
 
 }  // namespace
 

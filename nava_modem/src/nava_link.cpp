@@ -2,6 +2,7 @@
 
 #include "nava_modem/array_decode.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/power_of_two.h"
 
 #include <algorithm>
 #include <cmath>
@@ -45,8 +46,7 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
   if (options_.microphones.size() >= 2) {
     estimator_ = std::make_unique<DirectionEstimator>(DirectionOptionsFor(options_.profile, options_.modem, options_.microphones));
     // A packet and what it takes the receiver to report it.
-    std::size_t size = 1;
-    while (size < (profile_->Airtime() * 1.1 + kDirectionMarginSeconds) * options_.modem.sample_rate) size <<= 1;
+    const std::size_t size = PowerOfTwoAtLeast((profile_->Airtime() * 1.1 + kDirectionMarginSeconds) * options_.modem.sample_rate);
     history_.assign(channels_, std::vector<float>(size, 0.0f));
     history_mask_ = size - 1;
     span_.resize(channels_);

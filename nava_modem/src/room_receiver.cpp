@@ -8,6 +8,7 @@
 #include <fftw3.h>
 
 #include "nava_modem/frame.h"
+#include "nava_modem/power_of_two.h"
 #include "nava_modem/real_fft.h"
 #include "nava_modem/room_code.h"
 #include "nava_modem/room_modulator.h"
@@ -31,12 +32,6 @@ constexpr double kAlignBefore = 0.010, kAlignAfter = 0.050, kAlignReach = 0.045;
 // detector's own threshold: the window is narrow, and the CRC judges what is decoded.
 constexpr double kSearchRatio = 4.0;
 constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
-
-std::size_t PowerOfTwoAtLeast(double n) {
-  std::size_t size = 1;
-  while (size < n) size <<= 1;
-  return size;
-}
 
 double Median(std::vector<double>& v) {
   if (v.empty()) return 0.0;

@@ -21,14 +21,8 @@ using test_signals::RandomPayloads;
 
 // Packets with gaps between them, as a sender would play them.
 std::vector<float> Play(const ModemProfile& profile, const Payloads& payloads, double gap) {
-  const std::size_t silence = static_cast<std::size_t>(gap * profile.options().sample_rate);
-  std::vector<float> audio(silence, 0.0f);
-  for (const auto& p : payloads) {
-    const std::vector<float> burst = profile.ModulatePacket(p);
-    audio.insert(audio.end(), burst.begin(), burst.end());
-    audio.insert(audio.end(), silence, 0.0f);
-  }
-  return audio;
+  return test_signals::Train(payloads, static_cast<std::size_t>(gap * profile.options().sample_rate),
+                             [&](const auto& p) { return profile.ModulatePacket(p); });
 }
 
 std::vector<RxEvent> Hear(const ModemProfile& profile, const std::vector<float>& audio) {

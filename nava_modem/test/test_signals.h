@@ -94,6 +94,19 @@ inline std::vector<std::vector<std::uint8_t>> RandomPayloads(int count, unsigned
   return out;
 }
 
+// `payloads` as `modulate` sounds each, with `gap` samples of silence before each and after the
+// last.
+template <typename Modulate>
+std::vector<float> Train(const std::vector<std::vector<std::uint8_t>>& payloads, std::size_t gap, Modulate modulate) {
+  std::vector<float> audio(gap, 0.0f);
+  for (const auto& p : payloads) {
+    const std::vector<float> burst = modulate(p);
+    audio.insert(audio.end(), burst.begin(), burst.end());
+    audio.insert(audio.end(), gap, 0.0f);
+  }
+  return audio;
+}
+
 // The packets with gap_s of silence before each and after the last, sent by a sound card
 // whose clock runs (1 + clock_error) fast: tones and bit rate scaled alike.
 inline std::vector<float> PacketTrain(const ModemOptions& o, const std::vector<std::vector<std::uint8_t>>& payloads,
@@ -103,14 +116,7 @@ inline std::vector<float> PacketTrain(const ModemOptions& o, const std::vector<s
   sender.space_hz *= 1.0 + clock_error;
   sender.baud *= 1.0 + clock_error;
   const FskModulator mod(sender);
-  const std::size_t gap = static_cast<std::size_t>(gap_s * o.sample_rate);
-  std::vector<float> audio(gap, 0.0f);
-  for (const auto& p : payloads) {
-    const std::vector<float> burst = mod.ModulatePacket(p);
-    audio.insert(audio.end(), burst.begin(), burst.end());
-    audio.insert(audio.end(), gap, 0.0f);
-  }
-  return audio;
+  return Train(payloads, static_cast<std::size_t>(gap_s * o.sample_rate), [&](const auto& p) { return mod.ModulatePacket(p); });
 }
 
 }  // namespace nava_modem::test_signals
