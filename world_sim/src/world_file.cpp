@@ -78,6 +78,76 @@ std::uint32_t ReadId(const YamlFields& f, const std::string& key) {
   return static_cast<std::uint32_t>(id);
 }
 
+
+RoomAcoustics ParseRoom(const YamlFields& f, RoomAcoustics room) {
+  room.rt60 = Bounded(f, "rt60", room.rt60, 0.0, 10.0, true, "a reverberation time in (0, 10] s");
+  room.volume = Bounded(f, "volume", room.volume, 0.0, kBig, false, "a volume in m^3 (>= 0)");
+  room.critical_distance =
+      Bounded(f, "critical_distance", room.critical_distance, 0.0, 1000.0, false, "a distance in [0, 1000] m");
+  if (room.volume == 0.0 && room.critical_distance == 0.0) {
+    f.Fail("volume", "expected a room volume (m^3) or a critical_distance (m) above 0");
+  }
+  return room;
+}
+
+NoiseKind ReadNoiseKind(const YamlFields& f, const std::string& key, NoiseKind fallback) {
+  const std::string name = f.String(key, NoiseKindName(fallback));
+  const auto kind = ParseNoiseKind(name);
+  if (!kind) f.Fail(key, std::string("expected ") + kNoiseKindNames + ", got '" + name + "'");
+  return *kind;
+}
+
+std::optional<Acoustics> ParseAcoustics(const YamlFields& root) {
+  if (!root.Has("acoustics")) return std::nullopt;
+  const YamlFields f = root.Child("acoustics");
+  f.ExpectOnlyKeys({"rt60", "volume", "critical_distance", "ambient_db", "ambient_kind", "corner_loss_db",
+                    "regions", "noise_sources"});
+  Acoustics a;
+  a.room = ParseRoom(f, a.room);
+  a.ambient_db = Bounded(f, "ambient_db", a.ambient_db, -50.0, 150.0, false, "a level in [-50, 150] dB");
+  a.ambient_kind = ReadNoiseKind(f, "ambient_kind", a.ambient_kind);
+  if (a.ambient_kind == NoiseKind::kWhine) f.Fail("ambient_kind", "expected white, pink or speech; a whine needs a source");
+  a.corner_loss_db = Bounded(f, "corner_loss_db", a.corner_loss_db, 0.0, 60.0, false, "a loss in [0, 60] dB per corner");
+  for (const YamlFields& r : f.Elements("regions")) {
+    r.ExpectOnlyKeys({"name", "box", "rt60", "volume", "critical_distance"});
+    AcousticRegion region;
+    region.name = r.String("name");
+    const std::vector<double> box = r.Numbers("box", 4, "[min_x, min_y, max_x, max_y]");
+    if (!(box[0] < box[2] && box[1] < box[3])) {
+      r.Fail("box", "expected min_x < max_x and min_y < max_y");
+    }
+    region.min_x = box[0], region.min_y = box[1], region.max_x = box[2], region.max_y = box[3];
+    RoomAcoustics blank;
+    blank.rt60 = a.room.rt60;
+    region.room = ParseRoom(r, blank);
+    a.regions.push_back(region);
+  }
+  std::size_t k = 0;
+  for (const YamlFields& n : f.Elements("noise_sources")) {
+    n.ExpectOnlyKeys({"name", "position", "robot", "level_db", "kind", "frequency", "duty", "period", "phase"});
+    NoiseSourceSpec s;
+    s.name = n.String("name", "noise_" + std::to_string(k++));
+    if (n.Has("robot") == n.Has("position")) {
+      n.Fail("position", "expected either a position [x, y] or a robot name, not both nor neither");
+    }
+    if (n.Has("position")) {
+      const std::vector<double> p = n.Numbers("position", 2, "[x, y]");
+      s.x = p[0], s.y = p[1];
+    } else {
+      s.robot = n.String("robot");
+    }
+    s.level_db = Bounded(n, "level_db", s.level_db, -50.0, 150.0, false, "a level at 1 m in [-50, 150] dB");
+    s.kind = ReadNoiseKind(n, "kind", s.kind);
+    s.frequency = Bounded(n, "frequency", 0.0, 0.0, 20000.0, false, "a frequency in [0, 20000] Hz");
+    if (s.kind == NoiseKind::kWhine && s.frequency <= 0.0) n.Fail("frequency", "expected a whine's frequency above 0 Hz");
+    s.duty = Bounded(n, "duty", s.duty, 0.0, 1.0, true, "a duty cycle in (0, 1]");
+    s.period = Bounded(n, "period", s.period, 0.0, kBig, true, "a period above 0 s");
+    s.phase = Bounded(n, "phase", s.phase, -kBig, kBig, false, "a phase in s");
+    a.noise_sources.push_back(s);
+  }
+  return a;
+}
+
 }  // namespace
 
 void ValidateWorld(const std::string& file, const WorldConfig& config, const grid::OccupancyMap& map) {
@@ -118,12 +188,28 @@ void ValidateWorld(const std::string& file, const WorldConfig& config, const gri
                              "charger is inside a wall or off the map; expected a free cell");
     }
   }
+  if (config.acoustics) {
+    const Acoustics& a = *config.acoustics;
+    for (std::size_t k = 0; k < a.noise_sources.size(); ++k) {
+      const NoiseSourceSpec& s = a.noise_sources[k];
+      const std::string field = "acoustics.noise_sources[" + std::to_string(k) + "]";
+      if (!s.robot.empty()) {
+        if (!names.count(s.robot)) {
+          throw grid::InputError(file, field + ".robot", "no robot named '" + s.robot + "' in this world");
+        }
+      } else if (!map.IsFreeAt({s.x, s.y})) {
+        throw grid::InputError(file, field + ".position",
+                               "noise source '" + s.name + "' at (" + std::to_string(s.x) + ", " +
+                                   std::to_string(s.y) + ") is inside a wall or off the map; expected a free cell");
+      }
+    }
+  }
 }
 
 LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_override) {
   namespace fs = std::filesystem;
   const YamlFields root = YamlFields::Load(path, "world file");
-  root.ExpectOnlyKeys({"map", "seed", "robot_model", "robots", "markers", "chargers"});
+  root.ExpectOnlyKeys({"map", "seed", "robot_model", "robots", "markers", "chargers", "acoustics"});
 
   WorldConfig config;
   if (map_override.empty()) {
@@ -139,6 +225,7 @@ LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_overri
   }
   config.seed = static_cast<std::uint32_t>(seed);
   config.model = ParseModel(root);
+  config.acoustics = ParseAcoustics(root);
 
   for (const YamlFields& r : root.Elements("robots")) {
     r.ExpectOnlyKeys({"name", "pose", "microphone", "battery"});
@@ -215,6 +302,40 @@ void EmitModel(YAML::Emitter& out, const RobotModel& m) {
   out << YAML::EndMap;
 }
 
+
+void EmitRoom(YAML::Emitter& out, const RoomAcoustics& r) {
+  out << YAML::Key << "rt60" << YAML::Value << r.rt60 << YAML::Key << "volume" << YAML::Value << r.volume
+      << YAML::Key << "critical_distance" << YAML::Value << r.critical_distance;
+}
+
+void EmitAcoustics(YAML::Emitter& out, const Acoustics& a) {
+  out << YAML::Key << "acoustics" << YAML::Value << YAML::BeginMap;
+  EmitRoom(out, a.room);
+  out << YAML::Key << "ambient_db" << YAML::Value << a.ambient_db << YAML::Key << "ambient_kind" << YAML::Value
+      << NoiseKindName(a.ambient_kind) << YAML::Key << "corner_loss_db" << YAML::Value << a.corner_loss_db;
+  out << YAML::Key << "regions" << YAML::Value << YAML::BeginSeq;
+  for (const AcousticRegion& r : a.regions) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << r.name << YAML::Key << "box"
+        << YAML::Value << YAML::Flow << YAML::BeginSeq << r.min_x << r.min_y << r.max_x << r.max_y << YAML::EndSeq;
+    EmitRoom(out, r.room);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::Key << "noise_sources" << YAML::Value << YAML::BeginSeq;
+  for (const NoiseSourceSpec& s : a.noise_sources) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << s.name;
+    if (s.robot.empty()) {
+      out << YAML::Key << "position" << YAML::Value << YAML::Flow << YAML::BeginSeq << s.x << s.y << YAML::EndSeq;
+    } else {
+      out << YAML::Key << "robot" << YAML::Value << s.robot;
+    }
+    out << YAML::Key << "level_db" << YAML::Value << s.level_db << YAML::Key << "kind" << YAML::Value
+        << NoiseKindName(s.kind) << YAML::Key << "frequency" << YAML::Value << s.frequency << YAML::Key << "duty"
+        << YAML::Value << s.duty << YAML::Key << "period" << YAML::Value << s.period << YAML::Key << "phase"
+        << YAML::Value << s.phase << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+}
+
 }  // namespace
 
 void SaveWorldFile(const std::string& path, const WorldConfig& config) {
@@ -249,7 +370,9 @@ void SaveWorldFile(const std::string& path, const WorldConfig& config) {
     if (c.marker) out << YAML::Key << "marker" << YAML::Value << *c.marker;
     out << YAML::EndMap;
   }
-  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+  if (config.acoustics) EmitAcoustics(out, *config.acoustics);
+  out << YAML::EndMap;
   std::ofstream file(path);
   file << out.c_str() << "\n";
   if (!file) throw std::runtime_error(path + ": cannot write the world file");

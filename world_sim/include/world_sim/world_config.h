@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "grid/pose2d.h"
+#include "world_sim/acoustics.h"
 
 namespace world_sim {
 
@@ -78,6 +79,8 @@ struct WorldConfig {
   std::vector<RobotSpec> robots;
   std::vector<MarkerSpec> markers;
   std::vector<ChargerSpec> chargers;
+  // The optional `acoustics` section: read only by the acoustic channel model.
+  std::optional<Acoustics> acoustics;
 };
 
 }  // namespace world_sim

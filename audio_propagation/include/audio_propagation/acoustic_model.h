@@ -1,0 +1,103 @@
+#pragma once
+
+// The `acoustic` channel model: whether a simulated robot would decode a packet, from what a
+// real microphone at its place would hear. For each link it takes the shortest path around walls
+// (propagation_model.h) and works out
+//   direct level       L_src - 20 log10(d / d0) - corner_loss_db x corners on the path;
+//   reverberant level  L_src - 20 log10(r_c / d0) - 0.174 d / RT60  (the diffuse field, equal to
+//                      the free-field level at the critical distance r_c of the listener's room,
+//                      falling slowly along the path as in Barron's revised theory: energy
+//                      reflected late has travelled further), so the direct-to-reverberant ratio
+//                      falls with distance as in a real room;
+//   noise              the ambient level plus every noise source sounding at that moment (each
+//                      through its own path: direct and reverberant), plus other packets in the
+//                      air, as the receiver's disturbance;
+// and looks the decode probability, and the noise classes of a failure, up in the profile's
+// decode table (decode_table.h) by SNR, DRR, RT60 and the loudest disturbance's kind.
+// No ROS. The scene renderer (scene_render.h) uses the same levels to make the waveforms the
+// model is validated against.
+#include <cstddef>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "audio_propagation/decode_table.h"
+#include "audio_propagation/propagation_model.h"
+#include "world_sim/acoustics.h"
+
+namespace audio_propagation {
+
+// The levels of one source heard at one place.
+struct LinkLevels {
+  double direct_db = 0.0;
+  double reverberant_db = 0.0;
+  double total_db = 0.0;  // direct and reverberant power summed
+  double drr_db = 0.0;
+  double rt60 = 0.0;      // s, of the listener's room
+};
+// Pure: a source of `source_db` at `d0` m heard over a path of `length` m round `corners`
+// corners, in `room`.
+LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
+                      const world_sim::RoomAcoustics& room);
+
+// One disturbance at a listener: its kind and power (linear, 10^(dB / 10)).
+struct Disturbance {
+  Interference kind = Interference::kPink;
+  double power = 0.0;
+  double frequency = 0.0;  // Hz, a whine's fundamental
+};
+
+struct LinkPrediction {
+  double path_length = 0.0;  // m
+  int corners = 0;
+  LinkLevels signal;
+  double noise_db = 0.0;     // every disturbance, as the receiver weighs it
+  double snr_db = 0.0;
+  Interference kind = Interference::kPink;  // the loudest disturbance
+  DecodeOutcome outcome;     // from the table
+  double probability = 0.0;  // outcome.packet
+};
+
+class AcousticModel {
+ public:
+  // Throws grid::InputError when a noise source is outside the map or rides on a robot not in
+  // `robot_names`, or std::invalid_argument for impossible acoustics (RT60 <= 0, ...).
+  AcousticModel(const PropagationModel& propagation, world_sim::Acoustics acoustics, DecodeTable table,
+                std::vector<std::string> robot_names);
+
+  // The noise sources and ambient sound a listener at `at` hears at time `t`; robot-borne sources
+  // are where their robot is (`robots`, indexed as robot_names). `skip_robot` (if any) is the
+  // listener itself: its own motors are its self-noise and still count, so this is unused
+  // except to name the robot whose packets are not disturbances.
+  std::vector<Disturbance> NoiseAt(const Eigen::Vector2d& at, double t,
+                                   const std::vector<Eigen::Vector2d>& robots) const;
+
+  // The levels of a packet arriving along `path` at `listener`.
+  LinkLevels Levels(const SoundPath& path, const Eigen::Vector2d& listener) const;
+
+  // The prediction for a packet along `path`, heard at `listener` against `disturbances` (from
+  // NoiseAt, plus a kPacket disturbance for each overlapping packet, its power weighted by the
+  // overlapping fraction).
+  LinkPrediction Predict(const SoundPath& path, const Eigen::Vector2d& listener,
+                         const std::vector<Disturbance>& disturbances) const;
+
+  // The power a disturbance counts for with this profile: a whine counts by how much of its
+  // power falls in the profile's band, relative to the table's whine.
+  double EffectivePower(const Disturbance& d) const;
+
+  const world_sim::Acoustics& acoustics() const { return acoustics_; }
+  const DecodeTable& table() const { return table_; }
+  const PropagationModel& propagation() const { return propagation_; }
+
+ private:
+  const PropagationModel& propagation_;
+  world_sim::Acoustics acoustics_;
+  DecodeTable table_;
+  std::vector<std::string> robot_names_;
+  std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
+};
+
+}  // namespace audio_propagation

@@ -1,0 +1,92 @@
+#pragma once
+
+// A decode table: what a modem profile's real receiver makes of packets heard through a room,
+// measured by running it on rendered room audio (nava_bench --table PROFILE), against the
+// signal-to-noise ratio, the direct-to-reverberant ratio, the reverberation time and the kind of
+// disturbance. The `acoustic` channel model (acoustic_model.h) looks a link's figures up in it to
+// decide whether a simulated packet is decoded, and if not, what noise the receiver reports.
+//
+// Definitions (those of nava_modem/room_channel.h, so table and renderer agree):
+//   signal power  the mean square of the reverberant packet over the samples where it sounds
+//                 (direct plus reverberant sound);
+//   noise power   the mean square of the disturbance over the recording, all frequencies;
+//   SNR           10 log10(signal / noise), whatever the disturbance's kind;
+//   DRR           the room impulse response's direct-to-reverberant energy ratio.
+// For the `packet` kind the disturbance is another packet of the same profile, through the same
+// room, starting anywhere within one packet length of the wanted one.
+//
+// File format (YAML):
+//   profile: room                 # nava | room
+//   packets: 12                   # per cell
+//   whine_hz: 2500                # the whine of the whine cells
+//   band_hz: [600, 5400]          # the profile's band
+//   command: "nava_bench --table room ..."
+//   snr_db: [-15, -12, ...]       # ascending
+//   drr_db: [-30, ..., 24]        # ascending
+//   rt60: [0.3, 0.6, 1.2]         # ascending, s
+//   kinds:                        # every kind, each a list over rt60 of lists over drr of
+//     white: [[[p, z, o, b], ...]]   # lists over snr of [packet, zero_byte, one_byte, bad_crc]
+//     ...
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "world_sim/acoustics.h"
+
+namespace audio_propagation {
+
+// The disturbance a packet is judged against.
+enum class Interference { kWhite, kPink, kSpeech, kWhine, kPacket };
+constexpr std::size_t kInterferenceCount = 5;
+std::optional<Interference> ParseInterference(const std::string& name);  // white ... packet
+const char* InterferenceName(Interference kind);
+Interference FromNoiseKind(world_sim::NoiseKind kind);
+
+// What the receiver reported for the packets of one cell, as fractions of the packets sent. The
+// rest (1 minus the sum) it did not report at all.
+struct DecodeOutcome {
+  double packet = 0.0;     // decoded, with the right data
+  double zero_byte = 0.0;  // noise: a carrier, no byte
+  double one_byte = 0.0;   // noise: bytes, but no packet
+  double bad_crc = 0.0;    // noise: a whole frame whose CRC failed
+  double Nothing() const { return 1.0 - packet - zero_byte - one_byte - bad_crc; }
+};
+
+struct DecodeTable {
+  std::string profile;  // "nava" or "room" (nava_modem::ProfileName)
+  int packets = 0;      // measured per cell
+  double whine_hz = 0.0;
+  double band_low_hz = 0.0, band_high_hz = 0.0;
+  std::string command;  // how the table was made
+  std::vector<double> snr_db, drr_db, rt60;  // each ascending, at least one value
+  // Indexed [kind][rt60][drr][snr], every kind of Interference in its enum order.
+  std::vector<DecodeOutcome> cells;
+
+  std::size_t Index(Interference kind, std::size_t rt, std::size_t drr, std::size_t snr) const;
+  DecodeOutcome& At(Interference kind, std::size_t rt, std::size_t drr, std::size_t snr) {
+    return cells.at(Index(kind, rt, drr, snr));
+  }
+  const DecodeOutcome& At(Interference kind, std::size_t rt, std::size_t drr, std::size_t snr) const {
+    return cells.at(Index(kind, rt, drr, snr));
+  }
+  // Sizes `cells` for the axes (all zero).
+  void Resize();
+  // Linear interpolation in SNR, DRR and RT60, clamped at each axis' ends (beyond the loudest
+  // SNR measured the receiver does no better; beyond the quietest, no worse).
+  DecodeOutcome Lookup(Interference kind, double snr_db, double drr_db, double rt60) const;
+};
+
+// Reads a table. Throws grid::InputError naming the file, the field and the value: a missing or
+// malformed field, axes that are empty or not ascending, a fraction outside [0, 1] or a cell
+// whose fractions sum above 1, a missing kind, or (when `expected_profile` is not empty) a table
+// for another profile.
+DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected_profile = "");
+// Writes a table that LoadDecodeTable reads back equal (fractions to 4 decimals). Throws
+// std::runtime_error naming the path when it cannot be written.
+void SaveDecodeTable(const std::string& path, const DecodeTable& table);
+
+// Where the shipped tables live (the source tree's audio_propagation/tables/PROFILE.yaml).
+std::string ShippedDecodeTable(const std::string& profile);
+
+}  // namespace audio_propagation

@@ -1,0 +1,72 @@
+#pragma once
+
+// The acoustics of a world: how the rooms reverberate, how loud the building is, and what else
+// makes noise. Read from a world file's optional `acoustics` section and used only by the
+// `acoustic` channel model (audio_propagation/acoustic_model.h) and the scene renderer; a world
+// without the section keeps the thesis's threshold channel.
+//
+// Levels are in the propagation model's dB scale: a robot's packet is `source_level_db` (70 by
+// default) at 1 m, so a noise source of 60 dB at 1 m is 10 dB quieter than a speaker at the
+// same distance. Treat the scale as dB SPL and a real room's meter readings carry over.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace world_sim {
+
+// What a noise sounds like; the receivers suffer each kind differently (speech and a whine hit
+// a few tones hard, white and pink noise spread over the band).
+enum class NoiseKind { kWhite, kPink, kSpeech, kWhine };
+std::optional<NoiseKind> ParseNoiseKind(const std::string& name);  // white | pink | speech | whine
+const char* NoiseKindName(NoiseKind kind);
+inline const char* kNoiseKindNames = "white, pink, speech or whine";
+
+// A room's reverberation. The critical distance is where the direct sound and the reverberant
+// field are equally loud; beyond it a microphone hears more room than speaker. From Sabine's
+// equation for an omnidirectional source it is about 0.057 sqrt(V / RT60) m (V in m^3).
+struct RoomAcoustics {
+  double rt60 = 0.5;               // s, mid-frequency reverberation time
+  double volume = 0.0;             // m^3; used when critical_distance is 0
+  double critical_distance = 0.0;  // m; 0 = from volume and rt60
+};
+// The critical distance in m (given, or from volume and RT60).
+double CriticalDistance(const RoomAcoustics& room);
+
+// A named part of the map with its own reverberation (a hall, a corridor), an axis-aligned box
+// in world coordinates. Where boxes overlap, the first listed wins.
+struct AcousticRegion {
+  std::string name;
+  double min_x = 0.0, min_y = 0.0, max_x = 0.0, max_y = 0.0;  // m
+  RoomAcoustics room;
+  bool Contains(double x, double y) const { return x >= min_x && x <= max_x && y >= min_y && y <= max_y; }
+};
+
+// Something that makes noise: fixed (a fan, a radio) or carried by a robot (its motors). It
+// sounds for `duty` of every `period` seconds, from `phase` seconds into the cycle.
+struct NoiseSourceSpec {
+  std::string name;
+  double x = 0.0, y = 0.0;  // m, where a fixed source stands
+  std::string robot;        // not empty: the source rides on this robot, and x, y are unused
+  double level_db = 60.0;   // at 1 m
+  NoiseKind kind = NoiseKind::kPink;
+  double frequency = 0.0;   // Hz, a whine's fundamental (harmonics at 2x and 3x)
+  double duty = 1.0;        // fraction of the time it sounds, (0, 1]
+  double period = 10.0;     // s
+  double phase = 0.0;       // s
+};
+// Whether the source sounds at simulated time `t`.
+bool Sounding(const NoiseSourceSpec& source, double t);
+
+struct Acoustics {
+  RoomAcoustics room;                 // everywhere no region covers
+  std::vector<AcousticRegion> regions;
+  double ambient_db = 30.0;           // the building's background noise at every listener
+  NoiseKind ambient_kind = NoiseKind::kPink;
+  double corner_loss_db = 6.0;        // lost by the direct sound at each corner it bends round
+  std::vector<NoiseSourceSpec> noise_sources;
+
+  // The reverberation at a point: the first region holding it, else `room`.
+  const RoomAcoustics& RoomAt(double x, double y) const;
+};
+
+}  // namespace world_sim

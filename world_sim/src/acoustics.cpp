@@ -1,0 +1,45 @@
+#include "world_sim/acoustics.h"
+
+#include <cmath>
+
+namespace world_sim {
+
+std::optional<NoiseKind> ParseNoiseKind(const std::string& name) {
+  if (name == "white") return NoiseKind::kWhite;
+  if (name == "pink") return NoiseKind::kPink;
+  if (name == "speech") return NoiseKind::kSpeech;
+  if (name == "whine") return NoiseKind::kWhine;
+  return std::nullopt;
+}
+
+const char* NoiseKindName(NoiseKind kind) {
+  switch (kind) {
+    case NoiseKind::kWhite: return "white";
+    case NoiseKind::kPink: return "pink";
+    case NoiseKind::kSpeech: return "speech";
+    case NoiseKind::kWhine: return "whine";
+  }
+  return "?";
+}
+
+double CriticalDistance(const RoomAcoustics& room) {
+  if (room.critical_distance > 0.0) return room.critical_distance;
+  // Sabine: absorption area A = 0.161 V / RT60; r_c = sqrt(A / (16 pi)) for an omni source.
+  return std::sqrt(0.161 * room.volume / (16.0 * M_PI * room.rt60));
+}
+
+bool Sounding(const NoiseSourceSpec& source, double t) {
+  if (source.duty >= 1.0) return true;
+  double cycle = std::fmod(t + source.phase, source.period);
+  if (cycle < 0.0) cycle += source.period;
+  return cycle < source.duty * source.period;
+}
+
+const RoomAcoustics& Acoustics::RoomAt(double x, double y) const {
+  for (const AcousticRegion& r : regions) {
+    if (r.Contains(x, y)) return r.room;
+  }
+  return room;
+}
+
+}  // namespace world_sim
