@@ -17,6 +17,7 @@
 // No ROS. The scene renderer (scene_render.h) uses the same levels to make the waveforms the
 // model is validated against.
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -63,15 +64,16 @@ struct LinkPrediction {
 
 class AcousticModel {
  public:
-  // Throws grid::InputError when a noise source is outside the map or rides on a robot not in
-  // `robot_names`, or std::invalid_argument for impossible acoustics (RT60 <= 0, ...).
+  // Throws std::invalid_argument naming the source or field when a noise source is outside the
+  // map's free space or rides on a robot not in `robot_names`, for impossible acoustics (RT60 <= 0,
+  // no volume nor critical distance, a negative corner loss) or an empty table. Not thread-safe
+  // (it keeps the paths of fixed noise sources).
   AcousticModel(const PropagationModel& propagation, world_sim::Acoustics acoustics, DecodeTable table,
                 std::vector<std::string> robot_names);
 
-  // The noise sources and ambient sound a listener at `at` hears at time `t`; robot-borne sources
-  // are where their robot is (`robots`, indexed as robot_names). `skip_robot` (if any) is the
-  // listener itself: its own motors are its self-noise and still count, so this is unused
-  // except to name the robot whose packets are not disturbances.
+  // The ambient sound and the noise sources a listener at `at` hears at time `t`; robot-borne
+  // sources are where their robot is (`robots`, indexed as robot_names). A robot hears its own
+  // motors at their 1 m level.
   std::vector<Disturbance> NoiseAt(const Eigen::Vector2d& at, double t,
                                    const std::vector<Eigen::Vector2d>& robots) const;
 
@@ -98,6 +100,10 @@ class AcousticModel {
   DecodeTable table_;
   std::vector<std::string> robot_names_;
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
+  // The path from noise source `source` at `from` to `to`.
+  SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
+  static constexpr std::size_t kMaxKeptPaths = 200000;
+  mutable std::unordered_map<std::uint64_t, SoundPath> fixed_paths_;  // (source, listener cell)
 };
 
 }  // namespace audio_propagation

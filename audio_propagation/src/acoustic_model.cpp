@@ -1,0 +1,170 @@
+#include "audio_propagation/acoustic_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace audio_propagation {
+namespace {
+
+double Power(double db) { return std::pow(10.0, db / 10.0); }
+double Db(double power) { return 10.0 * std::log10(power); }
+
+// Barron's revised theory: the reflected energy falls as exp(-0.04 r / T) with the distance r
+// the sound has come, i.e. 10 log10(e) * 0.04 = 0.174 dB per metre per second of RT60.
+constexpr double kReverberantDecay = 0.174;
+
+// The fraction of a whine's power (harmonics at 1x, 2x and 3x, 0, -6 and -12 dB in amplitude)
+// that falls within a band widened by 10 % each side (a receiver's filters skirt past it).
+double InBand(double hz, double low, double high) {
+  const double weights[3] = {1.0, 0.25, 0.0625};
+  double in = 0.0, all = 0.0;
+  for (int h = 0; h < 3; ++h) {
+    const double f = hz * (h + 1);
+    all += weights[h];
+    if (f >= 0.9 * low && f <= 1.1 * high) in += weights[h];
+  }
+  return in / all;
+}
+
+void RequireRoom(const world_sim::RoomAcoustics& room, const std::string& where) {
+  if (!(room.rt60 > 0.0 && room.rt60 <= 10.0)) {
+    throw std::invalid_argument("acoustic model: " + where + ".rt60 must be in (0, 10] s, got " +
+                                std::to_string(room.rt60));
+  }
+  if (!(world_sim::CriticalDistance(room) > 0.0)) {
+    throw std::invalid_argument("acoustic model: " + where + " needs a volume or a critical_distance above 0");
+  }
+}
+
+}  // namespace
+
+LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
+                      const world_sim::RoomAcoustics& room) {
+  LinkLevels l;
+  const double d = std::max(length, d0);
+  l.rt60 = room.rt60;
+  l.direct_db = source_db - 20.0 * std::log10(d / d0) - corner_loss_db * std::max(corners, 0);
+  l.reverberant_db = source_db - 20.0 * std::log10(world_sim::CriticalDistance(room) / d0) -
+                     kReverberantDecay * length / room.rt60;
+  l.total_db = Db(Power(l.direct_db) + Power(l.reverberant_db));
+  l.drr_db = l.direct_db - l.reverberant_db;
+  return l;
+}
+
+AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Acoustics acoustics,
+                             DecodeTable table, std::vector<std::string> robot_names)
+    : propagation_(propagation),
+      acoustics_(std::move(acoustics)),
+      table_(std::move(table)),
+      robot_names_(std::move(robot_names)) {
+  RequireRoom(acoustics_.room, "acoustics");
+  for (const world_sim::AcousticRegion& r : acoustics_.regions) RequireRoom(r.room, "region '" + r.name + "'");
+  if (!(acoustics_.corner_loss_db >= 0.0)) {
+    throw std::invalid_argument("acoustic model: corner_loss_db must be >= 0 dB");
+  }
+  if (table_.cells.empty()) throw std::invalid_argument("acoustic model: the decode table is empty");
+  for (const world_sim::NoiseSourceSpec& s : acoustics_.noise_sources) {
+    if (s.robot.empty()) {
+      if (!propagation_.map().IsFreeAt({s.x, s.y})) {
+        throw std::invalid_argument("acoustic model: noise source '" + s.name + "' at (" + std::to_string(s.x) +
+                                    ", " + std::to_string(s.y) + ") is not in the map's free space");
+      }
+      source_robot_.push_back(-1);
+      continue;
+    }
+    const auto it = std::find(robot_names_.begin(), robot_names_.end(), s.robot);
+    if (it == robot_names_.end()) {
+      throw std::invalid_argument("acoustic model: noise source '" + s.name + "' rides on robot '" + s.robot +
+                                  "', which is not in the team");
+    }
+    source_robot_.push_back(static_cast<int>(it - robot_names_.begin()));
+  }
+}
+
+LinkLevels AcousticModel::Levels(const SoundPath& path, const Eigen::Vector2d& listener) const {
+  const PropagationOptions& o = propagation_.options();
+  return LinkBudget(o.source_level_db, o.reference_distance, path.length, path.bends, acoustics_.corner_loss_db,
+                    acoustics_.RoomAt(listener.x(), listener.y()));
+}
+
+std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, double t,
+                                                const std::vector<Eigen::Vector2d>& robots) const {
+  std::vector<Disturbance> out;
+  out.push_back({FromNoiseKind(acoustics_.ambient_kind), Power(acoustics_.ambient_db), 0.0});
+  const PropagationOptions& o = propagation_.options();
+  const world_sim::RoomAcoustics& room = acoustics_.RoomAt(at.x(), at.y());
+  for (std::size_t k = 0; k < acoustics_.noise_sources.size(); ++k) {
+    const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources[k];
+    if (!world_sim::Sounding(s, t)) continue;
+    Eigen::Vector2d from(s.x, s.y);
+    if (source_robot_[k] >= 0) {
+      if (static_cast<std::size_t>(source_robot_[k]) >= robots.size()) continue;
+      from = robots[static_cast<std::size_t>(source_robot_[k])];
+    }
+    // A robot's own motors are right by its microphone: heard at their 1 m level, direct.
+    const bool own = (from - at).norm() < 1e-9;
+    double length = 0.0;
+    int corners = 0;
+    if (!own) {
+      const SoundPath p = PathBetween(k, from, at);
+      if (!p.reachable) continue;
+      length = p.length;
+      corners = p.bends;
+    }
+    const LinkLevels l = LinkBudget(s.level_db, o.reference_distance, length, corners, acoustics_.corner_loss_db, room);
+    out.push_back({FromNoiseKind(s.kind), Power(own ? s.level_db : l.total_db), s.frequency});
+  }
+  return out;
+}
+
+SoundPath AcousticModel::PathBetween(std::size_t source, const Eigen::Vector2d& from,
+                                     const Eigen::Vector2d& to) const {
+  if (source_robot_[source] >= 0) return propagation_.Path(from, to);
+  // A fixed source's path depends only on the listener's cell: kept, so a listener standing
+  // still or coming back costs a lookup.
+  const Eigen::Vector2i cell = propagation_.map().WorldToCell(to);
+  const std::uint64_t key = (static_cast<std::uint64_t>(source) << 48) ^
+                            (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cell.x())) << 24) ^
+                            static_cast<std::uint64_t>(static_cast<std::uint32_t>(cell.y()));
+  const auto it = fixed_paths_.find(key);
+  if (it != fixed_paths_.end()) return it->second;
+  if (fixed_paths_.size() > kMaxKeptPaths) fixed_paths_.clear();
+  SoundPath p = propagation_.Path(from, to);
+  p.polyline.clear();  // only the length and corners are needed
+  fixed_paths_.emplace(key, p);
+  return p;
+}
+
+double AcousticModel::EffectivePower(const Disturbance& d) const {
+  if (d.kind != Interference::kWhine) return d.power;
+  const double reference = InBand(table_.whine_hz, table_.band_low_hz, table_.band_high_hz);
+  const double here = InBand(d.frequency, table_.band_low_hz, table_.band_high_hz);
+  // Out of band a whine still leaks a little through the receiver's filters (-20 dB).
+  return d.power * std::max(here, 0.01) / std::max(reference, 0.01);
+}
+
+LinkPrediction AcousticModel::Predict(const SoundPath& path, const Eigen::Vector2d& listener,
+                                      const std::vector<Disturbance>& disturbances) const {
+  LinkPrediction p;
+  p.path_length = path.length;
+  p.corners = path.bends;
+  p.signal = Levels(path, listener);
+  double noise = 0.0, loudest = -1.0;
+  for (const Disturbance& d : disturbances) {
+    const double power = EffectivePower(d);
+    noise += power;
+    if (power > loudest) {
+      loudest = power;
+      p.kind = d.kind;
+    }
+  }
+  noise = std::max(noise, 1e-30);
+  p.noise_db = Db(noise);
+  p.snr_db = p.signal.total_db - p.noise_db;
+  p.outcome = table_.Lookup(p.kind, p.snr_db, p.signal.drr_db, p.signal.rt60);
+  p.probability = p.outcome.packet;
+  return p;
+}
+
+}  // namespace audio_propagation
