@@ -11,6 +11,8 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "audio_propagation/delivery_map.h"
+#include "audio_propagation/decode_table.h"
 #include "params.h"
 #include "grid/map_file.h"
 #include "nava_modem/modem_profile.h"
@@ -66,6 +68,19 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise, 0.0, 10.0);
   // The modem profile the robots run sets how long a packet sounds (and the MAC's unit of time).
   const std::string profile = StringParam(pnh, "profile", "nava");
+  o.profile = profile;
+  o.channel_model = StringParam(pnh, "channel_model", o.channel_model);
+  if (o.channel_model != "threshold" && o.channel_model != "acoustic") {
+    throw ParamError(pnh.resolveName("channel_model") + ": expected threshold or acoustic, got '" + o.channel_model + "'");
+  }
+  o.decode_table = StringParam(pnh, "decode_table", "");
+  o.delivery_map_robot = StringParam(pnh, "delivery_map_robot", "");
+  o.delivery_map_period = NumberParam(pnh, "delivery_map_period", o.delivery_map_period, 0.1, 1e6);
+  o.delivery_map_resolution = NumberParam(pnh, "delivery_map_resolution", o.delivery_map_resolution, 0.01, 100.0);
+  if (o.channel_model != "acoustic" && (!o.decode_table.empty() || !o.delivery_map_robot.empty())) {
+    throw ParamError(pnh.resolveName(o.decode_table.empty() ? "delivery_map_robot" : "decode_table") +
+                     ": only used by ~channel_model acoustic");
+  }
   const auto parsed_profile = nava_modem::ParseProfile(profile);
   if (!parsed_profile) {
     throw ParamError(pnh.resolveName("profile") + ": expected " + nava_modem::kProfileNames + ", got '" + profile + "'");
@@ -96,10 +111,12 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
     : nh_(nh), pnh_(pnh), options_(options), tf_listener_(tf_buffer_) {
   grid::OccupancyMap map;
   std::vector<world_sim::RobotSpec> specs;
+  std::optional<world_sim::Acoustics> acoustics;
   if (!options_.world_file.empty()) {
     world_sim::LoadedWorld world = world_sim::LoadWorldFile(options_.world_file, options_.map_file);
     map = std::move(world.map);
     specs = world.config.robots;
+    acoustics = world.config.acoustics;
   } else if (!options_.map_file.empty()) {
     map = grid::LoadMapFile(options_.map_file);
   } else {
@@ -136,7 +153,30 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
   }
   const ros::WallTime t0 = ros::WallTime::now();
   model_ = std::make_unique<audio_propagation::PropagationModel>(std::move(map), options_.model);
-  channel_ = std::make_unique<audio_propagation::AudioChannel>(*model_, microphones_, options_.channel);
+  if (options_.channel_model == "acoustic") {
+    if (!acoustics) {
+      throw ParamError(pnh_.resolveName("channel_model") + ": acoustic needs a world file (~world) with an acoustics section; " +
+                       (options_.world_file.empty() ? std::string("no ~world is set") : options_.world_file + " has none"));
+    }
+    const std::string table = options_.decode_table.empty() ? audio_propagation::ShippedDecodeTable(options_.profile)
+                                                            : options_.decode_table;
+    try {
+      acoustic_ = std::make_unique<audio_propagation::AcousticModel>(
+          *model_, *acoustics, audio_propagation::LoadDecodeTable(table, options_.profile), options_.robots);
+    } catch (const std::invalid_argument& e) {
+      throw ParamError(options_.world_file + ": " + e.what());
+    }
+    if (!options_.delivery_map_robot.empty()) {
+      const auto it = std::find(options_.robots.begin(), options_.robots.end(), options_.delivery_map_robot);
+      if (it == options_.robots.end()) {
+        throw ParamError(pnh_.resolveName("delivery_map_robot") + ": no robot named '" + options_.delivery_map_robot + "'");
+      }
+      delivery_robot_ = static_cast<std::size_t>(it - options_.robots.begin());
+      delivery_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("delivery_map", 1, true);
+    }
+    ROS_INFO("audio_propagation: acoustic channel model, decode table %s", table.c_str());
+  }
+  channel_ = std::make_unique<audio_propagation::AudioChannel>(*model_, microphones_, options_.channel, acoustic_.get());
   ROS_INFO("audio_propagation: %zu robots, %zu diffraction points (%s), %zu corners, %zu edges, built in %.0f ms",
            options_.robots.size(), model_->diffraction_points().size(),
            audio_propagation::DiffractionRuleName(options_.model.rule), model_->graph().size(),
@@ -162,12 +202,14 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
 AudioPropagationRos::~AudioPropagationRos() {
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; rejected %lu "
-              "packets, %lu queue drops, %lu pose look-ups failed; path cache %lu hits, %lu misses\n",
+              "packets, %lu queue drops, %lu pose look-ups failed; path cache %lu hits, %lu misses; "
+              "%lu arrivals unheard (acoustic model)\n",
               static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
               static_cast<unsigned long>(noise_heard_), static_cast<unsigned long>(rejected_packets_),
               static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_),
               static_cast<unsigned long>(channel_ ? channel_->cache().hits() : 0),
-              static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0));
+              static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0),
+              static_cast<unsigned long>(channel_ ? channel_->unheard() : 0));
   std::fflush(stdout);
 }
 
@@ -219,7 +261,9 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
     ++sent_;
     for (std::size_t r = 0; r < tx.paths.size(); ++r) {
       const auto& p = tx.paths[r];
-      if (!p.audible) continue;
+      // Acoustic model: every path with a chance of being decoded, green (sure) to red (hopeless).
+      const bool acoustic = !tx.probability.empty();
+      if (acoustic ? tx.probability[r] < 0.01 : !p.audible) continue;
       visualization_msgs::Marker m;
       m.header.frame_id = "map";
       m.header.stamp = now;
@@ -230,18 +274,28 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
       m.pose.orientation.w = 1.0;
       m.scale.x = 0.04;
       m.lifetime = ros::Duration(std::max(tx.duration, options_.path_display_time));
-      // Loud is red, barely audible is blue.
-      const double span = options_.model.source_level_db - options_.model.threshold_db;
-      const float loud = static_cast<float>(std::clamp((p.level_db - options_.model.threshold_db) / span, 0.0, 1.0));
-      m.color.r = loud;
-      m.color.b = 1.0f - loud;
-      m.color.g = 0.2f;
+      if (acoustic) {
+        const float sure = static_cast<float>(tx.probability[r]);
+        m.color.r = 1.0f - sure;
+        m.color.g = sure;
+        m.color.b = 0.1f;
+      } else {  // loud is red, barely audible is blue
+        const double span = options_.model.source_level_db - options_.model.threshold_db;
+        const float loud = static_cast<float>(std::clamp((p.level_db - options_.model.threshold_db) / span, 0.0, 1.0));
+        m.color.r = loud;
+        m.color.b = 1.0f - loud;
+        m.color.g = 0.2f;
+      }
       m.color.a = 0.9f;
       for (const auto& q : p.polyline) m.points.push_back(ToPoint(q, 0.15));
       paths.markers.push_back(m);
     }
   }
   if (!paths.markers.empty()) paths_pub_.publish(paths);
+  if (delivery_pub_ && channel_->time() >= next_delivery_map_ && have_pose_[delivery_robot_]) {
+    next_delivery_map_ = channel_->time() + options_.delivery_map_period;
+    PublishDeliveryMap(now);
+  }
 
   for (const auto& rx : events.received) {
     if (rx.kind == audio_propagation::Reception::Kind::kPacket) {
@@ -267,6 +321,14 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
     msg.level_db = static_cast<float>(channel_->Level(k));
     carrier_pubs_[k].publish(msg);
   }
+}
+
+void AudioPropagationRos::PublishDeliveryMap(const ros::Time& now) {
+  std::vector<Eigen::Vector2d> robots(options_.robots.size());
+  for (std::size_t k = 0; k < robots.size(); ++k) robots[k] = channel_->pose(k).position();
+  const audio_propagation::DeliveryMap d = audio_propagation::MapDelivery(
+      *acoustic_, robots[delivery_robot_], channel_->time(), robots, options_.delivery_map_resolution);
+  delivery_pub_.publish(ToOccupancyGrid(d, "map", now));
 }
 
 void AudioPropagationRos::PublishDiffractionPoints() {

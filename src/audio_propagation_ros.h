@@ -9,6 +9,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/propagation_model.h"
 
@@ -26,6 +27,17 @@ struct AudioPropagationOptions {
   // transmission's own length (a 4-byte packet is about 0.4 s: a flicker in a sped-up run)
   double path_display_time = 0.0;
   int packet_bytes = 4;          // ~packet_bytes: the payload every packet must have (Nava: 4)
+  std::string profile = "nava";  // ~profile: the robots' modem profile
+  // ~channel_model: threshold (the thesis's: level and capture) or acoustic (the world file's
+  // acoustics and the profile's decode table decide each packet)
+  std::string channel_model = "threshold";
+  std::string decode_table;      // ~decode_table: acoustic model's table (default: the profile's shipped one)
+  // ~delivery_map_robot: publish ~delivery_map (nav_msgs/OccupancyGrid, 0-100 = percent chance
+  // a listener there decodes this robot) every ~delivery_map_period s (simulated) on cells of
+  // ~delivery_map_resolution m; empty = no map. Acoustic model only.
+  std::string delivery_map_robot;
+  double delivery_map_period = 5.0;
+  double delivery_map_resolution = 0.5;
   audio_propagation::PropagationOptions model;  // ~source_level_db, ~threshold_db, ~max_range, ~speed_of_sound, ~rule
   audio_propagation::ChannelOptions channel;    // ~capture_margin_db, ~bit_rate, ~direction_noise, ~seed
 };
@@ -44,18 +56,22 @@ class AudioPropagationRos {
   void OnTimer(const ros::TimerEvent& event);
   void UpdatePoses();
   void PublishDiffractionPoints();
+  void PublishDeliveryMap(const ros::Time& now);
 
   ros::NodeHandle nh_, pnh_;
   AudioPropagationOptions options_;
   std::vector<world_sim::Microphone> microphones_;
   std::unique_ptr<audio_propagation::PropagationModel> model_;
+  std::unique_ptr<audio_propagation::AcousticModel> acoustic_;
   std::unique_ptr<audio_propagation::AudioChannel> channel_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   std::vector<ros::Subscriber> tx_subs_;
   std::vector<ros::Publisher> rx_pubs_, carrier_pubs_;
   std::vector<bool> last_carrier_, have_pose_;
-  ros::Publisher paths_pub_, points_pub_;
+  ros::Publisher paths_pub_, points_pub_, delivery_pub_;
+  std::size_t delivery_robot_ = 0;
+  double next_delivery_map_ = 0.0;  // s of channel time
   ros::Timer timer_;
   ros::Time start_;
   std::uint64_t updates_ = 0;

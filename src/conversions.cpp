@@ -43,6 +43,25 @@ nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std
   return msg;
 }
 
+nav_msgs::OccupancyGrid ToOccupancyGrid(const audio_propagation::DeliveryMap& map, const std::string& frame,
+                                        const ros::Time& stamp) {
+  nav_msgs::OccupancyGrid msg;
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.info.map_load_time = stamp;
+  msg.info.resolution = static_cast<float>(map.resolution);
+  msg.info.width = static_cast<std::uint32_t>(map.width);
+  msg.info.height = static_cast<std::uint32_t>(map.height);
+  msg.info.origin.position.x = map.origin.x();
+  msg.info.origin.position.y = map.origin.y();
+  msg.info.origin.orientation.w = 1.0;
+  msg.data.reserve(map.probability.size());
+  for (double p : map.probability) {
+    msg.data.push_back(std::isfinite(p) ? static_cast<std::int8_t>(std::lround(100.0 * std::clamp(p, 0.0, 1.0))) : -1);
+  }
+  return msg;
+}
+
 grid::OccupancyMap FromOccupancyGrid(const nav_msgs::OccupancyGrid& msg) {
   grid::OccupancyMap map(msg.info.width, msg.info.height, msg.info.resolution,
                          {msg.info.origin.position.x, msg.info.origin.position.y,
@@ -294,8 +313,12 @@ multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, 
 
 multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Reception& rx, const std::string& frame,
                                                   const ros::Time& stamp) {
-  multirobot_audio::AudioReception msg = Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket,
-                                               rx.data, multirobot_audio::AudioReception::COLLISION);
+  // The threshold model knows only collisions; the acoustic model reports what the real
+  // receiver would.
+  const std::uint8_t noise = rx.noise == nava_modem::RxEvent::Noise::kNone ? multirobot_audio::AudioReception::COLLISION
+                                                                          : NoiseKind(rx.noise);
+  multirobot_audio::AudioReception msg =
+      Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket, rx.data, noise);
   msg.level_db = static_cast<float>(rx.level_db);
   msg.direction = static_cast<float>(rx.direction);
   msg.direction_confidence = static_cast<float>(rx.direction_confidence);

@@ -16,6 +16,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "audio_propagation/audio_channel.h"
+#include "audio_propagation/delivery_map.h"
 #include "grid/occupancy_map.h"
 #include "nava_modem/packet_receiver.h"
 #include "grid/pose2d.h"
@@ -34,6 +35,9 @@ grid::Pose2D FromPose(const geometry_msgs::Pose& pose);
 nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
                                         const ros::Time& stamp);
 grid::OccupancyMap FromOccupancyGrid(const nav_msgs::OccupancyGrid& msg);
+// A delivery map as a grid of percent chances (0-100), -1 where there is no listener's place.
+nav_msgs::OccupancyGrid ToOccupancyGrid(const audio_propagation::DeliveryMap& map, const std::string& frame,
+                                        const ros::Time& stamp);
 
 // A ring of IR ranges as a LaserScan in `frame` (ranges measured from the robot's centre).
 sensor_msgs::LaserScan ToLaserScan(const std::vector<float>& ranges,

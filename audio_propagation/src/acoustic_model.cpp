@@ -120,19 +120,19 @@ std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, doubl
 
 SoundPath AcousticModel::PathBetween(std::size_t source, const Eigen::Vector2d& from,
                                      const Eigen::Vector2d& to) const {
-  if (source_robot_[source] >= 0) return propagation_.Path(from, to);
-  // A fixed source's path depends only on the listener's cell: kept, so a listener standing
-  // still or coming back costs a lookup.
-  const Eigen::Vector2i cell = propagation_.map().WorldToCell(to);
-  const std::uint64_t key = (static_cast<std::uint64_t>(source) << 48) ^
-                            (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cell.x())) << 24) ^
-                            static_cast<std::uint64_t>(static_cast<std::uint32_t>(cell.y()));
-  const auto it = fixed_paths_.find(key);
-  if (it != fixed_paths_.end()) return it->second;
-  if (fixed_paths_.size() > kMaxKeptPaths) fixed_paths_.clear();
+  // Paths are kept by (source, its cell, the listener's cell): a listener standing still, or a
+  // robot carrying its motors past the same cells again, costs a lookup.
+  const grid::OccupancyMap& map = propagation_.map();
+  const Eigen::Vector2i a = map.WorldToCell(from), b = map.WorldToCell(to);
+  auto bits = [](int v) { return static_cast<std::uint64_t>(v) & 0x3fffu; };  // 14 bits a coordinate
+  const std::uint64_t key = (static_cast<std::uint64_t>(source & 0xffu) << 56) | (bits(a.x()) << 42) |
+                            (bits(a.y()) << 28) | (bits(b.x()) << 14) | bits(b.y());
+  const auto it = kept_paths_.find(key);
+  if (it != kept_paths_.end()) return it->second;
+  if (kept_paths_.size() > kMaxKeptPaths) kept_paths_.clear();
   SoundPath p = propagation_.Path(from, to);
   p.polyline.clear();  // only the length and corners are needed
-  fixed_paths_.emplace(key, p);
+  kept_paths_.emplace(key, p);
   return p;
 }
 

@@ -8,11 +8,18 @@
 #include "audio_propagation/microphone.h"
 
 namespace audio_propagation {
+namespace {
+
+// Acoustic model: an arrival this far below the noise (dB) is not tracked.
+constexpr double kNegligibleSnrDb = -30.0;
+
+}  // namespace
 
 AudioChannel::AudioChannel(const PropagationModel& model,
                            std::vector<world_sim::Microphone> microphones,
-                           const ChannelOptions& options)
+                           const ChannelOptions& options, const AcousticModel* acoustic)
     : model_(model),
+      acoustic_(acoustic),
       microphones_(std::move(microphones)),
       options_(options),
       cache_(options.cache_size),
@@ -24,7 +31,11 @@ AudioChannel::AudioChannel(const PropagationModel& model,
     throw std::invalid_argument("audio channel: direction_noise must be >= 0 rad");
   }
   nava_modem::MacOptions mac = options_.mac;
-  if (!mac.fixed_threshold_db) mac.fixed_threshold_db = model_.options().threshold_db;
+  if (!mac.fixed_threshold_db) {
+    // A real robot calibrates its threshold on the room's silence, plus a margin.
+    mac.fixed_threshold_db = acoustic_ ? acoustic_->acoustics().ambient_db + mac.threshold_margin_db
+                                       : model_.options().threshold_db;
+  }
   const std::size_t n = microphones_.size();
   for (std::size_t k = 0; k < n; ++k) {
     // Robots draw their own back-offs, so adding a robot does not change the others'.
@@ -36,6 +47,22 @@ AudioChannel::AudioChannel(const PropagationModel& model,
   powers_.assign(n, 0.0);
   arrivals_.resize(n);
   sending_.resize(n);
+  noise_powers_.assign(n, 0.0);
+}
+
+std::vector<Eigen::Vector2d> AudioChannel::Positions() const {
+  std::vector<Eigen::Vector2d> at(poses_.size());
+  for (std::size_t k = 0; k < poses_.size(); ++k) at[k] = poses_[k].position();
+  return at;
+}
+
+void AudioChannel::UpdateNoise() {
+  const std::vector<Eigen::Vector2d> at = Positions();
+  for (std::size_t r = 0; r < at.size(); ++r) {
+    double power = 0.0;
+    for (const Disturbance& d : acoustic_->NoiseAt(at[r], time(), at)) power += d.power;
+    noise_powers_[r] = power;
+  }
 }
 
 bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
@@ -44,8 +71,7 @@ bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
 
 std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
   const std::size_t n = macs_.size();
-  std::vector<Eigen::Vector2d> at(n);
-  for (std::size_t k = 0; k < n; ++k) at[k] = poses_[k].position();
+  const std::vector<Eigen::Vector2d> at = Positions();
   auto compute = [&] {
     std::vector<bool> sources(n, false);
     sources[sender] = true;
@@ -76,13 +102,31 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
   const std::int64_t duration = macs_[sender].packet_ticks();
   std::vector<SoundPath> paths = PathsFrom(sender);
   sending_[sender].emplace_back(ticks_, ticks_ + duration);
-  for (std::size_t r = 0; r < n; ++r) {
-    if (r == sender || !paths[r].audible) continue;
-    const std::int64_t start = ticks_ + std::llround(paths[r].travel_time / tick_);
-    arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db,
-                            std::pow(10.0, paths[r].level_db / 10.0), data, paths[r]});
+  std::vector<double> probability;
+  std::vector<Eigen::Vector2d> at;
+  if (acoustic_) {
+    probability.assign(n, 0.0);
+    at = Positions();
   }
-  events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths)});
+  for (std::size_t r = 0; r < n; ++r) {
+    if (r == sender) continue;
+    const std::int64_t start = ticks_ + std::llround(paths[r].travel_time / tick_);
+    if (!acoustic_) {
+      if (!paths[r].audible) continue;
+      arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db,
+                              std::pow(10.0, paths[r].level_db / 10.0), data, paths[r], {}});
+      continue;
+    }
+    if (!paths[r].reachable) continue;
+    const LinkPrediction p = acoustic_->Predict(paths[r], at[r], acoustic_->NoiseAt(at[r], time(), at));
+    probability[r] = p.probability;
+    // Far below the noise an arrival changes neither the carrier nor any decision.
+    if (p.snr_db < kNegligibleSnrDb) continue;
+    arrivals_[r].push_back({sender, start, start + duration, p.signal.total_db,
+                            std::pow(10.0, p.signal.total_db / 10.0), data, paths[r], p.signal});
+  }
+  events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths),
+                            std::move(probability)});
 }
 
 void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events) {
@@ -106,7 +150,13 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
                                 options_.direction_noise, rng_);
   rx.direction_confidence = std::isfinite(rx.direction) ? 1.0 : 0.0;
-  if (a.level_db >= loudest_other + options_.capture_margin_db) {
+  if (acoustic_) {
+    FinishAcoustic(receiver, a, rx);
+    if (rx.kind == Reception::Kind::kNoise && rx.noise == nava_modem::RxEvent::Noise::kNone) {
+      ++unheard_;  // the receiver would not have noticed it
+      return;
+    }
+  } else if (a.level_db >= loudest_other + options_.capture_margin_db) {
     rx.kind = Reception::Kind::kPacket;
     rx.data = a.data;
   } else {
@@ -116,9 +166,44 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   events.received.push_back(std::move(rx));
 }
 
+void AudioChannel::FinishAcoustic(std::size_t receiver, const Arrival& a, Reception& rx) {
+  const std::vector<Eigen::Vector2d> at = Positions();
+  const double middle = 0.5 * (a.start + a.end) * tick_;
+  std::vector<Disturbance> disturbances = acoustic_->NoiseAt(at[receiver], middle, at);
+  const double length = static_cast<double>(a.end - a.start);
+  for (const Arrival& other : arrivals_[receiver]) {
+    if (&other == &a) continue;
+    const double overlap = static_cast<double>(std::min(a.end, other.end) - std::max(a.start, other.start));
+    if (overlap > 0.0) disturbances.push_back({Interference::kPacket, other.power * overlap / length, 0.0});
+  }
+  const LinkPrediction p = acoustic_->Predict(a.path, at[receiver], disturbances);
+  rx.probability = p.probability;
+  rx.collision = p.kind == Interference::kPacket;
+  const DecodeOutcome& o = p.outcome;
+  const double u = std::uniform_real_distribution<double>(0.0, 1.0)(rng_);
+  rx.kind = Reception::Kind::kNoise;
+  using Noise = nava_modem::RxEvent::Noise;
+  if (u < o.packet) {
+    rx.kind = Reception::Kind::kPacket;
+    rx.data = a.data;
+  } else if (u < o.packet + o.zero_byte) {
+    rx.noise = Noise::kZeroByte;
+  } else if (u < o.packet + o.zero_byte + o.one_byte) {
+    rx.noise = Noise::kOneByte;
+  } else if (u < o.packet + o.zero_byte + o.one_byte + o.bad_crc) {
+    rx.noise = Noise::kBadCrc;
+  }
+}
+
 bool AudioChannel::Quiet() const {
   for (std::size_t r = 0; r < macs_.size(); ++r) {
-    if (!macs_[r].Idle() || levels_[r] != options_.noise_floor_db) return false;
+    if (!macs_[r].Idle()) return false;
+    // With an acoustic model the noise is always there: quiet while it stays below the carrier
+    // threshold (it is checked again every bit once the medium is busy).
+    const bool silent = acoustic_ ? powers_[r] == noise_powers_[r] && !macs_[r].carrier() &&
+                                        levels_[r] < macs_[r].threshold_db()
+                                  : levels_[r] == options_.noise_floor_db;
+    if (!silent) return false;
     for (const Arrival& a : arrivals_[r]) {
       if (!a.done) return false;
     }
@@ -133,6 +218,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
   while (ticks_ < target) {
     // Long silences (robots that say something every few seconds) are skipped in one go; the
     // check runs once a bit, so at most a bit of silence is ticked through.
+    if (acoustic_ && ticks_ % 16 == 0) UpdateNoise();  // noise sources change at most each bit
     if (ticks_ % 16 == 0 && Quiet()) {
       for (nava_modem::CsmaMac& mac : macs_) mac.SkipIdle(static_cast<std::uint64_t>(target - ticks_));
       ticks_ = target;
@@ -140,13 +226,14 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
     }
     ++ticks_;
     for (std::size_t r = 0; r < n; ++r) {
-      double power = 0.0;  // linear sum of what is arriving now
+      double power = acoustic_ ? noise_powers_[r] : 0.0;  // linear sum of what is arriving now
       for (const Arrival& a : arrivals_[r]) {
         if (a.start <= ticks_ && ticks_ < a.end) power += a.power;
       }
       if (power != powers_[r]) {  // the level only changes when an arrival starts or ends
         powers_[r] = power;
-        levels_[r] = power > 0.0 ? std::max(options_.noise_floor_db, 10.0 * std::log10(power))
+        levels_[r] = power > 0.0 ? (acoustic_ ? 10.0 * std::log10(power)
+                                              : std::max(options_.noise_floor_db, 10.0 * std::log10(power)))
                                  : options_.noise_floor_db;
       }
       if (auto packet = macs_[r].Tick(levels_[r])) StartTransmission(r, std::move(*packet), events);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -85,13 +86,40 @@ SoundPath PropagationModel::MakePath(std::vector<Eigen::Vector2d> cells, double 
   return path;
 }
 
+SoundPath PropagationModel::Between(const Eigen::Vector2d& s, const Eigen::Vector2d& r,
+                                    const std::function<const std::vector<Visible>&()>& seen_from_s,
+                                    const std::function<const std::vector<Visible>&()>& seen_from_r) const {
+  const double reach = hearing_distance_ / map_.resolution();
+  const double direct = (r - s).norm();
+  if (direct > reach) return {};
+  if (!grid::FirstBlockedInCells(map_, s, r)) return MakePath({s, r}, direct);
+  // Around walls: source -> a corner it sees -> ... -> a corner the listener sees -> listener.
+  double best = kInf;
+  std::int32_t first = -1, last = -1;
+  for (const Visible& a : seen_from_s()) {
+    if (a.distance >= best) continue;
+    for (const Visible& b : seen_from_r()) {
+      const double d = a.distance + distances_->distance(a.node, b.node) + b.distance;
+      if (d < best) {
+        best = d;
+        first = a.node;
+        last = b.node;
+      }
+    }
+  }
+  if (first < 0 || best > reach) return {};
+  std::vector<Eigen::Vector2d> poly = {s};
+  distances_->AppendPath(*graph_, first, last, poly);
+  poly.push_back(r);
+  return MakePath(std::move(poly), best);
+}
+
 std::vector<std::vector<SoundPath>> PropagationModel::Compute(
     const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& sources) const {
   const std::size_t n = positions.size();
   std::vector<std::vector<SoundPath>> result(n, std::vector<SoundPath>(n));
   std::vector<Eigen::Vector2d> cells(n);
   for (std::size_t k = 0; k < n; ++k) cells[k] = map_.WorldToCellCoords(positions[k]);
-  const double reach = hearing_distance_ / map_.resolution();
 
   // Which graph nodes each listener sees, computed only for listeners that need the graph.
   std::vector<std::vector<Visible>> visible(n);
@@ -108,34 +136,32 @@ std::vector<std::vector<SoundPath>> PropagationModel::Compute(
     if (s >= sources.size() || !sources[s]) continue;
     for (std::size_t r = 0; r < n; ++r) {
       if (r == s) continue;
-      const double direct = (cells[r] - cells[s]).norm();
-      if (direct > reach) continue;
-      if (!grid::FirstBlockedInCells(map_, cells[s], cells[r])) {
-        result[s][r] = MakePath({cells[s], cells[r]}, direct);
-        continue;
-      }
-      // Around walls: source -> a corner it sees -> ... -> a corner the listener sees -> listener.
-      double best = kInf;
-      std::int32_t first = -1, last = -1;
-      for (const Visible& a : visible_of(s)) {
-        if (a.distance >= best) continue;
-        for (const Visible& b : visible_of(r)) {
-          const double d = a.distance + distances_->distance(a.node, b.node) + b.distance;
-          if (d < best) {
-            best = d;
-            first = a.node;
-            last = b.node;
-          }
-        }
-      }
-      if (first < 0 || best > reach) continue;
-      std::vector<Eigen::Vector2d> poly = {cells[s]};
-      distances_->AppendPath(*graph_, first, last, poly);
-      poly.push_back(cells[r]);
-      result[s][r] = MakePath(std::move(poly), best);
+      result[s][r] = Between(cells[s], cells[r], [&]() -> const std::vector<Visible>& { return visible_of(s); },
+                             [&]() -> const std::vector<Visible>& { return visible_of(r); });
     }
   }
   return result;
+}
+
+std::vector<SoundPath> PropagationModel::From(const Eigen::Vector2d& source,
+                                              const std::vector<Eigen::Vector2d>& listeners) const {
+  const Eigen::Vector2d s = map_.WorldToCellCoords(source);
+  std::vector<Visible> seen_from_s;
+  bool known = false;
+  auto from_s = [&]() -> const std::vector<Visible>& {
+    if (!known) seen_from_s = VisibleNodes(s), known = true;
+    return seen_from_s;
+  };
+  std::vector<SoundPath> out;
+  out.reserve(listeners.size());
+  for (const Eigen::Vector2d& listener : listeners) {
+    const Eigen::Vector2d r = map_.WorldToCellCoords(listener);
+    std::vector<Visible> seen_from_r;
+    out.push_back(Between(s, r, from_s, [&]() -> const std::vector<Visible>& {
+      return seen_from_r = VisibleNodes(r);
+    }));
+  }
+  return out;
 }
 
 SoundPath PropagationModel::Path(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {

@@ -9,6 +9,10 @@
 //   --seed 1 --threads 0 (one per core) --chart-config 9
 // Explorer: --audio-weight 3 --noise-std 0.3 --announce-period 2 --announce-window 10
 //   --arrive-radius 0.6
+// Channel: --channel threshold (the thesis's) or acoustic, with --profile nava|room (the robots'
+//   modem: packet length and decode table), --table FILE (default: the profile's shipped table)
+//   and --acoustics WORLD.yaml (a world file whose acoustics section the generated configurations
+//   get; with --worlds each world's own section is used unless --acoustics is given).
 // --quick: a small protocol for CI (3 configurations, 6 trials, 8 jobs, all three modes, on the
 //   project's office map unless --map is given).
 //
@@ -25,7 +29,9 @@
 #include <thread>
 
 #include "grid/input_error.h"
+#include "audio_propagation/decode_table.h"
 #include "grid/map_file.h"
+#include "nava_modem/modem_profile.h"
 #include "sounds_good_explorer/configurations.h"
 #include "sounds_good_explorer/experiment.h"
 #include "sounds_good_explorer/experiment_report.h"
@@ -43,7 +49,8 @@ const char* kUsage =
     "  [--configs 10] [--modes none,bidirectional,omni] [--trials 20] [--robots 5] [--jobs 20]\n"
     "  [--work 30] [--hearing 15] [--ir-range 1.5] [--camera-range 5] [--cap 20000] [--seed 1]\n"
     "  [--threads 0] [--chart-config 9] [--audio-weight 3] [--noise-std 0.3]\n"
-    "  [--announce-period 2] [--announce-window 10] [--arrive-radius 0.6]";
+    "  [--announce-period 2] [--announce-window 10] [--arrive-radius 0.6]\n"
+    "  [--channel threshold|acoustic] [--profile nava|room] [--table FILE] [--acoustics WORLD.yaml]";
 
 std::vector<std::string> Split(const std::string& text) {
   std::vector<std::string> parts;
@@ -131,6 +138,17 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
   explorer.task.announce_window = args.Double("--announce-window", explorer.task.announce_window, 0.0, 1e6);
   explorer.task.arrive_radius = args.Double("--arrive-radius", explorer.task.arrive_radius, 0.01, 100.0);
   const std::string out_dir = args.String("--out", "sounds_good_results");
+  const std::string channel = args.String("--channel", "threshold");
+  if (channel != "threshold" && channel != "acoustic") args.Fail("--channel: expected threshold or acoustic, got '" + channel + "'");
+  const std::string profile_name = args.String("--profile", "nava");
+  const auto profile = nava_modem::ParseProfile(profile_name);
+  if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got '" + profile_name + "'");
+  nava_modem::UseProfileTiming(*profile, {}, trial.channel.mac);
+  const std::string table_file = args.String("--table", "");
+  const std::string acoustics_file = args.String("--acoustics", "");
+  if (channel != "acoustic" && (!table_file.empty() || !acoustics_file.empty())) {
+    args.Fail(std::string(table_file.empty() ? "--acoustics" : "--table") + " is for --channel acoustic");
+  }
   args.CheckAllUsed();
   placement.source = explorer.task.source;
   placement.sink = explorer.task.sink;
@@ -144,6 +162,22 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
     std::mt19937 rng(options.seed);
     for (int c = 0; c < configs; ++c)
       setup.configs.push_back(RandomConfiguration(setup.map, setup.map_file, body, placement, rng));
+  }
+  if (channel == "acoustic") {
+    trial.decode_table = std::make_shared<const audio_propagation::DecodeTable>(audio_propagation::LoadDecodeTable(
+        table_file.empty() ? audio_propagation::ShippedDecodeTable(profile_name) : table_file, profile_name));
+    if (!acoustics_file.empty()) {
+      const world_sim::LoadedWorld source = world_sim::LoadWorldFile(acoustics_file, setup.map_file);
+      if (!source.config.acoustics) throw grid::InputError(acoustics_file, "acoustics", "expected an acoustics section");
+      for (world_sim::WorldConfig& c : setup.configs) c.acoustics = source.config.acoustics;
+    }
+    for (std::size_t c = 0; c < setup.configs.size(); ++c) {
+      if (!setup.configs[c].acoustics) {
+        throw grid::InputError(worlds.empty() ? "--acoustics" : Split(worlds)[c], "acoustics",
+                               "--channel acoustic needs an acoustics section (give --acoustics WORLD.yaml)");
+      }
+      world_sim::ValidateWorld(acoustics_file.empty() ? Split(worlds)[c] : acoustics_file, setup.configs[c], setup.map);
+    }
   }
   const int config_count = static_cast<int>(setup.configs.size());
   if (chart_config > config_count && !args.String("--chart-config", "").empty())

@@ -67,7 +67,7 @@ class AcousticModel {
   // Throws std::invalid_argument naming the source or field when a noise source is outside the
   // map's free space or rides on a robot not in `robot_names`, for impossible acoustics (RT60 <= 0,
   // no volume nor critical distance, a negative corner loss) or an empty table. Not thread-safe
-  // (it keeps the paths of fixed noise sources).
+  // (it keeps the paths of noise sources).
   AcousticModel(const PropagationModel& propagation, world_sim::Acoustics acoustics, DecodeTable table,
                 std::vector<std::string> robot_names);
 
@@ -103,7 +103,7 @@ class AcousticModel {
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   static constexpr std::size_t kMaxKeptPaths = 200000;
-  mutable std::unordered_map<std::uint64_t, SoundPath> fixed_paths_;  // (source, listener cell)
+  mutable std::unordered_map<std::uint64_t, SoundPath> kept_paths_;  // (source, its cell, listener cell)
 };
 
 }  // namespace audio_propagation

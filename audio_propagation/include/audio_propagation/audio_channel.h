@@ -5,10 +5,12 @@
 #include <random>
 #include <vector>
 
+#include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/path_cache.h"
 #include "audio_propagation/propagation_model.h"
 #include "grid/pose2d.h"
 #include "nava_modem/csma_mac.h"
+#include "nava_modem/packet_receiver.h"
 #include "world_sim/world_config.h"
 
 namespace audio_propagation {
@@ -33,7 +35,12 @@ struct Reception {
   std::size_t sender = 0;           // who sent it (for logs and plots; a robot cannot know)
   double time = 0.0;                // s, end of the reception
   Kind kind = Kind::kPacket;
-  bool collision = false;           // noise because transmissions overlapped
+  bool collision = false;           // noise because transmissions overlapped (threshold model),
+                                    // or whose loudest disturbance was a packet (acoustic model)
+  // Acoustic model: the class the real receiver reports for a packet it fails to decode
+  // (zero_byte, one_byte, bad_crc); kNone for packets and in the threshold model.
+  nava_modem::RxEvent::Noise noise = nava_modem::RxEvent::Noise::kNone;
+  double probability = 1.0;         // acoustic model: the predicted chance of decoding it
   std::vector<std::uint8_t> data;   // empty for noise
   double level_db = 0.0;
   double direction = 0.0;           // rad in the receiver's frame, from its microphone (may be NaN)
@@ -47,6 +54,9 @@ struct Transmission {
   double start = 0.0, duration = 0.0;  // s
   std::vector<std::uint8_t> data;
   std::vector<SoundPath> paths;        // per robot; not reachable for the sender and the deaf
+  // Acoustic model: per robot, the chance it decodes the packet as things stand at the start
+  // (no other packet in the air); empty with the threshold model.
+  std::vector<double> probability;
 };
 
 // The simulated audio medium shared by a team: every robot runs the real link's CSMA-CA MAC;
@@ -55,13 +65,24 @@ struct Transmission {
 // noise when another audible transmission overlapped it at that robot and was not weaker by the
 // capture margin. A robot does not hear itself, nor anything while it is sending.
 // Deterministic for a seed. Time advances in ticks of 1/16 bit.
+//
+// With an acoustic model (acoustic_model.h) instead: a packet reaches every robot a path
+// reaches, at its direct-plus-reverberant level; each robot's carrier level sums the arrivals,
+// the ambient sound and the noise sources sounding; each robot's MAC threshold is the ambient
+// level plus the MAC's calibration margin, as a real robot calibrated in that room would set
+// it; and at the end of an arrival the model's decode table decides, by a draw, whether the
+// robot decodes it, reports noise of some class, or hears nothing at all, against the noise
+// of that moment and the other packets overlapping it (each weighted by how much it overlaps).
 class AudioChannel {
  public:
+  // `acoustic`, when given, must outlive the channel and be built for the same robots in the
+  // same order.
   AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,
-               const ChannelOptions& options);
+               const ChannelOptions& options, const AcousticModel* acoustic = nullptr);
 
   std::size_t size() const { return macs_.size(); }
   void SetPose(std::size_t robot, const grid::Pose2D& pose) { poses_.at(robot) = pose; }
+  const grid::Pose2D& pose(std::size_t robot) const { return poses_.at(robot); }
   // Queues a packet to send; false (and counted by the MAC) when its queue is full.
   bool Send(std::size_t robot, std::vector<std::uint8_t> data);
 
@@ -78,6 +99,9 @@ class AudioChannel {
   bool Carrier(std::size_t robot) const { return macs_.at(robot).carrier(); }
   const nava_modem::CsmaMac& mac(std::size_t robot) const { return macs_.at(robot); }
   std::uint64_t missed_while_sending() const { return missed_while_sending_; }
+  // Acoustic model: arrivals the receiver would not have noticed at all.
+  std::uint64_t unheard() const { return unheard_; }
+  const AcousticModel* acoustic() const { return acoustic_; }
   const PathCache& cache() const { return cache_; }
 
  private:
@@ -88,6 +112,7 @@ class AudioChannel {
     double power;  // 10^(level_db / 10), summed every tick the arrival lasts
     std::vector<std::uint8_t> data;
     SoundPath path;
+    LinkLevels levels;  // acoustic model
     bool done = false;  // finished, kept a while to judge overlaps with later arrivals
   };
   void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
@@ -96,8 +121,14 @@ class AudioChannel {
   bool Quiet() const;
   // The path from the sender to every robot, from the cache where it can.
   std::vector<SoundPath> PathsFrom(std::size_t sender);
+  // Acoustic model: the robots' positions, and the noise power at each from ambient and sources.
+  std::vector<Eigen::Vector2d> Positions() const;
+  void UpdateNoise();
+  void FinishAcoustic(std::size_t receiver, const Arrival& a, Reception& rx);
 
   const PropagationModel& model_;
+  const AcousticModel* acoustic_;
+  std::vector<double> noise_powers_;  // acoustic model: per robot, linear
   std::vector<world_sim::Microphone> microphones_;
   ChannelOptions options_;
   std::vector<nava_modem::CsmaMac> macs_;
@@ -111,6 +142,7 @@ class AudioChannel {
   double tick_;
   std::int64_t ticks_ = 0;
   std::uint64_t missed_while_sending_ = 0;
+  std::uint64_t unheard_ = 0;
 };
 
 }  // namespace audio_propagation

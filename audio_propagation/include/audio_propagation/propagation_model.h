@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -55,6 +56,10 @@ class PropagationModel {
   std::vector<std::vector<SoundPath>> Compute(const std::vector<Eigen::Vector2d>& positions,
                                               const std::vector<bool>& sources) const;
 
+  // The paths from one source to many listeners (a map of where a robot is heard), without the
+  // n x n table Compute would build.
+  std::vector<SoundPath> From(const Eigen::Vector2d& source, const std::vector<Eigen::Vector2d>& listeners) const;
+
   // The path between two world points.
   SoundPath Path(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
 
@@ -76,6 +81,11 @@ class PropagationModel {
   };
   // Graph nodes in line of sight of a point (cell coordinates) within hearing distance.
   std::vector<Visible> VisibleNodes(const Eigen::Vector2d& cell_point) const;
+  // The path between two points in cell coordinates, given the graph nodes each sees (called
+  // only when the line of sight is blocked).
+  SoundPath Between(const Eigen::Vector2d& s, const Eigen::Vector2d& r,
+                    const std::function<const std::vector<Visible>&()>& seen_from_s,
+                    const std::function<const std::vector<Visible>&()>& seen_from_r) const;
   SoundPath MakePath(std::vector<Eigen::Vector2d> cell_polyline, double length_cells) const;
 
   grid::OccupancyMap map_;

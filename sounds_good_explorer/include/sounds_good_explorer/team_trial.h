@@ -3,7 +3,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <memory>
+
 #include "audio_propagation/audio_channel.h"
+#include "audio_propagation/decode_table.h"
 #include "audio_propagation/propagation_model.h"
 #include "grid/occupancy_map.h"
 #include "sounds_good_explorer/explorer.h"
@@ -19,6 +22,9 @@ struct TrialOptions {
   double control_period = 0.1;   // s between controller updates
   ExplorerOptions explorer;      // mode and seed are set per robot from the fields here
   audio_propagation::ChannelOptions channel;
+  // Set: the acoustic channel model with this decode table and the world's acoustics section
+  // (which it then must have); null: the threshold model.
+  std::shared_ptr<const audio_propagation::DecodeTable> decode_table;
   world_sim::WorldOptions world;
   std::uint32_t seed = 1;        // the world's, the channel's and (offset) each controller's
 };

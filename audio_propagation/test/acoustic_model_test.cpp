@@ -1,0 +1,278 @@
+#include "audio_propagation/acoustic_model.h"
+
+#include <cmath>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "audio_propagation/audio_channel.h"
+#include "audio_propagation/delivery_map.h"
+#include "nava_modem/modem_profile.h"
+
+namespace audio_propagation {
+namespace {
+
+using world_sim::Microphone;
+
+// A made-up table that is easy to reason about: delivery rises linearly from 0 at SNR -10 dB to
+// 1 at +10 dB, whatever the kind, halved at DRR -20 dB; of the failures a quarter are
+// zero_byte and a quarter one_byte, the rest unheard.
+DecodeTable LinearTable() {
+  DecodeTable t;
+  t.profile = "nava";
+  t.packets = 100;
+  t.whine_hz = 3000.0;
+  t.band_low_hz = 2150.0;
+  t.band_high_hz = 3850.0;
+  t.snr_db = {-10.0, 10.0};
+  t.drr_db = {-20.0, 0.0};
+  t.rt60 = {0.5};
+  t.Resize();
+  for (std::size_t k = 0; k < kInterferenceCount; ++k) {
+    for (std::size_t d = 0; d < 2; ++d) {
+      for (std::size_t s = 0; s < 2; ++s) {
+        DecodeOutcome& o = t.At(static_cast<Interference>(k), 0, d, s);
+        o.packet = (s == 1 ? 1.0 : 0.0) * (d == 0 ? 0.5 : 1.0);
+        o.zero_byte = 0.25 * (1.0 - o.packet);
+        o.one_byte = 0.25 * (1.0 - o.packet);
+      }
+    }
+  }
+  return t;
+}
+
+world_sim::Acoustics Quiet() {
+  world_sim::Acoustics a;
+  a.room.rt60 = 0.5;
+  a.room.critical_distance = 2.0;
+  a.ambient_db = 20.0;
+  return a;
+}
+
+PropagationOptions Options() {
+  PropagationOptions o;
+  o.threshold_db = 0.0;  // every path is computed; the acoustic model decides
+  o.threads = 1;
+  return o;
+}
+
+// An open strip 45 x 5 m.
+struct Strip {
+  PropagationModel model{grid::OccupancyMap(90, 10, 0.5), Options()};
+  SoundPath Path(double x0, double x1) const { return model.Path({x0, 2.5}, {x1, 2.5}); }
+};
+
+TEST(LinkBudget, DirectAndReverberantMeetAtTheCriticalDistanceAndCornersCostTheDirectSound) {
+  world_sim::RoomAcoustics room;
+  room.rt60 = 1.0;
+  room.critical_distance = 4.0;
+  const LinkLevels at_rc = LinkBudget(70.0, 1.0, 4.0, 0, 6.0, room);
+  EXPECT_NEAR(at_rc.direct_db, 70.0 - 20.0 * std::log10(4.0), 1e-9);
+  // Equal but for the slow decay of the reverberant field along the path (0.174 dB/m/s).
+  EXPECT_NEAR(at_rc.drr_db, 0.174 * 4.0, 1e-9);
+  EXPECT_NEAR(at_rc.total_db, 10.0 * std::log10(std::pow(10.0, at_rc.direct_db / 10) + std::pow(10.0, at_rc.reverberant_db / 10)), 1e-9);
+  const LinkLevels round_two = LinkBudget(70.0, 1.0, 4.0, 2, 6.0, room);
+  EXPECT_NEAR(round_two.direct_db, at_rc.direct_db - 12.0, 1e-9);
+  EXPECT_NEAR(round_two.reverberant_db, at_rc.reverberant_db, 1e-9);
+  // Sabine: a 1000 m^3 room with RT60 1 s has its critical distance near 1.8 m.
+  world_sim::RoomAcoustics hall;
+  hall.rt60 = 1.0;
+  hall.volume = 1000.0;
+  EXPECT_NEAR(world_sim::CriticalDistance(hall), 1.79, 0.01);
+}
+
+TEST(AcousticModel, DeliveryFallsWithDistanceAsTheDirectSoundDrownsInTheRoom) {
+  Strip strip;
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = 45.0;
+  const AcousticModel model(strip.model, a, LinearTable(), {});
+  double last = 2.0;
+  for (double d : {1.0, 3.0, 8.0, 15.0, 30.0}) {
+    const Eigen::Vector2d at(1.0 + d, 2.5);
+    const LinkPrediction p = model.Predict(strip.Path(1.0, 1.0 + d), at, model.NoiseAt(at, 0.0, {}));
+    EXPECT_LT(p.probability, last) << d << " m";
+    EXPECT_LT(p.signal.drr_db, d < 2.0 ? 100.0 : 0.0) << d << " m: beyond the critical distance the room is louder";
+    last = p.probability;
+  }
+  EXPECT_GT(last, -1e-12);
+}
+
+TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
+  Strip strip;
+  world_sim::Acoustics a = Quiet();
+  world_sim::NoiseSourceSpec radio;
+  radio.name = "radio";
+  radio.x = 12.0;
+  radio.y = 2.5;
+  radio.kind = world_sim::NoiseKind::kSpeech;
+  radio.level_db = 66.0;
+  radio.duty = 0.5;
+  radio.period = 10.0;  // on for 0-5 s of every 10
+  a.noise_sources.push_back(radio);
+  const AcousticModel model(strip.model, a, LinearTable(), {});
+  const Eigen::Vector2d listener(11.0, 2.5);
+  const SoundPath path = strip.Path(5.0, 11.0);
+  const LinkPrediction on = model.Predict(path, listener, model.NoiseAt(listener, 2.0, {}));
+  const LinkPrediction off = model.Predict(path, listener, model.NoiseAt(listener, 7.0, {}));
+  EXPECT_EQ(on.kind, Interference::kSpeech);
+  EXPECT_EQ(off.kind, Interference::kPink);  // only the ambient sound is left
+  EXPECT_LT(on.snr_db, off.snr_db - 10.0);
+  EXPECT_LT(on.probability, off.probability);
+  // Far from the radio a listener hardly minds it.
+  const Eigen::Vector2d far(40.0, 2.5);
+  const LinkPrediction far_on = model.Predict(strip.Path(34.0, 40.0), far, model.NoiseAt(far, 2.0, {}));
+  EXPECT_GT(far_on.probability, on.probability);
+}
+
+TEST(AcousticModel, AWhineCountsByHowMuchOfItFallsInTheProfilesBand) {
+  Strip strip;
+  const AcousticModel model(strip.model, Quiet(), LinearTable(), {});
+  Disturbance in{Interference::kWhine, 1.0, 3000.0};
+  Disturbance low{Interference::kWhine, 1.0, 200.0};  // harmonics at 400 and 600 Hz: all below
+  Disturbance half{Interference::kWhine, 1.0, 1200.0};  // only its 3600 Hz third harmonic hits
+  EXPECT_NEAR(model.EffectivePower(in), 1.0, 1e-12);
+  EXPECT_NEAR(model.EffectivePower(low), 0.01 / (1.0 / 1.3125), 1e-9);
+  EXPECT_GT(model.EffectivePower(half), model.EffectivePower(low));
+  EXPECT_LT(model.EffectivePower(half), model.EffectivePower(in));
+}
+
+TEST(AcousticModel, NoiseSourcesMustStandInFreeSpaceOrRideOnATeamRobot) {
+  Strip strip;
+  world_sim::Acoustics a = Quiet();
+  world_sim::NoiseSourceSpec s;
+  s.name = "fan";
+  s.x = 100.0;
+  a.noise_sources = {s};
+  EXPECT_THROW(AcousticModel(strip.model, a, LinearTable(), {}), std::invalid_argument);
+  a.noise_sources[0].robot = "robot_9";
+  try {
+    AcousticModel(strip.model, a, LinearTable(), {"robot_0"});
+    FAIL() << "a source on a robot not in the team was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("robot_9"), std::string::npos) << e.what();
+  }
+  a.noise_sources.clear();
+  a.room.rt60 = 0.0;
+  EXPECT_THROW(AcousticModel(strip.model, a, LinearTable(), {}), std::invalid_argument);
+}
+
+// Channels over the strip with the acoustic model.
+struct AcousticTeam {
+  Strip strip;
+  std::unique_ptr<AcousticModel> model;
+  std::unique_ptr<AudioChannel> channel;
+
+  AcousticTeam(const std::vector<double>& xs, world_sim::Acoustics a, std::uint32_t seed = 1) {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < xs.size(); ++k) names.push_back("robot_" + std::to_string(k));
+    model = std::make_unique<AcousticModel>(strip.model, a, LinearTable(), names);
+    ChannelOptions o;
+    o.seed = seed;
+    channel = std::make_unique<AudioChannel>(strip.model, std::vector<Microphone>(xs.size(), Microphone::kOmni), o,
+                                             model.get());
+    for (std::size_t k = 0; k < xs.size(); ++k) channel->SetPose(k, {xs[k], 2.5, 0.0});
+  }
+  AudioChannel::Events Run(double seconds) {
+    AudioChannel::Events all;
+    const double end = channel->time() + seconds;
+    while (channel->time() < end - 1e-9) {
+      auto e = channel->AdvanceTo(std::min(end, channel->time() + 0.05));
+      for (auto& s : e.started) all.started.push_back(std::move(s));
+      for (auto& r : e.received) all.received.push_back(std::move(r));
+    }
+    return all;
+  }
+};
+
+TEST(AcousticChannel, PacketsAreDecodedAndFailuresReportedAtTheTablesRates) {
+  // 20 m apart in a quiet room the link sits mid-table: about half the packets get through.
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = 38.0;
+  AcousticTeam team({2.0, 22.0}, a);
+  const LinkPrediction expected =
+      team.model->Predict(team.strip.Path(2.0, 22.0), {22.0, 2.5}, team.model->NoiseAt({22.0, 2.5}, 0.0, {}));
+  ASSERT_GT(expected.probability, 0.2);
+  ASSERT_LT(expected.probability, 0.8);
+  const int sent = 400;
+  std::map<int, int> classes;  // -1 packet, else the noise class
+  for (int k = 0; k < sent; ++k) {
+    ASSERT_TRUE(team.channel->Send(0, {1, 2, 3, static_cast<std::uint8_t>(k)}));
+    for (const Reception& rx : team.Run(1.0).received) {
+      EXPECT_EQ(rx.receiver, 1u);
+      EXPECT_NEAR(rx.probability, expected.probability, 1e-9);
+      ++classes[rx.kind == Reception::Kind::kPacket ? -1 : static_cast<int>(rx.noise)];
+    }
+  }
+  const double p = expected.probability, fail = 1.0 - p;
+  // Binomial: 4 standard deviations of 400 draws.
+  auto near = [&](int count, double rate) { EXPECT_NEAR(count, sent * rate, 4.0 * std::sqrt(sent * rate * (1 - rate)) + 1); };
+  near(classes[-1], p);
+  near(classes[static_cast<int>(nava_modem::RxEvent::Noise::kZeroByte)], 0.25 * fail);
+  near(classes[static_cast<int>(nava_modem::RxEvent::Noise::kOneByte)], 0.25 * fail);
+  EXPECT_EQ(classes[static_cast<int>(nava_modem::RxEvent::Noise::kBadCrc)], 0);
+  // The rest went unheard, as the real receiver would miss them.
+  EXPECT_EQ(team.channel->unheard(), static_cast<std::uint64_t>(sent - classes[-1] - classes[1] - classes[2]));
+}
+
+TEST(AcousticChannel, TwoRobotsTalkingAtOnceGiveNoiseWhenEvenAndCaptureWhenOneIsFarLouder) {
+  // Listener at 10; a near sender at 9 and a far one at 40 (silent room, no ambient to speak of).
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = -40.0;
+  a.room.critical_distance = 20.0;  // a dry room: the direct sound rules
+  int captured = 0, even_heard = 0;
+  for (std::uint32_t seed = 1; seed <= 30; ++seed) {
+    AcousticTeam far({10.0, 9.0, 40.0}, a, seed);
+    far.channel->Send(1, {1, 1, 1, 1});
+    far.channel->Send(2, {2, 2, 2, 2});
+    for (const Reception& rx : far.Run(2.0).received) {
+      if (rx.receiver == 0 && rx.kind == Reception::Kind::kPacket && rx.data[0] == 1) ++captured;
+    }
+    AcousticTeam even({10.0, 5.0, 15.0}, a, seed);
+    even.channel->Send(1, {1, 1, 1, 1});
+    even.channel->Send(2, {2, 2, 2, 2});
+    for (const Reception& rx : even.Run(2.0).received) {
+      if (rx.receiver == 0 && rx.kind == Reception::Kind::kPacket) ++even_heard;
+      if (rx.receiver == 0) EXPECT_TRUE(rx.collision || rx.kind == Reception::Kind::kPacket);
+    }
+  }
+  // CSMA spreads some pairs apart (then both are heard); those that overlap decide the rest.
+  EXPECT_GE(captured, 25);
+  EXPECT_LT(even_heard, 2 * 30);
+}
+
+TEST(AcousticChannel, TheCarrierThresholdSitsAboveTheRoomsNoiseAsACalibratedRobotsWould) {
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = 40.0;
+  AcousticTeam team({2.0, 6.0}, a);
+  team.Run(0.5);
+  EXPECT_NEAR(team.channel->mac(0).threshold_db(), 40.0 + nava_modem::MacOptions().threshold_margin_db, 1e-9);
+  EXPECT_NEAR(team.channel->Level(1), 40.0, 1e-6);
+  EXPECT_FALSE(team.channel->Carrier(1));
+  team.channel->Send(0, {1, 2, 3, 4});
+  bool carrier = false;
+  for (int k = 0; k < 20 && !carrier; ++k) {
+    team.channel->AdvanceTo(team.channel->time() + 0.05);
+    carrier = team.channel->Carrier(1);
+  }
+  EXPECT_TRUE(carrier);
+}
+
+TEST(DeliveryMap, NearCellsHearBetterThanFarOnesAndWallsHaveNoValue) {
+  grid::OccupancyMap map(90, 10, 0.5);
+  for (int i = 40; i < 42; ++i)
+    for (int j = 0; j < 2; ++j) map.set(i, j, grid::Cell::kOccupied);  // a pillar at (20-21, 0-1) m
+  const PropagationModel propagation(map, Options());
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = 45.0;
+  const AcousticModel model(propagation, a, LinearTable(), {});
+  const DeliveryMap d = MapDelivery(model, {2.0, 2.5}, 0.0, {}, 1.0);
+  ASSERT_EQ(d.width, 45);
+  ASSERT_EQ(d.height, 5);
+  auto at = [&](int i, int j) { return d.probability[static_cast<std::size_t>(j) * d.width + i]; };
+  EXPECT_GT(at(3, 2), at(30, 2));
+  EXPECT_TRUE(std::isnan(at(20, 0)));  // the wall's cell
+  EXPECT_THROW(MapDelivery(model, {2.0, 2.5}, 0.0, {}, 0.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace audio_propagation
