@@ -1,0 +1,261 @@
+#include "audio_propagation/decode_table.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "grid/input_error.h"
+
+namespace audio_propagation {
+namespace {
+
+constexpr Interference kKinds[] = {Interference::kWhite, Interference::kPink, Interference::kSpeech,
+                                   Interference::kWhine, Interference::kPacket};
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "decode_table_" + std::to_string(getpid()) + "_" + name;
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// Two values on each axis; every cell's packet fraction says where it is, so interpolation can
+// be checked by hand: packet = 0.05 * kind + 0.4 * (snr is high) + 0.2 * (drr is high) + 0.1 * (rt is high).
+DecodeTable SmallTable() {
+  DecodeTable t;
+  t.profile = "room";
+  t.packets = 12;
+  t.whine_hz = 2500.0;
+  t.band_low_hz = 600.0;
+  t.band_high_hz = 5400.0;
+  t.command = "nava_bench --table room --quick";
+  t.snr_db = {-10.0, 10.0};
+  t.drr_db = {-20.0, 0.0};
+  t.rt60 = {0.3, 1.2};
+  t.Resize();
+  for (int k = 0; k < 5; ++k) {
+    for (std::size_t r = 0; r < 2; ++r) {
+      for (std::size_t d = 0; d < 2; ++d) {
+        for (std::size_t s = 0; s < 2; ++s) {
+          DecodeOutcome& o = t.At(kKinds[k], r, d, s);
+          o.packet = 0.05 * k + 0.4 * s + 0.2 * d + 0.1 * r;
+          o.zero_byte = (1.0 - o.packet) / 3.0;
+          o.bad_crc = (1.0 - o.packet) / 12.0;
+        }
+      }
+    }
+  }
+  return t;
+}
+
+TEST(DecodeTable, NamesKinds) {
+  for (Interference kind : kKinds) EXPECT_EQ(ParseInterference(InterferenceName(kind)), kind);
+  EXPECT_FALSE(ParseInterference("brown"));
+  EXPECT_EQ(FromNoiseKind(world_sim::NoiseKind::kWhite), Interference::kWhite);
+  EXPECT_EQ(FromNoiseKind(world_sim::NoiseKind::kPink), Interference::kPink);
+  EXPECT_EQ(FromNoiseKind(world_sim::NoiseKind::kSpeech), Interference::kSpeech);
+  EXPECT_EQ(FromNoiseKind(world_sim::NoiseKind::kWhine), Interference::kWhine);
+}
+
+TEST(DecodeTable, IndexesKindThenRt60ThenDrrThenSnr) {
+  DecodeTable t;
+  t.snr_db = {0, 1, 2};
+  t.drr_db = {0, 1};
+  t.rt60 = {0.5, 1.0};
+  t.Resize();
+  EXPECT_EQ(t.cells.size(), 5u * 2 * 2 * 3);
+  EXPECT_EQ(t.Index(Interference::kWhite, 0, 0, 0), 0u);
+  EXPECT_EQ(t.Index(Interference::kWhite, 0, 0, 2), 2u);
+  EXPECT_EQ(t.Index(Interference::kWhite, 0, 1, 0), 3u);
+  EXPECT_EQ(t.Index(Interference::kWhite, 1, 0, 0), 6u);
+  EXPECT_EQ(t.Index(Interference::kPink, 0, 0, 0), 12u);
+  EXPECT_EQ(t.Index(Interference::kPacket, 1, 1, 2), t.cells.size() - 1);
+  EXPECT_THROW(t.Index(Interference::kWhite, 0, 0, 3), std::out_of_range);
+  EXPECT_THROW(t.Index(Interference::kWhite, 2, 0, 0), std::out_of_range);
+}
+
+TEST(DecodeTable, LooksUpCellsExactly) {
+  const DecodeTable t = SmallTable();
+  const DecodeOutcome o = t.Lookup(Interference::kSpeech, 10.0, -20.0, 1.2);
+  EXPECT_NEAR(o.packet, 0.1 + 0.4 + 0.1, 1e-12);
+  EXPECT_NEAR(o.zero_byte, 0.4 / 3.0, 1e-12);
+  EXPECT_NEAR(o.bad_crc, 0.4 / 12.0, 1e-12);
+  EXPECT_NEAR(o.Nothing(), 1.0 - o.packet - o.zero_byte - o.bad_crc, 1e-12);
+}
+
+TEST(DecodeTable, InterpolatesLinearlyOnEachAxisAndBetweenThem) {
+  const DecodeTable t = SmallTable();
+  // Midway in SNR only, then in all three.
+  EXPECT_NEAR(t.Lookup(Interference::kWhite, 0.0, -20.0, 0.3).packet, 0.2, 1e-12);
+  EXPECT_NEAR(t.Lookup(Interference::kWhite, 5.0, -20.0, 0.3).packet, 0.3, 1e-12);
+  EXPECT_NEAR(t.Lookup(Interference::kWhite, -10.0, -10.0, 0.3).packet, 0.1, 1e-12);
+  EXPECT_NEAR(t.Lookup(Interference::kWhite, -10.0, -20.0, 0.75).packet, 0.05, 1e-12);
+  EXPECT_NEAR(t.Lookup(Interference::kPink, 0.0, -10.0, 0.75).packet, 0.05 + 0.2 + 0.1 + 0.05, 1e-12);
+  EXPECT_NEAR(t.Lookup(Interference::kPink, 0.0, -10.0, 0.75).bad_crc, 0.6 / 12.0, 1e-12);
+}
+
+TEST(DecodeTable, ClampsAtTheEndsOfEachAxis) {
+  const DecodeTable t = SmallTable();
+  const double top = t.Lookup(Interference::kWhine, 10.0, 0.0, 1.2).packet;
+  EXPECT_NEAR(t.Lookup(Interference::kWhine, 60.0, 30.0, 5.0).packet, top, 1e-12);
+  const double bottom = t.Lookup(Interference::kWhine, -10.0, -20.0, 0.3).packet;
+  EXPECT_NEAR(t.Lookup(Interference::kWhine, -60.0, -40.0, 0.0).packet, bottom, 1e-12);
+  // Clamped on one axis, interpolated on another.
+  EXPECT_NEAR(t.Lookup(Interference::kWhine, 0.0, 40.0, 0.1).packet, 0.15 + 0.2 + 0.2, 1e-12);
+}
+
+TEST(DecodeTable, SavesAndLoadsBackEqual) {
+  const DecodeTable t = SmallTable();
+  const std::string path = TempPath("round_trip.yaml");
+  SaveDecodeTable(path, t);
+  const DecodeTable back = LoadDecodeTable(path, "room");
+  EXPECT_EQ(back.profile, t.profile);
+  EXPECT_EQ(back.packets, t.packets);
+  EXPECT_EQ(back.whine_hz, t.whine_hz);
+  EXPECT_EQ(back.band_low_hz, t.band_low_hz);
+  EXPECT_EQ(back.band_high_hz, t.band_high_hz);
+  EXPECT_EQ(back.command, t.command);
+  EXPECT_EQ(back.snr_db, t.snr_db);
+  EXPECT_EQ(back.drr_db, t.drr_db);
+  EXPECT_EQ(back.rt60, t.rt60);
+  ASSERT_EQ(back.cells.size(), t.cells.size());
+  for (std::size_t k = 0; k < t.cells.size(); ++k) {
+    EXPECT_NEAR(back.cells[k].packet, t.cells[k].packet, 5e-5) << k;
+    EXPECT_NEAR(back.cells[k].zero_byte, t.cells[k].zero_byte, 5e-5) << k;
+    EXPECT_NEAR(back.cells[k].one_byte, t.cells[k].one_byte, 5e-5) << k;
+    EXPECT_NEAR(back.cells[k].bad_crc, t.cells[k].bad_crc, 5e-5) << k;
+    EXPECT_GE(back.cells[k].Nothing(), -1e-12) << k;
+  }
+  // Once at 4 decimals, the table is what it writes.
+  const std::string again = TempPath("round_trip_again.yaml");
+  SaveDecodeTable(again, back);
+  const DecodeTable twice = LoadDecodeTable(again);
+  for (std::size_t k = 0; k < t.cells.size(); ++k) {
+    EXPECT_EQ(twice.cells[k].packet, back.cells[k].packet);
+    EXPECT_EQ(twice.cells[k].bad_crc, back.cells[k].bad_crc);
+  }
+  std::remove(path.c_str());
+  std::remove(again.c_str());
+}
+
+TEST(DecodeTable, RoundingNeverMakesACellSumAboveOne) {
+  DecodeTable t = SmallTable();
+  t.cells[0] = {0.33335, 0.33335, 0.33335, 0.0};  // each rounds up
+  const std::string path = TempPath("rounding.yaml");
+  SaveDecodeTable(path, t);
+  const DecodeTable back = LoadDecodeTable(path);
+  EXPECT_GE(back.cells[0].Nothing(), -1e-12);
+  std::remove(path.c_str());
+}
+
+// A small valid table as text; each malformed file below changes one thing of it.
+std::string ValidText() {
+  return "profile: nava\n"
+         "packets: 4\n"
+         "whine_hz: 3000\n"
+         "band_hz: [2150, 3850]\n"
+         "command: \"nava_bench --table nava --quick\"\n"
+         "snr_db: [-12, 0]\n"
+         "drr_db: [0]\n"
+         "rt60: [0.5]\n"
+         "kinds:\n"
+         "  white: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n"
+         "  pink: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n"
+         "  speech: [[[[0, 0.5, 0.25, 0.25], [1, 0, 0, 0]]]]\n"
+         "  whine: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n"
+         "  packet: [[[[0, 1, 0, 0], [0.75, 0, 0, 0.25]]]]\n";
+}
+
+std::string Replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Loads `text` and expects an InputError that names the file and `field`.
+void ExpectRefused(const std::string& text, const std::string& field, const std::string& expected_profile = "") {
+  const std::string path = TempPath("bad.yaml");
+  WriteText(path, text);
+  try {
+    LoadDecodeTable(path, expected_profile);
+    ADD_FAILURE() << "loaded a table with a bad " << field;
+  } catch (const grid::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(path + ": " + field + ": ", 0), 0u) << message;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(DecodeTable, LoadsTheValidText) {
+  const std::string path = TempPath("valid.yaml");
+  WriteText(path, ValidText());
+  const DecodeTable t = LoadDecodeTable(path, "nava");
+  EXPECT_EQ(t.packets, 4);
+  EXPECT_EQ(t.cells.size(), 10u);
+  EXPECT_NEAR(t.Lookup(Interference::kSpeech, -6.0, 0.0, 0.5).packet, 0.5, 1e-12);
+  EXPECT_NEAR(t.Lookup(Interference::kPacket, 0.0, 0.0, 0.5).bad_crc, 0.25, 1e-12);
+  std::remove(path.c_str());
+}
+
+TEST(DecodeTable, RefusesMalformedFilesNamingTheFileAndField) {
+  const std::string valid = ValidText();
+  ExpectRefused(Replaced(valid, "profile: nava", "profile: fsk"), "profile");
+  ExpectRefused(Replaced(valid, "packets: 4", "packets: 0"), "packets");
+  ExpectRefused(Replaced(valid, "packets: 4", "packets: 2.5"), "packets");
+  ExpectRefused(Replaced(valid, "packets: 4\n", ""), "packets");
+  ExpectRefused(Replaced(valid, "whine_hz: 3000", "whine_hz: loud"), "whine_hz");
+  ExpectRefused(Replaced(valid, "band_hz: [2150, 3850]", "band_hz: [3850, 2150]"), "band_hz");
+  ExpectRefused(Replaced(valid, "band_hz: [2150, 3850]", "band_hz: [2150]"), "band_hz");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]", "rt60: []"), "rt60");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]", "rt60: [0]"), "rt60");
+  ExpectRefused(Replaced(valid, "snr_db: [-12, 0]", "snr_db: [0, -12]"), "snr_db");
+  ExpectRefused(Replaced(valid, "snr_db: [-12, 0]", "snr_db: [-12, -12]"), "snr_db");
+  ExpectRefused(Replaced(valid, "snr_db: [-12, 0]", "snr_db: [-12, x]"), "snr_db[1]");
+  ExpectRefused(Replaced(valid, "drr_db: [0]\n", ""), "drr_db");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nseed: 3\n"), "seed");
+  ExpectRefused(Replaced(valid, "  whine: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n", ""), "kinds.whine");
+  ExpectRefused(Replaced(valid, "  pink:", "  brown: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n  pink:"), "kinds.brown");
+  // Wrong nesting: one rt60 list too many, a DRR list short, an SNR list long.
+  ExpectRefused(Replaced(valid, "white: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]", "white: [[[[0, 1, 0, 0], [1, 0, 0, 0]]], []]"),
+                "kinds.white");
+  ExpectRefused(Replaced(valid, "white: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]", "white: [[]]"), "kinds.white[0]");
+  ExpectRefused(Replaced(valid, "white: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]", "white: [[[[0, 1, 0, 0], [1, 0, 0, 0], [1, 0, 0, 0]]]]"),
+                "kinds.white[0][0]");
+  ExpectRefused(Replaced(valid, "white: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]", "white: 0.5"), "kinds.white");
+  // Bad cells: three fractions, one above 1, a sum above 1, a negative one, not a number.
+  ExpectRefused(Replaced(valid, "[1, 0, 0, 0]]]]\n  pink", "[1, 0, 0]]]]\n  pink"), "kinds.white[0][0][1]");
+  ExpectRefused(Replaced(valid, "speech: [[[[0, 0.5, 0.25, 0.25]", "speech: [[[[0, 0.5, 0.25, 1.25]"),
+                "kinds.speech[0][0][0]");
+  ExpectRefused(Replaced(valid, "speech: [[[[0, 0.5, 0.25, 0.25]", "speech: [[[[0.5, 0.5, 0.25, 0.25]"),
+                "kinds.speech[0][0][0]");
+  ExpectRefused(Replaced(valid, "[0.75, 0, 0, 0.25]", "[0.75, -0.1, 0, 0.25]"), "kinds.packet[0][0][1]");
+  ExpectRefused(Replaced(valid, "[0.75, 0, 0, 0.25]", "[0.75, none, 0, 0.25]"), "kinds.packet[0][0][1]");
+}
+
+TEST(DecodeTable, SaysWhatIsWrongWithACell) {
+  const std::string path = TempPath("cell.yaml");
+  WriteText(path, Replaced(ValidText(), "speech: [[[[0, 0.5, 0.25, 0.25]", "speech: [[[[0.5, 0.5, 0.25, 0.25]"));
+  try {
+    LoadDecodeTable(path);
+    ADD_FAILURE() << "loaded a cell summing to 1.5";
+  } catch (const grid::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": kinds.speech[0][0][0]: expected 4 fractions in [0, 1] summing to at most 1, "
+                                           "got [0.5, 0.5, 0.25, 0.25]");
+  }
+  std::remove(path.c_str());
+}
+
+TEST(DecodeTable, RefusesAMissingFileAndAnotherProfilesTable) {
+  const std::string missing = TempPath("missing.yaml");
+  EXPECT_THROW(LoadDecodeTable(missing), grid::InputError);
+  ExpectRefused(ValidText(), "profile", "room");
+}
+
+}  // namespace
+}  // namespace audio_propagation
