@@ -1,20 +1,28 @@
 // audio_propagation_bench: how fast the propagation model builds and steps.
 //
 //   audio_propagation_bench --map MAP.yaml [--robots 20] [--steps 50] [--seed 1]
-//                           [--rule masks|convex_corners]
+//                           [--rule masks|convex_corners] [--acoustics WORLD.yaml [--profile P]]
 //
 // Builds the model (diffraction points + visibility graph), then for each step places the robots
 // at random free positions and computes the paths from every robot to every other, all robots
 // transmitting. Prints one JSON object.
+//
+// With --acoustics (a world file whose acoustics section applies to the map), each step also
+// runs the acoustic channel model on every pair (the noise at each listener from the ambient
+// sound and the world's noise sources, then the decode prediction from the profile's shipped
+// table) and reports that step's time and its ratio to the paths-only step of the same run.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <random>
 #include <vector>
 
+#include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/propagation_model.h"
 #include "grid/map_file.h"
+#include "world_sim/world_file.h"
 #include "tool_args/tool_args.h"
 
 int main(int argc, char** argv) {
@@ -22,13 +30,16 @@ int main(int argc, char** argv) {
   using Clock = std::chrono::steady_clock;
   const multirobot_audio::tools::ToolArgs args(
       "audio_propagation_bench",
-      "audio_propagation_bench --map MAP.yaml [--robots N] [--steps K] [--seed S] [--rule masks|convex_corners]",
+      "audio_propagation_bench --map MAP.yaml [--robots N] [--steps K] [--seed S] [--rule masks|convex_corners]\n"
+      "                        [--acoustics WORLD.yaml [--profile nava|room]]",
       argc, argv);
   const std::string map_file = args.Required("--map");
   const int robots = static_cast<int>(args.Int("--robots", 20, 2, 100000));
   const int steps = static_cast<int>(args.Int("--steps", 50, 1, 1000000));
   const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   const std::string rule_name = args.String("--rule", "masks");
+  const std::string acoustics_file = args.String("--acoustics", "");
+  const std::string profile = args.String("--profile", "nava");
   args.CheckAllUsed();
   const auto rule = ParseDiffractionRule(rule_name);
   if (!rule) args.Fail("--rule: expected masks or convex_corners, got " + rule_name);
@@ -40,6 +51,15 @@ int main(int argc, char** argv) {
     const auto t0 = Clock::now();
     const PropagationModel model(std::move(map), options);
     const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    std::unique_ptr<AcousticModel> acoustic;
+    if (!acoustics_file.empty()) {
+      const world_sim::LoadedWorld world = world_sim::LoadWorldFile(acoustics_file, map_file);
+      if (!world.config.acoustics) args.Fail("--acoustics: " + acoustics_file + " has no acoustics section");
+      std::vector<std::string> names;
+      for (int r = 0; r < robots; ++r) names.push_back(r < static_cast<int>(world.config.robots.size()) ? world.config.robots[r].name : "robot_" + std::to_string(r));
+      acoustic = std::make_unique<AcousticModel>(model, *world.config.acoustics,
+                                                 LoadDecodeTable(ShippedDecodeTable(profile), profile), names);
+    }
 
     std::mt19937 rng(seed);
     const grid::OccupancyMap& m = model.map();
@@ -50,8 +70,9 @@ int main(int argc, char** argv) {
         if (m.IsFreeAt(p)) return p;
       }
     };
-    std::vector<double> step_ms;
+    std::vector<double> step_ms, acoustic_ms;
     std::size_t heard = 0;
+    double delivered = 0.0;
     const std::vector<bool> all(robots, true);
     for (int k = 0; k < steps; ++k) {
       std::vector<Eigen::Vector2d> positions;
@@ -61,6 +82,15 @@ int main(int argc, char** argv) {
       step_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - s0).count());
       for (const auto& row : paths)
         for (const SoundPath& p : row) heard += p.audible;
+      if (!acoustic) continue;
+      const auto a0 = Clock::now();
+      const double t = 0.37 * k;  // moves the noise sources' duty cycles along
+      std::vector<std::vector<Disturbance>> noise(positions.size());
+      for (std::size_t r = 0; r < positions.size(); ++r) noise[r] = acoustic->NoiseAt(positions[r], t, positions);
+      for (std::size_t s = 0; s < positions.size(); ++s)
+        for (std::size_t r = 0; r < positions.size(); ++r)
+          if (paths[s][r].reachable) delivered += acoustic->Predict(paths[s][r], positions[r], noise[r]).probability;
+      acoustic_ms.push_back(step_ms.back() + std::chrono::duration<double, std::milli>(Clock::now() - a0).count());
     }
     std::sort(step_ms.begin(), step_ms.end());
     const double median = step_ms[step_ms.size() / 2];
@@ -70,9 +100,16 @@ int main(int argc, char** argv) {
     std::printf(
         "{\"map\": \"%s\", \"rule\": \"%s\", \"robots\": %d, \"steps\": %d, "
         "\"diffraction_points\": %zu, \"graph_nodes\": %zu, \"edges\": %zu, \"build_ms\": %.1f, \"step_ms\": %.3f, "
-        "\"pairs_per_s\": %.0f, \"heard_fraction\": %.3f}\n",
+        "\"pairs_per_s\": %.0f, \"heard_fraction\": %.3f",
         map_file.c_str(), DiffractionRuleName(*rule), robots, steps, model.diffraction_points().size(), model.graph().size(),
         model.graph().edge_count(), build_ms, median, pairs / (total / 1000.0), heard / pairs);
+    if (acoustic) {
+      std::sort(acoustic_ms.begin(), acoustic_ms.end());
+      const double acoustic_median = acoustic_ms[acoustic_ms.size() / 2];
+      std::printf(", \"acoustic_step_ms\": %.3f, \"acoustic_ratio\": %.2f, \"mean_delivery\": %.3f", acoustic_median,
+                  acoustic_median / median, delivered / pairs);
+    }
+    std::printf("}\n");
   } catch (const std::exception& e) {
     std::cerr << "audio_propagation_bench: " << e.what() << "\n";
     return 1;
