@@ -30,7 +30,7 @@ double CriticalDistance(const RoomAcoustics& room) {
 
 bool Sounding(const NoiseSourceSpec& source, double t) {
   if (source.duty >= 1.0) return true;
-  double cycle = std::fmod(t + source.phase, source.period);
+  double cycle = std::fmod(t - source.phase, source.period);
   if (cycle < 0.0) cycle += source.period;
   return cycle < source.duty * source.period;
 }

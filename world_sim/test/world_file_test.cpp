@@ -1,6 +1,7 @@
 #include "world_sim/world_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -135,6 +136,65 @@ TEST_F(WorldFileTest, ShippedWorldsLoad) {
     const LoadedWorld w = LoadWorldFile(std::string(PROJECT_MAPS_DIR) + "/" + name);
     EXPECT_FALSE(w.config.robots.empty()) << name;
   }
+}
+
+TEST_F(WorldFileTest, AcousticsLoadAndSaveBack) {
+  const LoadedWorld w = LoadWorldFile(Write(
+      "robots: [{name: a, pose: [1.0, 1.0, 0]}]\n"
+      "acoustics:\n"
+      "  rt60: 0.8\n"
+      "  volume: 60\n"
+      "  ambient_db: 38\n"
+      "  ambient_kind: white\n"
+      "  corner_loss_db: 4\n"
+      "  regions: [{name: east, box: [3.0, 0.0, 6.0, 4.0], rt60: 1.5, critical_distance: 1.2}]\n"
+      "  noise_sources:\n"
+      "    - {name: fan, position: [1.0, 3.0], kind: whine, frequency: 900, level_db: 55, duty: 0.25, period: 8, phase: 2}\n"
+      "    - {robot: a, kind: pink, level_db: 50}\n"));
+  ASSERT_TRUE(w.config.acoustics.has_value());
+  const Acoustics& a = *w.config.acoustics;
+  EXPECT_DOUBLE_EQ(a.room.rt60, 0.8);
+  EXPECT_NEAR(CriticalDistance(a.room), 0.057 * std::sqrt(60 / 0.8), 0.01);
+  EXPECT_EQ(a.ambient_kind, NoiseKind::kWhite);
+  ASSERT_EQ(a.regions.size(), 1u);
+  EXPECT_DOUBLE_EQ(a.RoomAt(4.0, 1.0).rt60, 1.5);
+  EXPECT_DOUBLE_EQ(a.RoomAt(1.0, 1.0).rt60, 0.8);
+  ASSERT_EQ(a.noise_sources.size(), 2u);
+  EXPECT_EQ(a.noise_sources[0].kind, NoiseKind::kWhine);
+  EXPECT_EQ(a.noise_sources[1].robot, "a");
+  EXPECT_EQ(a.noise_sources[1].name, "noise_1");
+  // Sounds for 2 s of every 8, its periods starting at t = 2 s: on from 2 to 4 s, 10 to 12 s, ...
+  EXPECT_FALSE(Sounding(a.noise_sources[0], 0.5));
+  EXPECT_TRUE(Sounding(a.noise_sources[0], 2.5));
+  EXPECT_FALSE(Sounding(a.noise_sources[0], 4.5));
+  EXPECT_TRUE(Sounding(a.noise_sources[0], 10.5));
+
+  const std::string saved = (dir_ / "saved.yaml").string();
+  SaveWorldFile(saved, w.config);
+  const LoadedWorld back = LoadWorldFile(saved);
+  ASSERT_TRUE(back.config.acoustics.has_value());
+  EXPECT_EQ(back.config.acoustics->noise_sources.size(), 2u);
+  EXPECT_DOUBLE_EQ(back.config.acoustics->regions[0].room.critical_distance, 1.2);
+  EXPECT_DOUBLE_EQ(back.config.acoustics->noise_sources[0].phase, 2.0);
+  EXPECT_FALSE(LoadWorldFile(Write("robots: [{name: a, pose: [1.0, 1.0, 0]}]\n")).config.acoustics.has_value());
+}
+
+TEST_F(WorldFileTest, BadAcoustics) {
+  const std::string robot = "robots: [{name: a, pose: [1.0, 1.0, 0]}]\n";
+  ExpectError(robot + "acoustics: {rt60: 0, volume: 50}\n", "acoustics.rt60: expected a reverberation time in (0, 10] s");
+  ExpectError(robot + "acoustics: {rt60: 0.5}\n", "acoustics.volume: expected a room volume");
+  ExpectError(robot + "acoustics: {volume: 50, loudness: 3}\n", "loudness");
+  ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{position: [1, 3], kind: drill}]}\n",
+              "acoustics.noise_sources[0].kind: expected white, pink, speech or whine, got 'drill'");
+  ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{position: [3.05, 1.0]}]}\n",
+              "acoustics.noise_sources[0].position: noise source 'noise_0' at (3.050000, 1.000000) is inside a wall");
+  ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{robot: b}]}\n",
+              "acoustics.noise_sources[0].robot: no robot named 'b'");
+  ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{kind: whine, position: [1, 3]}]}\n",
+              "frequency: expected a whine's frequency above 0 Hz");
+  ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{position: [1, 3], duty: 0}]}\n", "duty: expected a duty cycle in (0, 1]");
+  ExpectError(robot + "acoustics: {volume: 50, regions: [{name: r, box: [3, 0, 1, 4], volume: 5}]}\n",
+              "regions[0].box: expected min_x < max_x");
 }
 
 TEST_F(WorldFileTest, MissingFile) {

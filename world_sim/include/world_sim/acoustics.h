@@ -42,7 +42,8 @@ struct AcousticRegion {
 };
 
 // Something that makes noise: fixed (a fan, a radio) or carried by a robot (its motors). It
-// sounds for `duty` of every `period` seconds, from `phase` seconds into the cycle.
+// sounds for the first `duty` x `period` seconds of every period, the periods starting at
+// t = phase (mod period).
 struct NoiseSourceSpec {
   std::string name;
   double x = 0.0, y = 0.0;  // m, where a fixed source stands
