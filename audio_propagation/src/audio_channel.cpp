@@ -31,11 +31,9 @@ AudioChannel::AudioChannel(const PropagationModel& model,
     throw std::invalid_argument("audio channel: direction_noise must be >= 0 rad");
   }
   nava_modem::MacOptions mac = options_.mac;
-  if (!mac.fixed_threshold_db) {
-    // A real robot calibrates its threshold on the room's silence, plus a margin.
-    mac.fixed_threshold_db = acoustic_ ? acoustic_->acoustics().ambient_db + mac.threshold_margin_db
-                                       : model_.options().threshold_db;
-  }
+  // With the acoustic model each robot calibrates its threshold on the noise it hears at the
+  // start, as a real robot does (the loudest level of its calibration time plus a margin).
+  if (!mac.fixed_threshold_db && !acoustic_) mac.fixed_threshold_db = model_.options().threshold_db;
   const std::size_t n = microphones_.size();
   for (std::size_t k = 0; k < n; ++k) {
     // Robots draw their own back-offs, so adding a robot does not change the others'.

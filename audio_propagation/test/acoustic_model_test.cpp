@@ -171,6 +171,7 @@ struct AcousticTeam {
     channel = std::make_unique<AudioChannel>(strip.model, std::vector<Microphone>(xs.size(), Microphone::kOmni), o,
                                              model.get());
     for (std::size_t k = 0; k < xs.size(); ++k) channel->SetPose(k, {xs[k], 2.5, 0.0});
+    Run(nava_modem::MacOptions().calibration_time);  // every robot calibrates on the room's noise
   }
   AudioChannel::Events Run(double seconds) {
     AudioChannel::Events all;

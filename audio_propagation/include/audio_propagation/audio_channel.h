@@ -68,9 +68,9 @@ struct Transmission {
 //
 // With an acoustic model (acoustic_model.h) instead: a packet reaches every robot a path
 // reaches, at its direct-plus-reverberant level; each robot's carrier level sums the arrivals,
-// the ambient sound and the noise sources sounding; each robot's MAC threshold is the ambient
-// level plus the MAC's calibration margin, as a real robot calibrated in that room would set
-// it; and at the end of an arrival the model's decode table decides, by a draw, whether the
+// the ambient sound and the noise sources sounding; each robot's MAC calibrates its threshold
+// on that noise during its calibration time (unless the MAC options fix one), as a real robot
+// does; and at the end of an arrival the model's decode table decides, by a draw, whether the
 // robot decodes it, reports noise of some class, or hears nothing at all, against the noise
 // of that moment and the other packets overlapping it (each weighted by how much it overlaps).
 class AudioChannel {
