@@ -42,6 +42,7 @@
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "room_conditions.h"
+#include "speech_interferer.h"
 
 namespace {
 
@@ -87,13 +88,6 @@ Decoded DecodeWithMinimodem(const Decoders& d, const ModemOptions& o, const std:
     std::exit(1);
   }
   return {Score(MinimodemPackets(r.out, o.crc), sent), r.cpu_s, true};
-}
-
-std::string TempDir(const multirobot_audio::tools::ToolArgs& args, std::string dir) {
-  if (!dir.empty()) return dir;
-  char tmpl[] = "/tmp/nava_bench.XXXXXX";
-  if (!mkdtemp(tmpl)) args.Fail("cannot make a folder in /tmp");
-  return tmpl;
 }
 
 int WhiteNoiseTable(const multirobot_audio::tools::ToolArgs& args) {
@@ -171,18 +165,6 @@ int WhiteNoiseTable(const multirobot_audio::tools::ToolArgs& args) {
   return 0;
 }
 
-// Speech made at run time by make_speech.sh (espeak-ng), at the bench's rate.
-std::vector<float> Speech(const std::string& dir, double rate, unsigned seed) {
-  const std::string file = dir + "/speech.wav";
-  const RunResult r = Run({"bash", NAVA_SPEECH_SCRIPT, file, "240", std::to_string(seed)});
-  if (r.status != 0) {
-    std::cerr << "nava_bench: " << NAVA_SPEECH_SCRIPT << " could not make speech (is espeak-ng installed?)\n";
-    std::exit(1);
-  }
-  const Audio speech = ReadAudioFile(file);
-  return Resample(speech.samples, rate / speech.sample_rate);
-}
-
 struct RoomRow {
   Decoded nava, minimodem, room;
 };
@@ -237,9 +219,7 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
       this_room.seed = room.seed * 31u + static_cast<unsigned>(k);
       std::vector<float> talk;
       if (with_speech) {  // a different stretch of the speech for each room
-        const std::size_t shift = (static_cast<std::size_t>(k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10)) % speech.size();
-        talk.assign(speech.begin() + static_cast<std::ptrdiff_t>(shift), speech.end());
-        talk.insert(talk.end(), speech.begin(), speech.begin() + static_cast<std::ptrdiff_t>(shift));
+        talk = SpeechFrom(speech, static_cast<std::size_t>(k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10));
       }
       const std::vector<float> rendered = RenderRoom(part, options.sample_rate, this_room, talk);
       heard.insert(heard.end(), rendered.begin(), rendered.end());
@@ -397,12 +377,6 @@ double Percentile(std::vector<double> v, double p) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)))];
-}
-
-double CpuNow() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, const DoaCondition& c, int packets,
