@@ -8,6 +8,11 @@
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //
+//   nava_bench --table nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] [--dir DIR]
+//              [--snr-db LIST]
+//
+// --table: the profile's decode table for the simulated `acoustic` channel (decode_table_bench.h).
+//
 // Without --rooms: a WAV of N random packets for every full-band SNR (tone power over
 // white-noise power across the whole band) from --snr-max down to --snr-min in 1 dB steps.
 // With --rooms: the same packets through nava_room's renderer under each room condition of
@@ -35,6 +40,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench_support.h"
+#include "decode_table_bench.h"
 #include "line_chart.h"
 #include "modem_args.h"
 #include "nava_modem/array_decode.h"
@@ -531,9 +537,14 @@ int DoaTable(const multirobot_audio::tools::ToolArgs& args) {
 
 int main(int argc, char** argv) {
   const std::string usage = std::string(
-      "nava_bench [--rooms | --doa] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa"});
+  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa", "--quick"});
+  if (!args.String("--table", "").empty()) {
+    std::string command = "nava_bench";
+    for (int k = 1; k < argc; ++k) command += std::string(" ") + argv[k];
+    return DecodeTableBench(args, command);
+  }
   if (args.Switch("--doa")) return DoaTable(args);
   return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);
 }
