@@ -257,5 +257,42 @@ TEST(DecodeTable, RefusesAMissingFileAndAnotherProfilesTable) {
   ExpectRefused(ValidText(), "profile", "room");
 }
 
+// The best the receiver gets, the loudest signal and the most direct sound, decodes at least 90 %
+// of the packets at every rt60.
+void ExpectLoudAndDirectDecode(const DecodeTable& t, Interference kind) {
+  const std::size_t loud = t.snr_db.size() - 1, direct = t.drr_db.size() - 1;
+  for (std::size_t r = 0; r < t.rt60.size(); ++r) {
+    EXPECT_GE(t.At(kind, r, direct, loud).packet, 0.9) << InterferenceName(kind) << " rt60 " << t.rt60[r];
+  }
+}
+
+TEST(DecodeTable, ShippedTablesLoadAndAreSane) {
+  for (const std::string profile : {"nava", "room"}) {
+    SCOPED_TRACE(profile);
+    const DecodeTable t = LoadDecodeTable(ShippedDecodeTable(profile), profile);
+    EXPECT_GE(t.packets, 8);
+    for (Interference kind : kKinds) {
+      // room's packet kind does not yet pass: see the disabled test below.
+      if (profile != "room" || kind != Interference::kPacket) ExpectLoudAndDirectDecode(t, kind);
+    }
+    for (std::size_t r = 0; r < t.rt60.size(); ++r) {
+      // The quietest: white noise at the lowest SNR (-15 dB for nava; room reaches further down,
+      // as it still decodes there) leaves little.
+      for (std::size_t d = 0; d < t.drr_db.size(); ++d) {
+        EXPECT_LE(t.At(Interference::kWhite, r, d, 0).packet, 0.2)
+            << "snr " << t.snr_db[0] << " rt60 " << t.rt60[r] << " drr " << t.drr_db[d];
+      }
+    }
+  }
+}
+
+// Fails with the shipped table (rt60 0.6 s: 7 of 10 packets 30 dB above the other sender, DRR
+// 24 dB): the room receiver, having decoded a weaker packet that began first, drops every chirp
+// heard inside it (RoomReceiver::Emit), so a louder packet starting during it is lost whole.
+// Enable it once the receiver keeps the louder packet.
+TEST(DecodeTable, DISABLED_ShippedRoomTableDecodesAPacketWellAboveAnother) {
+  ExpectLoudAndDirectDecode(LoadDecodeTable(ShippedDecodeTable("room"), "room"), Interference::kPacket);
+}
+
 }  // namespace
 }  // namespace audio_propagation
