@@ -35,18 +35,21 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench_support.h"
-#include "line_chart.h"
 #include "modem_args.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "room_conditions.h"
+#include "tool_args/line_chart.h"
 
 namespace {
 
 using namespace nava_modem;
 using namespace nava_modem::tools;
+using multirobot_audio::tools::LineChart;
+using multirobot_audio::tools::LineSeries;
+using multirobot_audio::tools::WriteLineChart;
 
 struct Decoders {
   std::string nava_decode = SelfDir() + "/nava_decode";
