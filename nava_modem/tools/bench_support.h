@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <spawn.h>
+#include <stdlib.h>
 
+#include <ctime>
 #include <map>
 #include <random>
 #include <sstream>
@@ -106,6 +108,21 @@ inline std::vector<std::string> MinimodemPackets(const std::string& bytes, CrcVa
     i += kFrameBytes - 1;
   }
   return out;
+}
+
+// The folder for a bench's files: `dir` when given, else a new one in /tmp.
+inline std::string TempDir(const multirobot_audio::tools::ToolArgs& args, const std::string& dir) {
+  if (!dir.empty()) return dir;
+  char tmpl[] = "/tmp/nava_bench.XXXXXX";
+  if (!mkdtemp(tmpl)) args.Fail("cannot make a folder in /tmp");
+  return tmpl;
+}
+
+// CPU seconds this process has used, all threads.
+inline double CpuNow() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 inline std::string SelfDir() {

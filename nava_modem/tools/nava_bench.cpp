@@ -8,6 +8,11 @@
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //
+//   nava_bench --table nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] [--dir DIR]
+//              [--snr-db LIST]
+//
+// --table: the profile's decode table for the simulated `acoustic` channel (decode_table_bench.h).
+//
 // Without --rooms: a WAV of N random packets for every full-band SNR (tone power over
 // white-noise power across the whole band) from --snr-max down to --snr-min in 1 dB steps.
 // With --rooms: the same packets through nava_room's renderer under each room condition of
@@ -35,12 +40,14 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench_support.h"
+#include "decode_table_bench.h"
 #include "modem_args.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "room_conditions.h"
+#include "speech_interferer.h"
 #include "tool_args/line_chart.h"
 
 namespace {
@@ -90,13 +97,6 @@ Decoded DecodeWithMinimodem(const Decoders& d, const ModemOptions& o, const std:
     std::exit(1);
   }
   return {Score(MinimodemPackets(r.out, o.crc), sent), r.cpu_s, true};
-}
-
-std::string TempDir(const multirobot_audio::tools::ToolArgs& args, std::string dir) {
-  if (!dir.empty()) return dir;
-  char tmpl[] = "/tmp/nava_bench.XXXXXX";
-  if (!mkdtemp(tmpl)) args.Fail("cannot make a folder in /tmp");
-  return tmpl;
 }
 
 int WhiteNoiseTable(const multirobot_audio::tools::ToolArgs& args) {
@@ -174,18 +174,6 @@ int WhiteNoiseTable(const multirobot_audio::tools::ToolArgs& args) {
   return 0;
 }
 
-// Speech made at run time by make_speech.sh (espeak-ng), at the bench's rate.
-std::vector<float> Speech(const std::string& dir, double rate, unsigned seed) {
-  const std::string file = dir + "/speech.wav";
-  const RunResult r = Run({"bash", NAVA_SPEECH_SCRIPT, file, "240", std::to_string(seed)});
-  if (r.status != 0) {
-    std::cerr << "nava_bench: " << NAVA_SPEECH_SCRIPT << " could not make speech (is espeak-ng installed?)\n";
-    std::exit(1);
-  }
-  const Audio speech = ReadAudioFile(file);
-  return Resample(speech.samples, rate / speech.sample_rate);
-}
-
 struct RoomRow {
   Decoded nava, minimodem, room;
 };
@@ -240,9 +228,7 @@ int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
       this_room.seed = room.seed * 31u + static_cast<unsigned>(k);
       std::vector<float> talk;
       if (with_speech) {  // a different stretch of the speech for each room
-        const std::size_t shift = (static_cast<std::size_t>(k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10)) % speech.size();
-        talk.assign(speech.begin() + static_cast<std::ptrdiff_t>(shift), speech.end());
-        talk.insert(talk.end(), speech.begin(), speech.begin() + static_cast<std::ptrdiff_t>(shift));
+        talk = SpeechFrom(speech, static_cast<std::size_t>(k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10));
       }
       const std::vector<float> rendered = RenderRoom(part, options.sample_rate, this_room, talk);
       heard.insert(heard.end(), rendered.begin(), rendered.end());
@@ -402,12 +388,6 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)))];
 }
 
-double CpuNow() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, const DoaCondition& c, int packets,
                      unsigned seed) {
   const auto profile = MakeProfile(p, options);
@@ -560,9 +540,14 @@ int DoaTable(const multirobot_audio::tools::ToolArgs& args) {
 
 int main(int argc, char** argv) {
   const std::string usage = std::string(
-      "nava_bench [--rooms | --doa] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa"});
+  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa", "--quick"});
+  if (!args.String("--table", "").empty()) {
+    std::string command = "nava_bench";
+    for (int k = 1; k < argc; ++k) command += std::string(" ") + argv[k];
+    return DecodeTableBench(args, command);
+  }
   if (args.Switch("--doa")) return DoaTable(args);
   return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);
 }

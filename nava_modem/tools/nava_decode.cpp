@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   const std::string usage = std::string("nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] ") +
                             tools::kModemUsage + " FILE.wav";
   const multirobot_audio::tools::ToolArgs args("nava_decode", usage, argc, argv);
-  const double threshold = args.Double("--threshold-db", -40.0, -200.0, 20.0);
+  const double threshold = args.Double("--threshold-db", tools::kToolCarrierThresholdDb, -200.0, 20.0);
   const int fixed = static_cast<int>(args.Int("--max-fixed-bits", 2, 0, 2));
   const std::string given_rate = args.String("--rate", "");
   std::optional<std::vector<Microphone2D>> mics;

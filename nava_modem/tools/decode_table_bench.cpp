@@ -1,0 +1,348 @@
+#include "decode_table_bench.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "audio_propagation/decode_table.h"
+#include "bench_support.h"
+#include "modem_args.h"
+#include "nava_modem/frame.h"
+#include "nava_modem/room_channel.h"
+#include "nava_modem/room_phy.h"
+#include "speech_interferer.h"
+
+namespace nava_modem::tools {
+namespace {
+
+using audio_propagation::DecodeOutcome;
+using audio_propagation::DecodeTable;
+using audio_propagation::Interference;
+
+constexpr Interference kKinds[] = {Interference::kWhite, Interference::kPink, Interference::kSpeech,
+                                   Interference::kWhine, Interference::kPacket};
+constexpr double kQuietSeconds = 0.3;   // before and after each packet (besides the room's tail)
+constexpr double kMaxOffset = 0.9;      // packet lengths the interferer may start before or after
+constexpr double kFloorBelowDb = 20.0;  // the white floor under the disturbance
+constexpr double kFloorSnrDb = 40.0;    // and under the signal, at least
+
+// What the receiver made of one wanted packet.
+enum class Heard { kPacket, kZeroByte, kOneByte, kBadCrc, kNothing };
+
+struct CellCounts {
+  int heard[5] = {0, 0, 0, 0, 0};  // by Heard
+  int false_packets = 0;           // CRC passes with data never sent
+};
+
+// One 32-bit seed from a few numbers (splitmix64's finaliser over them), so that every packet of
+// every cell has its own rooms, noise and data whatever thread measures it.
+std::uint32_t SeedOf(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
+  std::uint64_t x = 0x9e3779b97f4a7c15ull;
+  for (std::uint64_t v : {a, b, c, d}) {
+    x ^= v + 0x9e3779b97f4a7c15ull + (x << 6) + (x >> 2);
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    x ^= x >> 31;
+  }
+  return static_cast<std::uint32_t>(x);
+}
+
+struct Setup {
+  Profile profile = Profile::kNava;
+  ModemOptions modem;
+  DecodeTable table;  // axes, whine and band set; cells filled by the bench
+  unsigned seed = 1;
+  std::vector<float> speech;
+};
+
+std::vector<std::uint8_t> RandomData(std::mt19937& rng) {
+  std::vector<std::uint8_t> data(kDataBytes);
+  for (auto& b : data) b = static_cast<std::uint8_t>(rng() & 0xff);
+  return data;
+}
+
+// `burst` at `start` in `length` samples of silence.
+std::vector<float> Placed(const std::vector<float>& burst, std::size_t start, std::size_t length) {
+  std::vector<float> out(length, 0.0f);
+  std::copy(burst.begin(), burst.end(), out.begin() + static_cast<std::ptrdiff_t>(start));
+  return out;
+}
+
+// The recording of one wanted packet (starting at sample `start`) under the cell's disturbance;
+// `other_burst` is the other packet of the packet kind.
+std::vector<float> Recording(const Setup& s, Interference kind, double rt60, double drr_db, double snr_db,
+                             const std::vector<float>& burst, const std::vector<float>& other_burst, std::size_t start,
+                             std::size_t length, std::mt19937& rng) {
+  const double rate = s.modem.sample_rate;
+  RoomOptions room;
+  room.rt60 = rt60;
+  room.drr_db = drr_db;
+  room.seed = static_cast<std::uint32_t>(rng());
+  room.noise = RoomOptions::Noise::kWhite;
+  room.snr_db = std::max(kFloorSnrDb, snr_db + kFloorBelowDb);
+  std::vector<float> talk;
+  switch (kind) {
+    case Interference::kWhite: room.snr_db = snr_db; break;
+    case Interference::kPink:
+      room.noise = RoomOptions::Noise::kPink;
+      room.snr_db = snr_db;
+      break;
+    case Interference::kSpeech:
+      room.sir_db = snr_db;
+      talk = SpeechFrom(s.speech, static_cast<std::size_t>(rng()));
+      break;
+    case Interference::kWhine:
+      room.whine_hz = s.table.whine_hz;
+      room.whine_sir_db = snr_db;
+      break;
+    case Interference::kPacket: break;
+  }
+  RoomRenderInfo wanted_info;
+  std::vector<float> heard = RenderRoom(Placed(burst, start, length), rate, room, talk, &wanted_info);
+  if (kind != Interference::kPacket) return heard;
+
+  // The other packet: its own room of the same rt60 and DRR, no noise of its own, starting
+  // anywhere within kMaxOffset packet lengths of the wanted one (uniform, from the engine's bits:
+  // the library's distributions differ between implementations).
+  const double uniform = (static_cast<double>(rng()) + 0.5) / 4294967296.0;
+  const double offset = kMaxOffset * static_cast<double>(burst.size()) * (2.0 * uniform - 1.0);
+  RoomOptions other_room = room;
+  other_room.noise = RoomOptions::Noise::kNone;
+  other_room.seed = static_cast<std::uint32_t>(rng());
+  RoomRenderInfo other_info;
+  const std::vector<float> interferer =
+      RenderRoom(Placed(other_burst, static_cast<std::size_t>(static_cast<double>(start) + offset), length), rate,
+                 other_room, {}, &other_info);
+  // Both back to the renderer's scale before its output gain, the other packet at its ratio,
+  // and the sum to the renderer's peak again.
+  const double other_gain = std::sqrt(wanted_info.signal_power / (other_info.signal_power * std::pow(10.0, snr_db / 10.0)));
+  std::vector<double> mix(std::max(heard.size(), interferer.size()), 0.0);
+  for (std::size_t i = 0; i < heard.size(); ++i) mix[i] = heard[i] / wanted_info.output_gain;
+  for (std::size_t i = 0; i < interferer.size(); ++i) mix[i] += other_gain * interferer[i] / other_info.output_gain;
+  double peak = 0.0;
+  for (double v : mix) peak = std::max(peak, std::fabs(v));
+  heard.resize(mix.size());
+  for (std::size_t i = 0; i < mix.size(); ++i) heard[i] = static_cast<float>(kRoomPeak * mix[i] / peak);
+  return heard;
+}
+
+// How the receiver's events judge the wanted packet (`data`), which sounded from `from` to `to`
+// s; `other` is the interferer's data (empty: none). Counts packets never sent.
+Heard Judge(const std::vector<RxEvent>& events, const std::vector<std::uint8_t>& data,
+            const std::vector<std::uint8_t>& other, double from, double to, int* false_packets) {
+  bool decoded = false, other_decoded = false;
+  Heard noise = Heard::kNothing;  // the most telling noise so far: the enum runs up to kBadCrc
+  for (const RxEvent& e : events) {
+    if (e.kind == RxEvent::Kind::kPacket) {
+      decoded = decoded || e.data == data;
+      other_decoded = other_decoded || (!other.empty() && e.data == other);
+      *false_packets += e.data != data && e.data != other;
+      continue;
+    }
+    if (e.end < from || e.start > to) continue;
+    const Heard h = e.noise == RxEvent::Noise::kBadCrc    ? Heard::kBadCrc
+                    : e.noise == RxEvent::Noise::kOneByte ? Heard::kOneByte
+                    : e.noise == RxEvent::Noise::kZeroByte ? Heard::kZeroByte
+                                                           : Heard::kNothing;
+    if (h != Heard::kNothing && (noise == Heard::kNothing || h > noise)) noise = h;
+  }
+  if (decoded) return Heard::kPacket;
+  return other_decoded ? Heard::kNothing : noise;
+}
+
+CellCounts MeasureCell(const Setup& s, const ModemProfile& profile, std::size_t cell, Interference kind, double rt60,
+                       double drr_db, double snr_db) {
+  const double rate = s.modem.sample_rate;
+  ReceiverOptions rx;
+  rx.carrier_threshold_db = kToolCarrierThresholdDb;
+  CellCounts counts;
+  for (int p = 0; p < s.table.packets; ++p) {
+    std::mt19937 rng(SeedOf(s.seed, cell, static_cast<std::uint64_t>(p), 0));
+    const std::vector<std::uint8_t> data = RandomData(rng);
+    const std::vector<float> burst = profile.ModulatePacket(data);
+    const double quiet = kQuietSeconds * rate + (kind == Interference::kPacket ? kMaxOffset * burst.size() : 0.0);
+    const std::size_t start = static_cast<std::size_t>(quiet);
+    const std::size_t length = 2 * start + burst.size();
+    std::vector<std::uint8_t> other;
+    std::vector<float> other_burst;
+    if (kind == Interference::kPacket) {
+      do {
+        other = RandomData(rng);
+      } while (other == data);
+      other_burst = profile.ModulatePacket(other);
+    }
+    const std::vector<float> heard =
+        Recording(s, kind, rt60, drr_db, snr_db, burst, other_burst, start, length, rng);
+    const auto receiver = profile.MakeReceiver(rx);
+    std::vector<RxEvent> events;
+    receiver->Process(heard.data(), heard.size(), events);
+    receiver->Flush(events);
+    const Heard h = Judge(events, data, other, start / rate, (start + burst.size()) / rate, &counts.false_packets);
+    ++counts.heard[static_cast<int>(h)];
+  }
+  return counts;
+}
+
+std::size_t Nearest(const std::vector<double>& axis, double x) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < axis.size(); ++k) {
+    if (std::fabs(axis[k] - x) < std::fabs(axis[best] - x)) best = k;
+  }
+  return best;
+}
+
+// Delivery against SNR for each kind at one rt60 and DRR, and how often delivery falls as the
+// SNR rises by two packets or more (the measurement's scatter, or a receiver's quirk).
+void PrintSummary(const DecodeTable& t) {
+  const std::size_t r = Nearest(t.rt60, 0.6), d = Nearest(t.drr_db, 0.0);
+  std::printf("packets decoded (%%) against SNR (dB), rt60 %g s, drr %g dB, %d packets a cell:\n%-8s", t.rt60[r],
+              t.drr_db[d], t.packets, "kind");
+  for (double snr : t.snr_db) std::printf("%6g", snr);
+  std::printf("\n");
+  for (Interference kind : kKinds) {
+    std::printf("%-8s", audio_propagation::InterferenceName(kind));
+    for (std::size_t k = 0; k < t.snr_db.size(); ++k) std::printf("%6.0f", 100.0 * t.At(kind, r, d, k).packet);
+    std::printf("\n");
+  }
+  int falls = 0, steps = 0;
+  for (Interference kind : kKinds) {
+    for (std::size_t rt = 0; rt < t.rt60.size(); ++rt) {
+      for (std::size_t drr = 0; drr < t.drr_db.size(); ++drr) {
+        for (std::size_t k = 1; k < t.snr_db.size(); ++k) {
+          ++steps;
+          falls += t.At(kind, rt, drr, k).packet <= t.At(kind, rt, drr, k - 1).packet - 1.5 / t.packets;
+        }
+      }
+    }
+  }
+  std::printf("delivery falls by 2 packets or more as the SNR rises: %d of %d steps\n", falls, steps);
+}
+
+// "-30,-27,-24" as an ascending axis; else the tool fails naming the flag.
+std::vector<double> AxisArg(const multirobot_audio::tools::ToolArgs& args, const std::string& flag,
+                            const std::string& list) {
+  std::vector<double> axis;
+  std::size_t at = 0;
+  while (at <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    const std::string item = list.substr(at, comma - at);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(v) || std::fabs(v) > 60.0 || (!axis.empty() && v <= axis.back())) {
+      args.Fail(flag + ": expected ascending numbers from -60 to 60 separated by commas, got " + list);
+    }
+    axis.push_back(v);
+    at = comma + 1;
+  }
+  return axis;
+}
+
+}  // namespace
+
+int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::string& command) {
+  Setup s;
+  const std::string name = args.String("--table", "");
+  const auto profile = ParseProfile(name);
+  if (!profile) args.Fail(std::string("--table: expected ") + kProfileNames + ", got " + name);
+  s.profile = *profile;
+  const bool quick = args.Switch("--quick");
+  DecodeTable& t = s.table;
+  t.profile = ProfileName(s.profile);
+  t.packets = static_cast<int>(args.Int("--packets", quick ? 4 : 12, 1, 100000));
+  const int threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
+  s.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  const std::string out = args.String("--out", "decode_table_" + t.profile + ".yaml");
+  const std::string dir = TempDir(args, args.String("--dir", ""));
+  const std::string snr_list = args.String("--snr-db", "");
+  args.CheckAllUsed();
+  const std::filesystem::path folder = std::filesystem::path(out).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) args.Fail("--out: no folder " + folder.string());
+  t.command = command;
+  if (quick) {
+    t.snr_db = {-12, 0, 12};
+    t.drr_db = {-18, 0, 18};
+    t.rt60 = {0.5};
+  } else {
+    t.snr_db = {-15, -12, -9, -6, -3, 0, 3, 6, 9, 12, 18, 30};
+    // The room profile still decodes nearly every packet at -15 dB (its long symbols and code
+    // gain ~29 dB over the full band's SNR), and the channel model holds the lowest SNR's figures
+    // below it: its axis goes down to where it stops.
+    if (s.profile == Profile::kRoom) t.snr_db.insert(t.snr_db.begin(), {-27, -24, -21, -18});
+    t.drr_db = {-30, -24, -18, -12, -6, 0, 6, 12, 24};
+    t.rt60 = {0.3, 0.6, 1.2};
+  }
+  if (!snr_list.empty()) t.snr_db = AxisArg(args, "--snr-db", snr_list);
+  // The band: the nava tones and ~150 Hz about each (a bit's main lobe is +-300 Hz wide, the
+  // receiver's filters narrower), or the room profile's chirp. The whine sits in the band where
+  // a motor's would hurt most without sitting on a tone: midway between nava's two tones, and
+  // at 2500 Hz for room (its harmonics at 5000 Hz in the band too).
+  if (s.profile == Profile::kNava) {
+    t.band_low_hz = std::min(s.modem.mark_hz, s.modem.space_hz) - 150.0;
+    t.band_high_hz = std::max(s.modem.mark_hz, s.modem.space_hz) + 150.0;
+    t.whine_hz = (s.modem.mark_hz + s.modem.space_hz) / 2.0;
+  } else {
+    t.band_low_hz = room_phy::kChirpLowHz;
+    t.band_high_hz = room_phy::kHighestHz;
+    t.whine_hz = 2500.0;
+  }
+  t.Resize();
+  s.speech = Speech(dir, s.modem.sample_rate, s.seed);
+
+  const std::size_t per_kind = t.rt60.size() * t.drr_db.size() * t.snr_db.size();
+  const std::size_t cells = t.cells.size();
+  std::fprintf(stderr, "nava_bench --table %s: %zu cells of %d packets on %d threads\n", t.profile.c_str(), cells,
+               t.packets, threads);
+  std::vector<CellCounts> counts(cells);
+  std::atomic<std::size_t> next{0};
+  std::mutex progress;
+  std::size_t done = 0;
+  const auto started = std::chrono::steady_clock::now();
+  auto work = [&] {
+    const auto mine = MakeProfile(s.profile, s.modem);  // a profile per thread: nothing shared
+    for (std::size_t c = next++; c < cells; c = next++) {
+      const std::size_t kind = c / per_kind, r = c / (t.drr_db.size() * t.snr_db.size()) % t.rt60.size();
+      const std::size_t d = c / t.snr_db.size() % t.drr_db.size(), snr = c % t.snr_db.size();
+      counts[c] = MeasureCell(s, *mine, c, kKinds[kind], t.rt60[r], t.drr_db[d], t.snr_db[snr]);
+      const std::lock_guard<std::mutex> lock(progress);
+      ++done;
+      if (done % std::max<std::size_t>(1, cells / 50) == 0 || done == cells) {
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        std::fprintf(stderr, "  %zu/%zu cells, %.0f s, about %.0f s to go\n", done, cells, elapsed,
+                     elapsed * static_cast<double>(cells - done) / static_cast<double>(done));
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int k = 0; k < threads; ++k) pool.emplace_back(work);
+  for (std::thread& th : pool) th.join();
+
+  int false_packets = 0;
+  for (std::size_t c = 0; c < cells; ++c) {
+    const CellCounts& n = counts[c];
+    const double all = t.packets;
+    t.cells[c] = DecodeOutcome{n.heard[0] / all, n.heard[1] / all, n.heard[2] / all, n.heard[3] / all};
+    false_packets += n.false_packets;
+  }
+  try {
+    audio_propagation::SaveDecodeTable(out, t);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "nava_bench: %s\n", e.what());
+    return 1;
+  }
+  PrintSummary(t);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::printf("false packets (CRC passed, data never sent): %d of %zu\n", false_packets,
+              cells * static_cast<std::size_t>(t.packets));
+  std::printf("table: %s; %.0f s wall, %.0f s CPU on %d threads\n", out.c_str(), wall, CpuNow(), threads);
+  return 0;
+}
+
+}  // namespace nava_modem::tools
