@@ -87,20 +87,20 @@ class LinkJudge {
     const SceneRendering r = renderer.Render(scene, {kValidationListener});
 
     link.packets = options_.packets;
-    double probability = 0.0, snr = 0.0;
-    int snrs = 0;
+    double probability = 0.0, gap = 0.0;
+    int gaps = 0;
     for (std::size_t k = 0; k < r.hearings.size(); ++k) {
       const PacketHearing& h = r.hearings[k];
       if (k == 0) link.prediction = h.prediction;
       if (!h.reachable) continue;
       probability += h.prediction.probability;
-      if (h.noise_power > 0.0 && h.signal_power > 0.0) {
-        snr += 10.0 * std::log10(h.signal_power / h.noise_power);
-        ++snrs;
+      if (h.in_scene && h.noise_power > 0.0) {
+        gap += 10.0 * std::log10(h.noise_power) + kReferenceDb - h.model_noise_db;
+        ++gaps;
       }
     }
     link.model = probability / options_.packets;
-    link.rendered_snr_db = snrs ? snr / snrs : std::numeric_limits<double>::quiet_NaN();
+    link.noise_gap_db = gaps ? gap / gaps : std::numeric_limits<double>::quiet_NaN();
 
     // The receiver hears the recording at the decode tables' scale: its peak at 0.9 of full scale.
     std::vector<float> heard = r.listeners.at(0).Mix();

@@ -251,6 +251,10 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
     }
   }
 
+  if (model_.table().profile != nava_modem::ProfileName(scene.profile)) {
+    throw std::invalid_argument("scene renderer: the model's decode table is for '" + model_.table().profile +
+                                "', but the scene's packets are " + nava_modem::ProfileName(scene.profile) + "'s");
+  }
   nava_modem::ModemOptions modem;
   modem.sample_rate = rate;
   const auto profile = nava_modem::MakeProfile(scene.profile, modem);
@@ -325,7 +329,11 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       // middle of the arrival.
       const double middle = hearing.arrival + 0.5 * airtime;
       const std::vector<Eigen::Vector2d> mid_at = Positions(scene, scene_robot, middle);
-      hearing.prediction = model_.Predict(path, sent_at[listener], model_.NoiseAt(mid_at[listener], middle, mid_at));
+      const std::vector<Disturbance> disturbances = model_.NoiseAt(mid_at[listener], middle, mid_at);
+      hearing.prediction = model_.Predict(path, sent_at[listener], disturbances);
+      double noise = 0.0;
+      for (const Disturbance& d : disturbances) noise += d.power;
+      hearing.model_noise_db = 10.0 * std::log10(noise);
       const LinkLevels& levels = hearing.prediction.signal;
 
       nava_modem::RoomOptions room;

@@ -100,22 +100,22 @@ int Predict(const multirobot_audio::tools::ToolArgs& args, const tools::Acoustic
 // Delivery of a group of links, in % of their packets.
 struct Group {
   int links = 0;
-  double model = 0.0, decoded = 0.0, packets = 0.0, snr_gap = 0.0;
+  double model = 0.0, decoded = 0.0, packets = 0.0, noise_gap = 0.0;
   int gaps = 0;
   void Add(const ValidationLink& l) {
     ++links;
     model += l.model * l.packets;
     decoded += l.decoded;
     packets += l.packets;
-    if (l.reachable && std::isfinite(l.rendered_snr_db)) {
-      snr_gap += l.rendered_snr_db - l.prediction.snr_db;
+    if (l.reachable && std::isfinite(l.noise_gap_db)) {
+      noise_gap += l.noise_gap_db;
       ++gaps;
     }
   }
   void Print(const std::string& label) const {
     if (links == 0) return;
     std::printf("  %-14s %6d %9.1f %11.1f %+7.1f %+9.1f\n", label.c_str(), links, 100.0 * model / packets,
-                100.0 * decoded / packets, 100.0 * (model - decoded) / packets, gaps ? snr_gap / gaps : 0.0);
+                100.0 * decoded / packets, 100.0 * (model - decoded) / packets, gaps ? noise_gap / gaps : 0.0);
   }
 };
 
@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
 
   const std::vector<double> edges(std::begin(kDefaultEdges), std::end(kDefaultEdges));
   const std::vector<DistanceBin> bins = BinByLength(links, edges, kMinBinLinks);
-  std::printf("  %-14s %6s %9s %11s %7s %9s\n", "path (m)", "links", "model %", "rendered %", "diff", "snr gap");
+  std::printf("  %-14s %6s %9s %11s %7s %9s\n", "path (m)", "links", "model %", "rendered %", "diff", "noise gap");
   for (const DistanceBin& b : bins) {
     Group g;
     for (const ValidationLink& l : links) {
@@ -212,7 +212,9 @@ int main(int argc, char** argv) {
     beyond += l.beyond_hearing && l.reachable;
     unreachable += !l.reachable;
   }
-  std::printf("(snr gap: rendered SNR during the packets minus the model's, dB; links without a path: %d)\n", unreachable);
+  std::printf("(noise gap: the rendered noise's level during the packets minus the model's unweighted sum of the "
+              "disturbances, dB; links without a path: %d)\n",
+              unreachable);
   std::printf("links beyond the simulated channel's hearing distance (%.1f m, ~threshold_db): %d; the channel drops "
               "them, the model above judges them\n",
               channel_hearing, beyond);

@@ -66,7 +66,9 @@ struct ValidationLink {
   int packets = 0;
   // The first packet's figures (the others differ only by the noise sources' duty state).
   LinkPrediction prediction;
-  double rendered_snr_db = 0.0;  // mean over the packets: signal over the rendered noise during each
+  // Mean over the packets: the rendered noise's level during each minus the level of the
+  // disturbances the model counted, unweighted (dB; the packets' levels agree by construction).
+  double noise_gap_db = 0.0;
   bool beyond_hearing = false;
 };
 

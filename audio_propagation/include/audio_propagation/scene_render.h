@@ -102,7 +102,11 @@ struct PacketHearing {
   LinkPrediction prediction;
   // The powers in the rendering (linear, kReferenceDb scale), by decode_table.h's definitions:
   double signal_power = 0.0;   // the packet's, over its sounding samples
-  double noise_power = 0.0;    // every disturbance the model counts, as rendered (unweighted)
+  double noise_power = 0.0;    // the rendered noise's mean square during the packet's airtime
+  // The disturbances the model counts (NoiseAt at the middle of the arrival), summed unweighted
+  // (dB): what the rendered noise's level should be, but for duty cycles switching during the
+  // packet, moving robots and short-term changes in speech.
+  double model_noise_db = 0.0;
 };
 
 struct ListenerRecording {
@@ -136,8 +140,9 @@ class SceneRenderer {
                 SceneRenderOptions options);
 
   // Renders the listeners among the scene's robots (`listeners` empty: all of them). Throws
-  // std::invalid_argument for a robot not in the team, a listener not in the scene, or speech
-  // to render without SceneRenderOptions::speech.
+  // std::invalid_argument for a robot not in the team, a listener not in the scene, a scene
+  // whose profile is not the model's table's, or speech to render without
+  // SceneRenderOptions::speech.
   SceneRendering Render(const Scene& scene, const std::vector<std::string>& listeners = {}) const;
 
   const AcousticModel& model() const { return model_; }

@@ -1,0 +1,134 @@
+#include "audio_propagation/channel_validation.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "world_sim/world_file.h"
+
+namespace audio_propagation {
+namespace {
+
+ValidationLink Link(double length, double model, int decoded, int packets = 4) {
+  ValidationLink l;
+  l.reachable = true;
+  l.path_length = length;
+  l.model = model;
+  l.decoded = decoded;
+  l.packets = packets;
+  return l;
+}
+
+TEST(ChannelValidation, BinsTooSmallAreMergedIntoTheirNeighbours) {
+  std::vector<ValidationLink> links;
+  for (int k = 0; k < 20; ++k) links.push_back(Link(1.0, 1.0, 4));   // 0-3: 20 links
+  for (int k = 0; k < 5; ++k) links.push_back(Link(4.0, 0.5, 0));    // 3-6: 5, merged with 6-10
+  for (int k = 0; k < 12; ++k) links.push_back(Link(7.0, 0.5, 4));   // 6-10: 12
+  for (int k = 0; k < 3; ++k) links.push_back(Link(40.0, 0.0, 0));   // 30+: 3, into the bin before
+  const std::vector<double> edges(std::begin(kDefaultEdges), std::end(kDefaultEdges));
+  const std::vector<DistanceBin> bins = BinByLength(links, edges, 15);
+  ASSERT_EQ(bins.size(), 2u);
+  EXPECT_EQ(bins[0].links, 20);
+  EXPECT_DOUBLE_EQ(bins[0].low, 0.0);
+  EXPECT_DOUBLE_EQ(bins[0].high, 3.0);
+  EXPECT_DOUBLE_EQ(bins[0].model, 100.0);
+  EXPECT_DOUBLE_EQ(bins[0].rendered, 100.0);
+  EXPECT_EQ(bins[1].links, 20);
+  EXPECT_DOUBLE_EQ(bins[1].low, 3.0);
+  EXPECT_TRUE(std::isinf(bins[1].high));
+  EXPECT_DOUBLE_EQ(bins[1].model, 100.0 * (17 * 0.5) / 20.0);
+  EXPECT_DOUBLE_EQ(bins[1].rendered, 100.0 * 12.0 / 20.0);
+  EXPECT_DOUBLE_EQ(bins[1].mean_length, (5 * 4.0 + 12 * 7.0 + 3 * 40.0) / 20.0);
+  EXPECT_DOUBLE_EQ(Agreement(bins), 100.0 * (12.0 - 8.5) / 20.0);
+}
+
+struct TestRoom {
+  world_sim::LoadedWorld world =
+      world_sim::LoadWorldFile(std::string(MULTIROBOT_AUDIO_MAPS_DIR) + "/test_room_acoustic_world.yaml");
+  PropagationModel propagation{world.map, ValidationPropagation(world.map.width_m() + world.map.height_m(), 1)};
+  std::vector<std::string> names;
+  std::vector<Eigen::Vector2d> resting;
+  TestRoom() {
+    for (const world_sim::RobotSpec& r : world.config.robots) names.push_back(r.name), resting.push_back(r.start.position());
+  }
+};
+
+DecodeTable HalfTable() {
+  DecodeTable t;
+  t.profile = "nava";
+  t.packets = 1;
+  t.whine_hz = 3000.0;
+  t.band_low_hz = 2150.0;
+  t.band_high_hz = 3850.0;
+  t.snr_db = {0.0};
+  t.drr_db = {0.0};
+  t.rt60 = {0.5};
+  t.Resize();
+  for (DecodeOutcome& o : t.cells) o.packet = 0.5;
+  return t;
+}
+
+TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfThreads) {
+  const TestRoom room;
+  ValidationOptions o;
+  o.links = 4;
+  o.packets = 1;
+  o.seed = 7;
+  o.threads = 1;
+  const std::vector<ValidationLink> one =
+      ValidateLinks(room.propagation, *room.world.config.acoustics, HalfTable(), room.names, room.resting, o);
+  o.threads = 2;
+  const std::vector<ValidationLink> two =
+      ValidateLinks(room.propagation, *room.world.config.acoustics, HalfTable(), room.names, room.resting, o);
+  ASSERT_EQ(one.size(), 4u);
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    EXPECT_EQ(one[k].sender, two[k].sender);
+    EXPECT_EQ(one[k].decoded, two[k].decoded);
+    EXPECT_EQ(one[k].model, two[k].model);
+    EXPECT_EQ(one[k].noise_gap_db, two[k].noise_gap_db);
+    EXPECT_DOUBLE_EQ(one[k].model, 0.5);  // the table says so, wherever the link is
+    for (const Eigen::Vector2d& p : {one[k].sender, one[k].listener}) {
+      // 0.3 m clear of the room's outer walls and of the dividing wall (x 3.0 to 3.15, y < 2.5).
+      EXPECT_TRUE(p.x() > 0.3 && p.x() < 5.7 && p.y() > 0.3 && p.y() < 3.7) << p.transpose();
+      if (p.y() < 2.5) {
+        EXPECT_TRUE(p.x() < 2.7 || p.x() > 3.45) << p.transpose();
+      }
+    }
+    EXPECT_GE((one[k].sender - one[k].listener).norm(), o.min_separation);
+    EXPECT_TRUE(one[k].reachable);
+    // The rendered noise is the model's, but for the fan switching during a packet.
+    EXPECT_NEAR(one[k].noise_gap_db, 0.0, 3.0);
+  }
+}
+
+// With the shipped nava table, on the test room (few links, so quick): the model and the real
+// receiver on rendered audio agree within 25 points, in a quiet room and in one drowned by a
+// loud fan (where both must fall).
+TEST(ChannelValidation, TheModelAgreesWithTheRealReceiverInTheTestRoom) {
+  const std::string shipped = ShippedDecodeTable("nava");
+  if (!std::filesystem::exists(shipped)) GTEST_SKIP() << shipped << " is not there yet";
+  const DecodeTable table = LoadDecodeTable(shipped, "nava");
+  const TestRoom room;
+  ValidationOptions o;
+  o.links = 30;
+  o.packets = 2;
+  const std::vector<double> edges = {0.0};  // one bin: the room is small
+  world_sim::Acoustics quiet = *room.world.config.acoustics;
+  const std::vector<DistanceBin> calm =
+      BinByLength(ValidateLinks(room.propagation, quiet, table, room.names, room.resting, o), edges, 1);
+  world_sim::Acoustics loud = quiet;
+  loud.noise_sources[0].level_db = 85.0;
+  loud.noise_sources[0].duty = 1.0;
+  const std::vector<DistanceBin> drowned =
+      BinByLength(ValidateLinks(room.propagation, loud, table, room.names, room.resting, o), edges, 1);
+  ASSERT_EQ(calm.size(), 1u);
+  ASSERT_EQ(drowned.size(), 1u);
+  EXPECT_LE(Agreement(calm), 25.0) << "model " << calm[0].model << " %, rendered " << calm[0].rendered << " %";
+  EXPECT_LE(Agreement(drowned), 25.0) << "model " << drowned[0].model << " %, rendered " << drowned[0].rendered << " %";
+  EXPECT_GT(calm[0].rendered, drowned[0].rendered + 20.0);
+  EXPECT_GT(calm[0].model, drowned[0].model + 20.0);
+}
+
+}  // namespace
+}  // namespace audio_propagation
