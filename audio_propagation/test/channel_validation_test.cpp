@@ -130,5 +130,29 @@ TEST(ChannelValidation, TheModelAgreesWithTheRealReceiverInTheTestRoom) {
   EXPECT_GT(calm[0].model, drowned[0].model + 20.0);
 }
 
+// The shipped hospital world, on the thesis's map where it is (shared/maps): its robots stand
+// free, its noise sources too (the model checks them), and a link along the main corridor is
+// heard over its noise.
+TEST(ChannelValidation, TheHospitalWorldLoadsWithItsAcoustics) {
+  const std::string map = std::string(MULTIROBOT_AUDIO_SHARED_MAPS_DIR) + "/hospital_section.yaml";
+  if (!std::filesystem::exists(map)) GTEST_SKIP() << map << " is not there";
+  const world_sim::LoadedWorld world =
+      world_sim::LoadWorldFile(std::string(MULTIROBOT_AUDIO_MAPS_DIR) + "/hospital_world.yaml", map);
+  ASSERT_TRUE(world.config.acoustics.has_value());
+  EXPECT_NEAR(world.map.width_m(), 34.0, 0.1);
+  std::vector<std::string> names;
+  std::vector<Eigen::Vector2d> resting;
+  for (const world_sim::RobotSpec& r : world.config.robots) names.push_back(r.name), resting.push_back(r.start.position());
+  const PropagationModel propagation(world.map, ValidationPropagation(world.map.width_m() + world.map.height_m(), 1));
+  const AcousticModel model(propagation, *world.config.acoustics, HalfTable(), names);
+  ASSERT_EQ(model.acoustics().noise_sources.size(), 2u);
+  EXPECT_NE(model.acoustics().noise_sources[0].kind, model.acoustics().noise_sources[1].kind);
+  const SoundPath path = propagation.Path(resting[0], resting[1]);
+  ASSERT_TRUE(path.reachable);
+  const LinkPrediction p = model.Predict(path, resting[1], model.NoiseAt(resting[1], 0.0, resting));
+  EXPECT_GT(p.snr_db, 0.0);
+  EXPECT_NEAR(p.signal.rt60, 0.6, 1e-9);
+}
+
 }  // namespace
 }  // namespace audio_propagation
