@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "flat_table.h"
 #include "world_sim/world_file.h"
 
 namespace audio_propagation {
@@ -54,21 +55,6 @@ struct TestRoom {
   }
 };
 
-DecodeTable HalfTable() {
-  DecodeTable t;
-  t.profile = "nava";
-  t.packets = 1;
-  t.whine_hz = 3000.0;
-  t.band_low_hz = 2150.0;
-  t.band_high_hz = 3850.0;
-  t.snr_db = {0.0};
-  t.drr_db = {0.0};
-  t.rt60 = {0.5};
-  t.Resize();
-  for (DecodeOutcome& o : t.cells) o.packet = 0.5;
-  return t;
-}
-
 TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfThreads) {
   const TestRoom room;
   ValidationOptions o;
@@ -77,10 +63,10 @@ TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfT
   o.seed = 7;
   o.threads = 1;
   const std::vector<ValidationLink> one =
-      ValidateLinks(room.propagation, *room.world.config.acoustics, HalfTable(), room.names, room.resting, o);
+      ValidateLinks(room.propagation, *room.world.config.acoustics, test::FlatTable("nava"), room.names, room.resting, o);
   o.threads = 2;
   const std::vector<ValidationLink> two =
-      ValidateLinks(room.propagation, *room.world.config.acoustics, HalfTable(), room.names, room.resting, o);
+      ValidateLinks(room.propagation, *room.world.config.acoustics, test::FlatTable("nava"), room.names, room.resting, o);
   ASSERT_EQ(one.size(), 4u);
   for (std::size_t k = 0; k < one.size(); ++k) {
     EXPECT_EQ(one[k].sender, two[k].sender);
@@ -144,7 +130,7 @@ TEST(ChannelValidation, TheHospitalWorldLoadsWithItsAcoustics) {
   std::vector<Eigen::Vector2d> resting;
   for (const world_sim::RobotSpec& r : world.config.robots) names.push_back(r.name), resting.push_back(r.start.position());
   const PropagationModel propagation(world.map, ValidationPropagation(world.map.width_m() + world.map.height_m(), 1));
-  const AcousticModel model(propagation, *world.config.acoustics, HalfTable(), names);
+  const AcousticModel model(propagation, *world.config.acoustics, test::FlatTable("nava"), names);
   ASSERT_EQ(model.acoustics().noise_sources.size(), 2u);
   EXPECT_NE(model.acoustics().noise_sources[0].kind, model.acoustics().noise_sources[1].kind);
   const SoundPath path = propagation.Path(resting[0], resting[1]);

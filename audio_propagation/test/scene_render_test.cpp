@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "flat_table.h"
 #include "grid/input_error.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
@@ -15,22 +16,7 @@
 namespace audio_propagation {
 namespace {
 
-// A table the renderer's tests need only for its band and whine (the model's SNR does not
-// depend on the cells).
-DecodeTable FlatTable(const std::string& profile) {
-  DecodeTable t;
-  t.profile = profile;
-  t.packets = 1;
-  t.whine_hz = 3000.0;
-  t.band_low_hz = 2150.0;
-  t.band_high_hz = 3850.0;
-  t.snr_db = {0.0};
-  t.drr_db = {0.0};
-  t.rt60 = {0.5};
-  t.Resize();
-  for (DecodeOutcome& o : t.cells) o.packet = 0.5;
-  return t;
-}
+using test::FlatTable;
 
 PropagationOptions Everywhere() {
   PropagationOptions o;
