@@ -68,17 +68,17 @@ class LinkJudge {
     scene.duration = kLeadS + options_.packets * spacing_ + longest_travel;
     scene.robots = {{kValidationSender, {{link.time, link.sender.x(), link.sender.y(), 0.0}}},
                     {kValidationListener, {{link.time, link.listener.x(), link.listener.y(), 0.0}}}};
-    std::multiset<std::vector<std::uint8_t>> sent;
+    std::set<std::array<std::uint8_t, 4>> sent;
     for (int k = 0; k < options_.packets; ++k) {
       ScenePacket p;
       p.time = link.time + k * spacing_;
       p.sender = kValidationSender;
       do {
         for (auto& b : p.data) b = static_cast<std::uint8_t>(rng() & 0xff);
-      } while (sent.count({p.data.begin(), p.data.end()}));
-      sent.insert({p.data.begin(), p.data.end()});
+      } while (!sent.insert(p.data).second);
       scene.packets.push_back(p);
     }
+    std::vector<bool> decoded(scene.packets.size(), false);
     SceneRenderOptions render;
     render.sample_rate = options_.sample_rate;
     render.seed = static_cast<std::uint32_t>(rng());
@@ -87,20 +87,22 @@ class LinkJudge {
     const SceneRendering r = renderer.Render(scene, {kValidationListener});
 
     link.packets = options_.packets;
-    double probability = 0.0, gap = 0.0;
-    int gaps = 0;
+    double probability = 0.0;
     for (std::size_t k = 0; k < r.hearings.size(); ++k) {
       const PacketHearing& h = r.hearings[k];
       if (k == 0) link.prediction = h.prediction;
       if (!h.reachable) continue;
-      probability += h.prediction.probability;
-      if (h.in_scene && h.noise_power > 0.0) {
-        gap += 10.0 * std::log10(h.noise_power) + kReferenceDb - h.model_noise_db;
-        ++gaps;
-      }
+      JudgedPacket j;
+      j.probability = h.prediction.probability;
+      j.snr_db = h.prediction.snr_db;
+      j.kind = h.prediction.kind;
+      j.noise_gap_db = h.in_scene && h.noise_power > 0.0
+                           ? 10.0 * std::log10(h.noise_power) + kReferenceDb - h.model_noise_db
+                           : std::numeric_limits<double>::quiet_NaN();
+      probability += j.probability;
+      link.judged.push_back(j);
     }
     link.model = probability / options_.packets;
-    link.noise_gap_db = gaps ? gap / gaps : std::numeric_limits<double>::quiet_NaN();
 
     // The receiver hears the recording at the decode tables' scale: its peak at 0.9 of full scale.
     std::vector<float> heard = r.listeners.at(0).Mix();
@@ -118,10 +120,15 @@ class LinkJudge {
     link.decoded = 0;
     for (const nava_modem::RxEvent& e : events) {
       if (e.kind != nava_modem::RxEvent::Kind::kPacket) continue;
-      const auto it = sent.find(e.data);
-      if (it == sent.end()) continue;
-      sent.erase(it);  // each packet counts once
-      ++link.decoded;
+      for (std::size_t k = 0; k < scene.packets.size(); ++k) {
+        const ScenePacket& p = scene.packets[k];
+        // Each packet counts once (their data differ).
+        if (e.data != std::vector<std::uint8_t>(p.data.begin(), p.data.end()) || decoded[k]) continue;
+        decoded[k] = true;
+        ++link.decoded;
+        // A link stands still: all its packets have a path, or none.
+        if (k < link.judged.size()) link.judged[k].decoded = true;
+      }
     }
   }
 

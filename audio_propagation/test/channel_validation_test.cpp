@@ -72,7 +72,11 @@ TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfT
     EXPECT_EQ(one[k].sender, two[k].sender);
     EXPECT_EQ(one[k].decoded, two[k].decoded);
     EXPECT_EQ(one[k].model, two[k].model);
-    EXPECT_EQ(one[k].noise_gap_db, two[k].noise_gap_db);
+    ASSERT_EQ(one[k].judged.size(), 1u);
+    ASSERT_EQ(two[k].judged.size(), 1u);
+    EXPECT_EQ(one[k].judged[0].noise_gap_db, two[k].judged[0].noise_gap_db);
+    EXPECT_EQ(one[k].judged[0].decoded, two[k].judged[0].decoded);
+    EXPECT_EQ(one[k].judged[0].decoded, one[k].decoded == 1);
     EXPECT_DOUBLE_EQ(one[k].model, 0.5);  // the table says so, wherever the link is
     for (const Eigen::Vector2d& p : {one[k].sender, one[k].listener}) {
       // 0.3 m clear of the room's outer walls and of the dividing wall (x 3.0 to 3.15, y < 2.5).
@@ -84,7 +88,7 @@ TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfT
     EXPECT_GE((one[k].sender - one[k].listener).norm(), o.min_separation);
     EXPECT_TRUE(one[k].reachable);
     // The rendered noise is the model's, but for the fan switching during a packet.
-    EXPECT_NEAR(one[k].noise_gap_db, 0.0, 3.0);
+    EXPECT_NEAR(one[k].judged[0].noise_gap_db, 0.0, 3.0);
   }
 }
 

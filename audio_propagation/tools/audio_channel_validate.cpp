@@ -10,8 +10,9 @@
 //                          --predict X1,Y1 X2,Y2
 //
 // Prints a table per path-length bin (0-3, 3-6, 6-10, 10-15, 15-20, 20-30, 30+ m; a bin of fewer
-// than 15 links merged into its neighbour): links, the model's and the rendered delivery, then
-// the same by the model's SNR and by the loudest disturbance, and
+// than 15 links merged into its neighbour): links, the model's and the rendered delivery and the
+// noise gap (the rendered noise during the packets against the model's), then the packets by the
+// model's SNR, by its loudest disturbance and by the noise gap, and
 //   agreement: max |model - rendered| = X points over K distance bins
 // and writes DIR/validate_<profile>.png (delivery against path length, both). Links run on
 // --threads threads; the same seed gives the same output. The table defaults to the profile's
@@ -23,6 +24,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -97,25 +99,30 @@ int Predict(const multirobot_audio::tools::ToolArgs& args, const tools::Acoustic
   return 0;
 }
 
-// Delivery of a group of links, in % of their packets.
+// Delivery of a group of packets, in %.
 struct Group {
-  int links = 0;
-  double model = 0.0, decoded = 0.0, packets = 0.0, noise_gap = 0.0;
-  int gaps = 0;
-  void Add(const ValidationLink& l) {
-    ++links;
-    model += l.model * l.packets;
-    decoded += l.decoded;
-    packets += l.packets;
-    if (l.reachable && std::isfinite(l.noise_gap_db)) {
-      noise_gap += l.noise_gap_db;
+  int links = 0, packets = 0, decoded = 0, gaps = 0;
+  double model = 0.0, noise_gap = 0.0;
+  void Add(const JudgedPacket& p) {
+    ++packets;
+    model += p.probability;
+    decoded += p.decoded;
+    if (std::isfinite(p.noise_gap_db)) {
+      noise_gap += p.noise_gap_db;
       ++gaps;
     }
   }
+  void Add(const ValidationLink& l) {
+    ++links;
+    for (const JudgedPacket& p : l.judged) Add(p);
+    packets += l.packets - static_cast<int>(l.judged.size());  // no path: neither decodes
+  }
+  // The first column counts links, or packets where the group was filled packet by packet.
   void Print(const std::string& label) const {
-    if (links == 0) return;
-    std::printf("  %-14s %6d %9.1f %11.1f %+7.1f %+9.1f\n", label.c_str(), links, 100.0 * model / packets,
-                100.0 * decoded / packets, 100.0 * (model - decoded) / packets, gaps ? noise_gap / gaps : 0.0);
+    if (packets == 0) return;
+    std::printf("  %-16s %7d %9.1f %11.1f %+7.1f %+10.1f\n", label.c_str(), links ? links : packets,
+                100.0 * model / packets, 100.0 * decoded / packets, 100.0 * (model - decoded) / packets,
+                gaps ? noise_gap / gaps : 0.0);
   }
 };
 
@@ -182,7 +189,7 @@ int main(int argc, char** argv) {
 
   const std::vector<double> edges(std::begin(kDefaultEdges), std::end(kDefaultEdges));
   const std::vector<DistanceBin> bins = BinByLength(links, edges, kMinBinLinks);
-  std::printf("  %-14s %6s %9s %11s %7s %9s\n", "path (m)", "links", "model %", "rendered %", "diff", "noise gap");
+  std::printf("  %-16s %7s %9s %11s %7s %10s\n", "path (m)", "links", "model %", "rendered %", "diff", "noise gap");
   for (const DistanceBin& b : bins) {
     Group g;
     for (const ValidationLink& l : links) {
@@ -190,30 +197,44 @@ int main(int argc, char** argv) {
     }
     g.Print(Range(b.low, b.high));
   }
-  std::printf("by the model's SNR (dB):\n");
-  const double snr_edges[] = {-1e9, -5.0, 0.0, 5.0, 10.0, 20.0, 1e9};
+  // The same packets grouped by what the model saw (the count is of packets).
+  std::vector<JudgedPacket> packets;
+  for (const ValidationLink& l : links) packets.insert(packets.end(), l.judged.begin(), l.judged.end());
+  auto print_by = [&](const char* title, const std::vector<std::pair<std::string, std::function<bool(const JudgedPacket&)>>>& rows) {
+    std::printf("%s\n", title);
+    for (const auto& [label, holds] : rows) {
+      Group g;
+      for (const JudgedPacket& p : packets) {
+        if (holds(p)) g.Add(p);
+      }
+      g.Print(label);
+    }
+  };
+  std::vector<std::pair<std::string, std::function<bool(const JudgedPacket&)>>> by_snr, by_kind, by_gap;
+  const double snr_edges[] = {-1e9, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0, 1e9};
   for (std::size_t k = 0; k + 1 < std::size(snr_edges); ++k) {
-    Group g;
-    for (const ValidationLink& l : links) {
-      if (l.reachable && l.prediction.snr_db >= snr_edges[k] && l.prediction.snr_db < snr_edges[k + 1]) g.Add(l);
-    }
-    g.Print(k == 0 ? "< -5" : k + 2 == std::size(snr_edges) ? ">= 20" : Range(snr_edges[k], snr_edges[k + 1]));
+    const double lo = snr_edges[k], hi = snr_edges[k + 1];
+    by_snr.push_back({k == 0 ? "< -5" : k + 2 == std::size(snr_edges) ? ">= 20" : Range(lo, hi),
+                      [lo, hi](const JudgedPacket& p) { return p.snr_db >= lo && p.snr_db < hi; }});
   }
-  std::printf("by the loudest disturbance:\n");
   for (std::size_t k = 0; k < kInterferenceCount; ++k) {
-    Group g;
-    for (const ValidationLink& l : links) {
-      if (l.reachable && l.prediction.kind == static_cast<Interference>(k)) g.Add(l);
-    }
-    g.Print(InterferenceName(static_cast<Interference>(k)));
+    const Interference kind = static_cast<Interference>(k);
+    by_kind.push_back({InterferenceName(kind), [kind](const JudgedPacket& p) { return p.kind == kind; }});
   }
+  by_gap.push_back({"within 3 dB", [](const JudgedPacket& p) { return std::fabs(p.noise_gap_db) <= 3.0; }});
+  by_gap.push_back({"louder by > 3", [](const JudgedPacket& p) { return p.noise_gap_db > 3.0; }});
+  by_gap.push_back({"quieter by > 3", [](const JudgedPacket& p) { return p.noise_gap_db < -3.0; }});
+  print_by("packets by the model's SNR (dB):", by_snr);
+  print_by("packets by the model's loudest disturbance:", by_kind);
+  print_by("packets by the rendered noise against the model's (a source switching or speech pausing mid-packet):",
+           by_gap);
   int beyond = 0, unreachable = 0;
   for (const ValidationLink& l : links) {
     beyond += l.beyond_hearing && l.reachable;
     unreachable += !l.reachable;
   }
-  std::printf("(noise gap: the rendered noise's level during the packets minus the model's unweighted sum of the "
-              "disturbances, dB; links without a path: %d)\n",
+  std::printf("(noise gap: the rendered noise's level during a packet minus the model's unweighted sum of the "
+              "disturbances, dB, mean; links without a path: %d)\n",
               unreachable);
   std::printf("links beyond the simulated channel's hearing distance (%.1f m, ~threshold_db): %d; the channel drops "
               "them, the model above judges them\n",
@@ -221,7 +242,8 @@ int main(int argc, char** argv) {
   std::printf("agreement: max |model - rendered| = %.1f points over %zu distance bins\n", Agreement(bins), bins.size());
 
   multirobot_audio::tools::LineChart chart;
-  chart.title = "acoustic channel, " + profile_name + ": model against the real receiver on rendered audio";
+  chart.title = std::filesystem::path(world_file).filename().string() + ", " + profile_name +
+                ": the acoustic model against the receiver on rendered audio";
   chart.x_label = "path length (m), mean of each bin";
   chart.y_label = "packets decoded (%)";
   multirobot_audio::tools::LineSeries model_series, rendered_series;

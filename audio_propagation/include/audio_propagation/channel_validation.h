@@ -55,6 +55,18 @@ struct ValidationOptions {
   double channel_hearing_distance = 0.0;  // 0: not flagged
 };
 
+// One packet of a link, judged twice.
+struct JudgedPacket {
+  double probability = 0.0;  // the model's
+  bool decoded = false;      // by the real receiver
+  double snr_db = 0.0;       // the model's
+  Interference kind = Interference::kPink;  // the model's loudest disturbance
+  // The rendered noise's level during the packet minus the level of the disturbances the model
+  // counted, unweighted (dB; the packet's own level agrees by construction): far from 0 where
+  // a noise source switched during the packet or speech paused or burst.
+  double noise_gap_db = 0.0;
+};
+
 struct ValidationLink {
   Eigen::Vector2d sender, listener;
   double time = 0.0;         // s, when the first packet is sent (the noise sources' duty state)
@@ -66,9 +78,7 @@ struct ValidationLink {
   int packets = 0;
   // The first packet's figures (the others differ only by the noise sources' duty state).
   LinkPrediction prediction;
-  // Mean over the packets: the rendered noise's level during each minus the level of the
-  // disturbances the model counted, unweighted (dB; the packets' levels agree by construction).
-  double noise_gap_db = 0.0;
+  std::vector<JudgedPacket> judged;  // each packet, when there is a path
   bool beyond_hearing = false;
 };
 
