@@ -90,13 +90,19 @@ LinkLevels AcousticModel::Levels(const SoundPath& path, const Eigen::Vector2d& l
 
 std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, double t,
                                                 const std::vector<Eigen::Vector2d>& robots) const {
+  return NoiseDuring(at, t, t, robots);
+}
+
+std::vector<Disturbance> AcousticModel::NoiseDuring(const Eigen::Vector2d& at, double t0, double t1,
+                                                    const std::vector<Eigen::Vector2d>& robots) const {
   std::vector<Disturbance> out;
   out.push_back({FromNoiseKind(acoustics_.ambient_kind), Power(acoustics_.ambient_db), 0.0});
   for (std::size_t k = 0; k < acoustics_.noise_sources.size(); ++k) {
     const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources[k];
-    if (!world_sim::Sounding(s, t)) continue;
+    const double sounding = world_sim::SoundingFraction(s, t0, t1);
+    if (sounding <= 0.0) continue;
     const std::optional<double> level = SourceLevelDb(k, at, robots);
-    if (level) out.push_back({FromNoiseKind(s.kind), Power(*level), s.frequency});
+    if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency});
   }
   return out;
 }

@@ -325,11 +325,12 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       }
       hearing.travel_time = path.travel_time;
       hearing.arrival = packet.time + path.travel_time;
-      // The model's figures as the channel takes them: the path at send time, the noise in the
-      // middle of the arrival.
+      // The model's figures as the channel takes them: the path at send time, the noise over the
+      // arrival (the robots where they are in its middle).
       const double middle = hearing.arrival + 0.5 * airtime;
       const std::vector<Eigen::Vector2d> mid_at = Positions(scene, scene_robot, middle);
-      const std::vector<Disturbance> disturbances = model_.NoiseAt(mid_at[listener], middle, mid_at);
+      const std::vector<Disturbance> disturbances =
+          model_.NoiseDuring(mid_at[listener], hearing.arrival, hearing.arrival + airtime, mid_at);
       hearing.prediction = model_.Predict(path, sent_at[listener], disturbances);
       double noise = 0.0;
       for (const Disturbance& d : disturbances) noise += d.power;

@@ -226,8 +226,7 @@ int main(int argc, char** argv) {
   by_gap.push_back({"quieter by > 3", [](const JudgedPacket& p) { return p.noise_gap_db < -3.0; }});
   print_by("packets by the model's SNR (dB):", by_snr);
   print_by("packets by the model's loudest disturbance:", by_kind);
-  print_by("packets by the rendered noise against the model's (a source switching or speech pausing mid-packet):",
-           by_gap);
+  print_by("packets by the rendered noise during them against the model's noise:", by_gap);
   int beyond = 0, unreachable = 0;
   for (const ValidationLink& l : links) {
     beyond += l.beyond_hearing && l.reachable;

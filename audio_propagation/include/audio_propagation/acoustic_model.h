@@ -78,6 +78,12 @@ class AcousticModel {
   std::vector<Disturbance> NoiseAt(const Eigen::Vector2d& at, double t,
                                    const std::vector<Eigen::Vector2d>& robots) const;
 
+  // The same over a packet heard from `t0` to `t1`: each noise source's power weighted by the
+  // fraction of that time it sounds, so that the noise is the mean power over the packet, as the
+  // decode tables define it (decode_table.h), also when a source switches on or off mid-packet.
+  std::vector<Disturbance> NoiseDuring(const Eigen::Vector2d& at, double t0, double t1,
+                                       const std::vector<Eigen::Vector2d>& robots) const;
+
   // The level (dB) at which noise source `k` (of acoustics().noise_sources) is heard at `at`
   // while it sounds, robots placed as for NoiseAt: direct and reverberant through its own path, or
   // its 1 m level when it rides on the listening robot. Nothing when no path reaches `at` or its

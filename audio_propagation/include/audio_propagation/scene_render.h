@@ -89,8 +89,7 @@ void CheckScene(const std::string& file, const Scene& scene, const std::vector<s
                 const grid::OccupancyMap& map);
 
 // One packet heard at one listener: what the model predicts (the figures the channel would use:
-// the path at send time, NoiseAt at the middle of the arrival) and where it lies in the listener's
-// recording.
+// the path at send time, NoiseDuring the arrival) and where it lies in the listener's recording.
 struct PacketHearing {
   std::size_t packet = 0;  // index into Scene::packets
   std::string listener;
@@ -103,9 +102,8 @@ struct PacketHearing {
   // The powers in the rendering (linear, kReferenceDb scale), by decode_table.h's definitions:
   double signal_power = 0.0;   // the packet's, over its sounding samples
   double noise_power = 0.0;    // the rendered noise's mean square during the packet's airtime
-  // The disturbances the model counts (NoiseAt at the middle of the arrival), summed unweighted
-  // (dB): what the rendered noise's level should be, but for duty cycles switching during the
-  // packet, moving robots and short-term changes in speech.
+  // The disturbances the model counts (NoiseDuring the arrival), summed unweighted (dB): what
+  // the rendered noise's level should be, but for moving robots and short-term changes in speech.
   double model_noise_db = 0.0;
 };
 
