@@ -4,7 +4,7 @@
 // propagation model with every path, the profile's decode table and, when the world has speech,
 // speech made by make_speech.sh. Bad input ends the program with one line naming the file, the
 // field or the flag and the value.
-#include <ctime>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,6 +13,7 @@
 #include "audio_propagation/channel_validation.h"
 #include "audio_propagation/decode_table.h"
 #include "bench_support.h"
+#include "speech_interferer.h"
 #include "grid/input_error.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
@@ -85,24 +86,9 @@ inline std::vector<float> SpeechFor(const std::string& program, const world_sim:
   if (!HasSpeech(a)) return {};
   char folder[] = "/tmp/audio_speech.XXXXXX";
   if (!mkdtemp(folder)) Fail(program, "cannot make a folder in /tmp for the speech");
-  const std::string file = std::string(folder) + "/speech.wav";
-  const nava_modem::tools::RunResult r =
-      nava_modem::tools::Run({"bash", MULTIROBOT_AUDIO_SPEECH_SCRIPT, file, "240", std::to_string(seed)});
-  if (r.status != 0) {
-    Fail(program, std::string(MULTIROBOT_AUDIO_SPEECH_SCRIPT) +
-                      " could not make the world's speech (espeak-ng and sox, from scripts/setup.sh)");
-  }
-  const nava_modem::Audio speech = nava_modem::ReadAudioFile(file);
-  std::remove(file.c_str());
-  rmdir(folder);
-  return nava_modem::Resample(speech.samples, rate / speech.sample_rate);
-}
-
-// CPU seconds this process has used, all threads.
-inline double CpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  std::vector<float> speech = nava_modem::tools::Speech(folder, rate, seed);
+  std::filesystem::remove_all(folder);
+  return speech;
 }
 
 }  // namespace audio_propagation::tools

@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
   if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got " + profile_name);
   options.profile = *profile;
 
-  const double cpu_start = tools::CpuSeconds();
+  const double cpu_start = nava_modem::tools::CpuNow();
   const auto wall_start = std::chrono::steady_clock::now();
   const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, map_file);
   const DecodeTable table = tools::LoadTable(program, options.profile, table_file);
@@ -265,7 +265,7 @@ int main(int argc, char** argv) {
     tools::Fail(program, e.what());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  std::printf("plot: %s\ncpu: %.1f s (wall %.1f s) on %d threads\n", plot.c_str(), tools::CpuSeconds() - cpu_start,
+  std::printf("plot: %s\ncpu: %.1f s (wall %.1f s) on %d threads\n", plot.c_str(), nava_modem::tools::CpuNow() - cpu_start,
               wall, options.threads);
   return 0;
 }
