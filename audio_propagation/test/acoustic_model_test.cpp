@@ -97,8 +97,8 @@ TEST(AcousticModel, DeliveryFallsWithDistanceAsTheDirectSoundDrownsInTheRoom) {
   EXPECT_GT(last, -1e-12);
 }
 
-TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
-  Strip strip;
+// The quiet room with a radio at (12, 2.5) talking for 0-5 s of every 10.
+world_sim::Acoustics QuietWithRadio() {
   world_sim::Acoustics a = Quiet();
   world_sim::NoiseSourceSpec radio;
   radio.name = "radio";
@@ -107,9 +107,14 @@ TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
   radio.kind = world_sim::NoiseKind::kSpeech;
   radio.level_db = 66.0;
   radio.duty = 0.5;
-  radio.period = 10.0;  // on for 0-5 s of every 10
+  radio.period = 10.0;
   a.noise_sources.push_back(radio);
-  const AcousticModel model(strip.model, a, LinearTable(), {});
+  return a;
+}
+
+TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
+  Strip strip;
+  const AcousticModel model(strip.model, QuietWithRadio(), LinearTable(), {});
   const Eigen::Vector2d listener(11.0, 2.5);
   const SoundPath path = strip.Path(5.0, 11.0);
   const LinkPrediction on = model.Predict(path, listener, model.NoiseAt(listener, 2.0, {}));
@@ -140,15 +145,7 @@ TEST(AcousticModel, OverAPacketANoiseSourceCountsForTheShareOfItThatItSounds) {
   EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 14.0, 15.0), 1.0);
 
   Strip strip;
-  world_sim::Acoustics a = Quiet();
-  world_sim::NoiseSourceSpec radio;
-  radio.x = 12.0;
-  radio.y = 2.5;
-  radio.level_db = 66.0;
-  radio.duty = 0.5;
-  radio.period = 10.0;  // on for 0-5 s of every 10
-  a.noise_sources.push_back(radio);
-  const AcousticModel model(strip.model, a, LinearTable(), {});
+  const AcousticModel model(strip.model, QuietWithRadio(), LinearTable(), {});
   const Eigen::Vector2d listener(11.0, 2.5);
   const std::vector<Disturbance> at = model.NoiseAt(listener, 4.0, {});
   const std::vector<Disturbance> over = model.NoiseDuring(listener, 4.0, 6.0, {});  // half of it on
