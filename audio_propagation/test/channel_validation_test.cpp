@@ -92,32 +92,41 @@ TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfT
   }
 }
 
-// With the shipped nava table, on the test room (few links, so quick): the model and the real
-// receiver on rendered audio agree within 25 points, in a quiet room and in one drowned by a
-// loud fan (where both must fall).
+// With each profile's shipped table, on the test room (few links, so quick): the model and the
+// real receiver on rendered audio agree within 25 points in the room as it is, and with its fan
+// roaring white noise all the time (SNRs about -10 dB: within the tables' axis, which starts at
+// -15 dB; below it the table clamps, see the report of issue 17).
 TEST(ChannelValidation, TheModelAgreesWithTheRealReceiverInTheTestRoom) {
-  const std::string shipped = ShippedDecodeTable("nava");
-  if (!std::filesystem::exists(shipped)) GTEST_SKIP() << shipped << " is not there yet";
-  const DecodeTable table = LoadDecodeTable(shipped, "nava");
-  const TestRoom room;
-  ValidationOptions o;
-  o.links = 30;
-  o.packets = 2;
-  const std::vector<double> edges = {0.0};  // one bin: the room is small
-  world_sim::Acoustics quiet = *room.world.config.acoustics;
-  const std::vector<DistanceBin> calm =
-      BinByLength(ValidateLinks(room.propagation, quiet, table, room.names, room.resting, o), edges, 1);
-  world_sim::Acoustics loud = quiet;
-  loud.noise_sources[0].level_db = 85.0;
-  loud.noise_sources[0].duty = 1.0;
-  const std::vector<DistanceBin> drowned =
-      BinByLength(ValidateLinks(room.propagation, loud, table, room.names, room.resting, o), edges, 1);
-  ASSERT_EQ(calm.size(), 1u);
-  ASSERT_EQ(drowned.size(), 1u);
-  EXPECT_LE(Agreement(calm), 25.0) << "model " << calm[0].model << " %, rendered " << calm[0].rendered << " %";
-  EXPECT_LE(Agreement(drowned), 25.0) << "model " << drowned[0].model << " %, rendered " << drowned[0].rendered << " %";
-  EXPECT_GT(calm[0].rendered, drowned[0].rendered + 20.0);
-  EXPECT_GT(calm[0].model, drowned[0].model + 20.0);
+  int profiles = 0;
+  for (const nava_modem::Profile profile : {nava_modem::Profile::kNava, nava_modem::Profile::kRoom}) {
+    const std::string name = nava_modem::ProfileName(profile);
+    const std::string shipped = ShippedDecodeTable(name);
+    if (!std::filesystem::exists(shipped)) continue;
+    ++profiles;
+    const DecodeTable table = LoadDecodeTable(shipped, name);
+    const TestRoom room;
+    ValidationOptions o;
+    o.profile = profile;
+    o.links = profile == nava_modem::Profile::kNava ? 30 : 15;
+    o.packets = 2;
+    const std::vector<double> edges = {0.0};  // one bin: the room is small
+    const world_sim::Acoustics as_is = *room.world.config.acoustics;
+    const std::vector<DistanceBin> calm =
+        BinByLength(ValidateLinks(room.propagation, as_is, table, room.names, room.resting, o), edges, 1);
+    world_sim::Acoustics loud = as_is;
+    loud.noise_sources[0].level_db = 80.0;
+    loud.noise_sources[0].kind = world_sim::NoiseKind::kWhite;
+    loud.noise_sources[0].duty = 1.0;
+    const std::vector<DistanceBin> drowned =
+        BinByLength(ValidateLinks(room.propagation, loud, table, room.names, room.resting, o), edges, 1);
+    ASSERT_EQ(calm.size(), 1u);
+    ASSERT_EQ(drowned.size(), 1u);
+    EXPECT_LE(Agreement(calm), 25.0) << name << ": model " << calm[0].model << " %, rendered " << calm[0].rendered << " %";
+    EXPECT_LE(Agreement(drowned), 25.0) << name << " with the fan: model " << drowned[0].model << " %, rendered "
+                                        << drowned[0].rendered << " %";
+    EXPECT_LT(drowned[0].rendered, calm[0].rendered) << name;
+  }
+  if (profiles == 0) GTEST_SKIP() << "no shipped decode table yet (" << ShippedDecodeTable("nava") << ")";
 }
 
 // The shipped hospital world, on the thesis's map where it is (shared/maps): its robots stand
