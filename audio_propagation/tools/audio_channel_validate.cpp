@@ -227,17 +227,23 @@ int main(int argc, char** argv) {
   print_by("packets by the model's SNR (dB):", by_snr);
   print_by("packets by the model's loudest disturbance:", by_kind);
   print_by("packets by the rendered noise during them against the model's noise:", by_gap);
-  int beyond = 0, unreachable = 0;
+  int unreachable = 0;
+  Group beyond;
   for (const ValidationLink& l : links) {
-    beyond += l.beyond_hearing && l.reachable;
+    if (l.beyond_hearing && l.reachable) beyond.Add(l);
     unreachable += !l.reachable;
   }
   std::printf("(noise gap: the rendered noise's level during a packet minus the model's unweighted sum of the "
               "disturbances, dB, mean; links without a path: %d)\n",
               unreachable);
-  std::printf("links beyond the simulated channel's hearing distance (%.1f m, ~threshold_db): %d; the channel drops "
-              "them, the model above judges them\n",
-              channel_hearing, beyond);
+  std::printf("links beyond the simulated channel's hearing distance (%.1f m, ~threshold_db), which the channel "
+              "drops (0 %%) and the model above judges: %d",
+              channel_hearing, beyond.links);
+  if (beyond.packets > 0) {
+    std::printf(", model %.1f %%, rendered %.1f %%", 100.0 * beyond.model / beyond.packets,
+                100.0 * beyond.decoded / beyond.packets);
+  }
+  std::printf("\n");
   std::printf("agreement: max |model - rendered| = %.1f points over %zu distance bins\n", Agreement(bins), bins.size());
 
   multirobot_audio::tools::LineChart chart;
