@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
 
   multirobot_audio::tools::LineChart chart;
   chart.title = std::filesystem::path(world_file).filename().string() + ", " + profile_name +
-                ": the acoustic model against the receiver on rendered audio";
+                ": model and rendered delivery";
   chart.x_label = "path length (m), mean of each bin";
   chart.y_label = "packets decoded (%)";
   multirobot_audio::tools::LineSeries model_series, rendered_series;
