@@ -90,32 +90,39 @@ LinkLevels AcousticModel::Levels(const SoundPath& path, const Eigen::Vector2d& l
 
 std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, double t,
                                                 const std::vector<Eigen::Vector2d>& robots) const {
+  return NoiseDuring(at, t, t, robots);
+}
+
+std::vector<Disturbance> AcousticModel::NoiseDuring(const Eigen::Vector2d& at, double t0, double t1,
+                                                    const std::vector<Eigen::Vector2d>& robots) const {
   std::vector<Disturbance> out;
   out.push_back({FromNoiseKind(acoustics_.ambient_kind), Power(acoustics_.ambient_db), 0.0});
-  const PropagationOptions& o = propagation_.options();
-  const world_sim::RoomAcoustics& room = acoustics_.RoomAt(at.x(), at.y());
   for (std::size_t k = 0; k < acoustics_.noise_sources.size(); ++k) {
     const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources[k];
-    if (!world_sim::Sounding(s, t)) continue;
-    Eigen::Vector2d from(s.x, s.y);
-    if (source_robot_[k] >= 0) {
-      if (static_cast<std::size_t>(source_robot_[k]) >= robots.size()) continue;
-      from = robots[static_cast<std::size_t>(source_robot_[k])];
-    }
-    // A robot's own motors are right by its microphone: heard at their 1 m level, direct.
-    const bool own = (from - at).norm() < 1e-9;
-    double length = 0.0;
-    int corners = 0;
-    if (!own) {
-      const SoundPath p = PathBetween(k, from, at);
-      if (!p.reachable) continue;
-      length = p.length;
-      corners = p.bends;
-    }
-    const LinkLevels l = LinkBudget(s.level_db, o.reference_distance, length, corners, acoustics_.corner_loss_db, room);
-    out.push_back({FromNoiseKind(s.kind), Power(own ? s.level_db : l.total_db), s.frequency});
+    const double sounding = world_sim::SoundingFraction(s, t0, t1);
+    if (sounding <= 0.0) continue;
+    const std::optional<double> level = SourceLevelDb(k, at, robots);
+    if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency});
   }
   return out;
+}
+
+std::optional<double> AcousticModel::SourceLevelDb(std::size_t k, const Eigen::Vector2d& at,
+                                                   const std::vector<Eigen::Vector2d>& robots) const {
+  const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources.at(k);
+  Eigen::Vector2d from(s.x, s.y);
+  if (source_robot_[k] >= 0) {
+    if (static_cast<std::size_t>(source_robot_[k]) >= robots.size()) return std::nullopt;
+    from = robots[static_cast<std::size_t>(source_robot_[k])];
+  }
+  // A robot's own motors are right by its microphone: heard at their 1 m level, direct.
+  if ((from - at).norm() < 1e-9) return s.level_db;
+  const SoundPath p = PathBetween(k, from, at);
+  if (!p.reachable) return std::nullopt;
+  const PropagationOptions& o = propagation_.options();
+  return LinkBudget(s.level_db, o.reference_distance, p.length, p.bends, acoustics_.corner_loss_db,
+                    acoustics_.RoomAt(at.x(), at.y()))
+      .total_db;
 }
 
 SoundPath AcousticModel::PathBetween(std::size_t source, const Eigen::Vector2d& from,

@@ -166,8 +166,8 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
 
 void AudioChannel::FinishAcoustic(std::size_t receiver, const Arrival& a, Reception& rx) {
   const std::vector<Eigen::Vector2d> at = Positions();
-  const double middle = 0.5 * (a.start + a.end) * tick_;
-  std::vector<Disturbance> disturbances = acoustic_->NoiseAt(at[receiver], middle, at);
+  // The noise over the whole arrival (its mean power, as the tables define SNR), not at one moment.
+  std::vector<Disturbance> disturbances = acoustic_->NoiseDuring(at[receiver], a.start * tick_, a.end * tick_, at);
   const double length = static_cast<double>(a.end - a.start);
   for (const Arrival& other : arrivals_[receiver]) {
     if (&other == &a) continue;

@@ -97,8 +97,8 @@ TEST(AcousticModel, DeliveryFallsWithDistanceAsTheDirectSoundDrownsInTheRoom) {
   EXPECT_GT(last, -1e-12);
 }
 
-TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
-  Strip strip;
+// The quiet room with a radio at (12, 2.5) talking for 0-5 s of every 10.
+world_sim::Acoustics QuietWithRadio() {
   world_sim::Acoustics a = Quiet();
   world_sim::NoiseSourceSpec radio;
   radio.name = "radio";
@@ -107,9 +107,14 @@ TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
   radio.kind = world_sim::NoiseKind::kSpeech;
   radio.level_db = 66.0;
   radio.duty = 0.5;
-  radio.period = 10.0;  // on for 0-5 s of every 10
+  radio.period = 10.0;
   a.noise_sources.push_back(radio);
-  const AcousticModel model(strip.model, a, LinearTable(), {});
+  return a;
+}
+
+TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
+  Strip strip;
+  const AcousticModel model(strip.model, QuietWithRadio(), LinearTable(), {});
   const Eigen::Vector2d listener(11.0, 2.5);
   const SoundPath path = strip.Path(5.0, 11.0);
   const LinkPrediction on = model.Predict(path, listener, model.NoiseAt(listener, 2.0, {}));
@@ -122,6 +127,33 @@ TEST(AcousticModel, ANoiseSourceByTheListenerHurtsWhileItSoundsAndOnlyThen) {
   const Eigen::Vector2d far(40.0, 2.5);
   const LinkPrediction far_on = model.Predict(strip.Path(34.0, 40.0), far, model.NoiseAt(far, 2.0, {}));
   EXPECT_GT(far_on.probability, on.probability);
+}
+
+TEST(AcousticModel, OverAPacketANoiseSourceCountsForTheShareOfItThatItSounds) {
+  world_sim::NoiseSourceSpec s;
+  s.duty = 0.5;
+  s.period = 10.0;
+  s.phase = 2.0;  // on from 8 to 13 s, 18 to 23 s, ...
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 8.5, 12.5), 1.0);
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 13.0, 18.0), 0.0);
+  EXPECT_NEAR(world_sim::SoundingFraction(s, 12.0, 14.0), 0.5, 1e-12);
+  EXPECT_NEAR(world_sim::SoundingFraction(s, 7.0, 27.0), 0.5, 1e-12);
+  EXPECT_NEAR(world_sim::SoundingFraction(s, -3.0, -1.0), 0.5, 1e-12);  // on from -2 to 3 s
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 9.0, 9.0), 1.0);      // a moment: Sounding
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 14.0, 14.0), 0.0);
+  s.duty = 1.0;
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 14.0, 15.0), 1.0);
+
+  Strip strip;
+  const AcousticModel model(strip.model, QuietWithRadio(), LinearTable(), {});
+  const Eigen::Vector2d listener(11.0, 2.5);
+  const std::vector<Disturbance> at = model.NoiseAt(listener, 4.0, {});
+  const std::vector<Disturbance> over = model.NoiseDuring(listener, 4.0, 6.0, {});  // half of it on
+  ASSERT_EQ(at.size(), 2u);
+  ASSERT_EQ(over.size(), 2u);
+  EXPECT_DOUBLE_EQ(over[0].power, at[0].power);  // the ambient sound is always there
+  EXPECT_NEAR(over[1].power, 0.5 * at[1].power, 1e-9 * at[1].power);
+  EXPECT_EQ(model.NoiseDuring(listener, 5.5, 9.5, {}).size(), 1u);  // off all the while
 }
 
 TEST(AcousticModel, AWhineCountsByHowMuchOfItFallsInTheProfilesBand) {

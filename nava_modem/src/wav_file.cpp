@@ -31,19 +31,31 @@ Audio ReadAudioFile(const std::string& path) {
   return audio;
 }
 
-void WriteWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate) {
+namespace {
+
+void WriteMono(const std::string& path, const std::vector<float>& samples, double sample_rate, int subformat) {
   SF_INFO info{};
   info.samplerate = static_cast<int>(std::lround(sample_rate));
   info.channels = 1;
-  info.format = SF_FORMAT_WAV | SF_FORMAT_PCM_16;
+  info.format = SF_FORMAT_WAV | subformat;
   SndFile file;
   file.handle = sf_open(path.c_str(), SFM_WRITE, &info);
   if (!file.handle) throw std::runtime_error(path + ": cannot write (" + sf_strerror(nullptr) + ")");
-  sf_command(file.handle, SFC_SET_CLIPPING, nullptr, SF_TRUE);
+  if (subformat == SF_FORMAT_PCM_16) sf_command(file.handle, SFC_SET_CLIPPING, nullptr, SF_TRUE);
   if (sf_writef_float(file.handle, samples.data(), static_cast<sf_count_t>(samples.size())) !=
       static_cast<sf_count_t>(samples.size())) {
     throw std::runtime_error(path + ": write failed (" + sf_strerror(file.handle) + ")");
   }
+}
+
+}  // namespace
+
+void WriteWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate) {
+  WriteMono(path, samples, sample_rate, SF_FORMAT_PCM_16);
+}
+
+void WriteFloatWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate) {
+  WriteMono(path, samples, sample_rate, SF_FORMAT_FLOAT);
 }
 
 void WriteWavChannels(const std::string& path, const std::vector<std::vector<float>>& channels, double sample_rate) {

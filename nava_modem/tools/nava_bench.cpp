@@ -41,7 +41,6 @@
 
 #include "bench_support.h"
 #include "decode_table_bench.h"
-#include "line_chart.h"
 #include "modem_args.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/room_array.h"
@@ -49,11 +48,15 @@
 #include "nava_modem/wav_file.h"
 #include "room_conditions.h"
 #include "speech_interferer.h"
+#include "tool_args/line_chart.h"
 
 namespace {
 
 using namespace nava_modem;
 using namespace nava_modem::tools;
+using multirobot_audio::tools::LineChart;
+using multirobot_audio::tools::LineSeries;
+using multirobot_audio::tools::WriteLineChart;
 
 struct Decoders {
   std::string nava_decode = SelfDir() + "/nava_decode";

@@ -1,5 +1,6 @@
 #include "world_sim/acoustics.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace world_sim {
@@ -33,6 +34,19 @@ bool Sounding(const NoiseSourceSpec& source, double t) {
   double cycle = std::fmod(t - source.phase, source.period);
   if (cycle < 0.0) cycle += source.period;
   return cycle < source.duty * source.period;
+}
+
+double SoundingFraction(const NoiseSourceSpec& source, double t0, double t1) {
+  if (!(t1 > t0)) return Sounding(source, t0) ? 1.0 : 0.0;
+  if (source.duty >= 1.0) return 1.0;
+  const double period = source.period, on = source.duty * period;
+  // The time it has sounded from the start of the cycle holding 0 up to `t`.
+  auto sounded = [&](double t) {
+    const double u = t + source.phase;
+    const double cycles = std::floor(u / period);
+    return cycles * on + std::min(u - cycles * period, on);
+  };
+  return std::clamp((sounded(t1) - sounded(t0)) / (t1 - t0), 0.0, 1.0);
 }
 
 const RoomAcoustics& Acoustics::RoomAt(double x, double y) const {

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -76,6 +77,19 @@ class AcousticModel {
   // motors at their 1 m level.
   std::vector<Disturbance> NoiseAt(const Eigen::Vector2d& at, double t,
                                    const std::vector<Eigen::Vector2d>& robots) const;
+
+  // The same over a packet heard from `t0` to `t1`: each noise source's power weighted by the
+  // fraction of that time it sounds, so that the noise is the mean power over the packet, as the
+  // decode tables define it (decode_table.h), also when a source switches on or off mid-packet.
+  std::vector<Disturbance> NoiseDuring(const Eigen::Vector2d& at, double t0, double t1,
+                                       const std::vector<Eigen::Vector2d>& robots) const;
+
+  // The level (dB) at which noise source `k` (of acoustics().noise_sources) is heard at `at`
+  // while it sounds, robots placed as for NoiseAt: direct and reverberant through its own path, or
+  // its 1 m level when it rides on the listening robot. Nothing when no path reaches `at` or its
+  // robot is not in `robots`. NoiseAt is these, for the sources sounding at `t`, and the ambient.
+  std::optional<double> SourceLevelDb(std::size_t k, const Eigen::Vector2d& at,
+                                      const std::vector<Eigen::Vector2d>& robots) const;
 
   // The levels of a packet arriving along `path` at `listener`.
   LinkLevels Levels(const SoundPath& path, const Eigen::Vector2d& listener) const;

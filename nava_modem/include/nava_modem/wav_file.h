@@ -18,6 +18,10 @@ Audio ReadAudioFile(const std::string& path);
 // Writes 16-bit PCM WAV, clipping to full scale. Throws std::runtime_error naming the file.
 void WriteWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate);
 
+// Writes 32-bit float WAV, unclipped: for renderings whose levels are absolute (the scene
+// renderer's) and may pass full scale. Throws std::runtime_error naming the file.
+void WriteFloatWavFile(const std::string& path, const std::vector<float>& samples, double sample_rate);
+
 // Writes several channels (channels[c] is channel c) as one interleaved 16-bit PCM WAV, clipping
 // to full scale. Throws std::runtime_error naming the file when there are no channels, when
 // they differ in length, or when it cannot be written.

@@ -57,6 +57,8 @@ struct NoiseSourceSpec {
 };
 // Whether the source sounds at simulated time `t`.
 bool Sounding(const NoiseSourceSpec& source, double t);
+// The fraction of [t0, t1] during which it sounds (whether it sounds at t0 when t1 <= t0).
+double SoundingFraction(const NoiseSourceSpec& source, double t0, double t1);
 
 struct Acoustics {
   RoomAcoustics room;                 // everywhere no region covers

@@ -1,4 +1,4 @@
-#include "line_chart.h"
+#include "tool_args/line_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace nava_modem::tools {
+namespace multirobot_audio::tools {
 namespace {
 
 constexpr int kWidth = 900, kHeight = 560;
@@ -90,4 +90,4 @@ void WriteLineChart(const std::string& path, const LineChart& chart) {
   if (!cv::imwrite(path, image)) throw std::runtime_error(path + ": cannot write the PNG");
 }
 
-}  // namespace nava_modem::tools
+}  // namespace multirobot_audio::tools

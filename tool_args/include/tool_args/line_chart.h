@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace nava_modem::tools {
+namespace multirobot_audio::tools {
 
 // A PNG line chart (OpenCV): several series over a shared x axis, each with a colour and a
 // dash style, and a legend. y runs from y_min to y_max.
@@ -21,4 +21,4 @@ struct LineChart {
 // Throws std::runtime_error naming the file when it cannot be written.
 void WriteLineChart(const std::string& path, const LineChart& chart);
 
-}  // namespace nava_modem::tools
+}  // namespace multirobot_audio::tools

@@ -1,0 +1,277 @@
+#include "audio_propagation/scene_render.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "flat_table.h"
+#include "grid/input_error.h"
+#include "nava_modem/room_channel.h"
+#include "nava_modem/wav_file.h"
+#include "world_sim/world_file.h"
+
+namespace audio_propagation {
+namespace {
+
+using test::FlatTable;
+
+PropagationOptions Everywhere() {
+  PropagationOptions o;
+  o.threshold_db = 0.0;
+  o.threads = 1;
+  return o;
+}
+
+double Db(double power) { return 10.0 * std::log10(power); }
+
+double MeanSquare(const std::vector<float>& x, std::size_t from, std::size_t to) {
+  double sum = 0.0;
+  for (std::size_t i = from; i < to; ++i) sum += static_cast<double>(x[i]) * x[i];
+  return sum / static_cast<double>(to - from);
+}
+
+// An open hall 20 x 6 m: robots a, b and c on its midline.
+struct Hall {
+  PropagationModel propagation{grid::OccupancyMap(400, 120, 0.05), Everywhere()};
+  std::vector<std::string> names{"a", "b", "c"};
+  std::vector<Eigen::Vector2d> resting{{2.0, 3.0}, {8.0, 3.0}, {4.0, 3.0}};
+  std::unique_ptr<AcousticModel> model;
+  explicit Hall(const world_sim::Acoustics& acoustics, nava_modem::Profile profile = nava_modem::Profile::kNava) {
+    model = std::make_unique<AcousticModel>(propagation, acoustics, FlatTable(nava_modem::ProfileName(profile)), names);
+  }
+  // One packet from a at 0.5 s.
+  Scene OnePacket(nava_modem::Profile profile = nava_modem::Profile::kNava) const {
+    Scene s;
+    s.profile = profile;
+    s.start = 0.0;
+    s.duration = profile == nava_modem::Profile::kNava ? 2.0 : 3.5;
+    for (std::size_t k = 0; k < names.size(); ++k) s.robots.push_back({names[k], {{0.0, resting[k].x(), resting[k].y(), 0.0}}});
+    s.packets.push_back({0.5, "a", {1, 2, 3, 4}});
+    return s;
+  }
+};
+
+world_sim::Acoustics Noisy() {
+  world_sim::Acoustics a;
+  a.room.rt60 = 0.4;
+  a.room.critical_distance = 3.0;
+  a.ambient_db = 40.0;
+  a.ambient_kind = world_sim::NoiseKind::kWhite;
+  world_sim::NoiseSourceSpec fan;
+  fan.name = "fan";
+  fan.x = 10.0, fan.y = 5.0;
+  fan.level_db = 60.0;
+  fan.kind = world_sim::NoiseKind::kPink;
+  world_sim::NoiseSourceSpec motor = fan;
+  motor.name = "motor";
+  motor.x = 15.0, motor.y = 1.0;
+  motor.level_db = 55.0;
+  motor.kind = world_sim::NoiseKind::kWhine;
+  motor.frequency = 3000.0;  // the table's whine: the model counts all its power
+  a.noise_sources = {fan, motor};
+  return a;
+}
+
+TEST(SceneRender, ThePacketOverTheNoiseIsTheModelsSnrAndArrivesAfterItsTravelTime) {
+  // The room profile: its chirps pin the delay down (nava's tones correlate every period).
+  const nava_modem::Profile room = nava_modem::Profile::kRoom;
+  const Hall hall(Noisy(), room);
+  const SceneRenderer renderer(*hall.model, hall.names, hall.resting, {});
+  const Scene scene = hall.OnePacket(room);
+  const SceneRendering r = renderer.Render(scene, {"b", "c"});
+  ASSERT_EQ(r.listeners.size(), 2u);
+  ASSERT_EQ(r.hearings.size(), 2u);
+
+  nava_modem::ModemOptions modem;
+  const std::vector<float> burst = nava_modem::MakeProfile(room, modem)->ModulatePacket({1, 2, 3, 4});
+  const std::vector<bool> sounding = nava_modem::SoundingSamples(burst, 48000.0);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const ListenerRecording& l = r.listeners[k];
+    const PacketHearing& h = r.hearings[k];
+    ASSERT_TRUE(h.reachable);
+    EXPECT_EQ(h.listener, l.robot);
+    // Where the packet must start: 0.5 s plus its distance at 343 m/s.
+    const double distance = (hall.resting[k + 1] - hall.resting[0]).norm();
+    const long expected = std::lround((0.5 + distance / 343.0) * 48000.0);
+    // The lag at which the recording best matches the clean packet (the direct sound's).
+    long best_lag = 0;
+    double best = 0.0;
+    for (long lag = expected - 200; lag <= expected + 200; ++lag) {
+      double c = 0.0;
+      for (std::size_t i = 0; i < burst.size(); ++i) c += burst[i] * l.packets[static_cast<std::size_t>(lag) + i];
+      if (c > best) best = c, best_lag = lag;
+    }
+    EXPECT_NEAR(best_lag, expected, 1) << l.robot;
+    EXPECT_NEAR(static_cast<double>(h.first_sample), expected, 1.0) << l.robot;
+
+    // The signal power over the packet's sounding samples is the link's total level ...
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < burst.size(); ++i) {
+      if (!sounding[i]) continue;
+      sum += static_cast<double>(l.packets[h.first_sample + i]) * l.packets[h.first_sample + i];
+      ++count;
+    }
+    const double signal_db = Db(sum / static_cast<double>(count)) + kReferenceDb;
+    EXPECT_NEAR(signal_db, h.prediction.signal.total_db, 0.05) << l.robot;
+    // ... and over the noise's power over the recording it is the model's SNR.
+    const double noise_db = Db(MeanSquare(l.noise, 0, l.noise.size())) + kReferenceDb;
+    EXPECT_NEAR(signal_db - noise_db, h.prediction.snr_db, 0.5) << l.robot;
+    EXPECT_NEAR(noise_db, h.model_noise_db, 0.5) << l.robot;
+    EXPECT_NEAR(Db(h.signal_power / h.noise_power), h.prediction.snr_db, 1.0) << l.robot;
+  }
+  // Nearer, louder and sooner.
+  EXPECT_GT(r.hearings[1].prediction.signal.total_db, r.hearings[0].prediction.signal.total_db + 1.0);
+  EXPECT_LT(r.hearings[1].first_sample, r.hearings[0].first_sample);
+}
+
+TEST(SceneRender, ARobotDoesNotHearItsOwnPacketsAndALevelOf100DbIsAMeanSquareOf1) {
+  EXPECT_DOUBLE_EQ(LevelToPower(kReferenceDb), 1.0);
+  EXPECT_NEAR(LevelToPower(70.0), 1e-3, 1e-15);
+  const Hall hall(Noisy());
+  const SceneRenderer renderer(*hall.model, hall.names, hall.resting, {});
+  const SceneRendering r = renderer.Render(hall.OnePacket(), {"a"});
+  ASSERT_EQ(r.listeners.size(), 1u);
+  EXPECT_TRUE(r.hearings.empty());
+  for (float v : r.listeners[0].packets) ASSERT_EQ(v, 0.0f);
+  EXPECT_EQ(r.listeners[0].packets.size(), 96000u);
+  EXPECT_THROW(renderer.Render(hall.OnePacket(), {"d"}), std::invalid_argument);
+  // The model's table must be the scene's profile's.
+  EXPECT_THROW(renderer.Render(hall.OnePacket(nava_modem::Profile::kRoom)), std::invalid_argument);
+}
+
+TEST(SceneRender, ANoiseSourceSoundsAtItsLevelWhileOnAndNotWhileOff) {
+  world_sim::Acoustics a = Noisy();
+  a.noise_sources.resize(1);
+  a.noise_sources[0].duty = 0.5;  // on for the first 1 s of every 2 s
+  a.noise_sources[0].period = 2.0;
+  const Hall hall(a);
+  const SceneRenderer renderer(*hall.model, hall.names, hall.resting, {});
+  const SceneRendering r = renderer.Render(hall.OnePacket(), {"b"});
+  const std::vector<float>& noise = r.listeners[0].noise;
+  const std::vector<Eigen::Vector2d> at = hall.resting;
+  const double fan_db = *hall.model->SourceLevelDb(0, at[1], at);
+  const double on = Db(LevelToPower(fan_db) + LevelToPower(a.ambient_db)) + kReferenceDb;
+  EXPECT_NEAR(Db(MeanSquare(noise, 0, 48000)) + kReferenceDb, on, 0.3);
+  EXPECT_NEAR(Db(MeanSquare(noise, 48000, 96000)) + kReferenceDb, a.ambient_db, 0.3);
+  // The model heard the fan in the middle of the packet's arrival (0.5 s + 0.2 s: on).
+  EXPECT_NEAR(r.hearings[0].model_noise_db, on, 1e-6);
+}
+
+TEST(SceneRender, RobotsMoveLinearlyBetweenKeyframesAndTurnTheShortWay) {
+  const SceneRobot r{"r", {{1.0, 0.0, 0.0, 3.0}, {3.0, 2.0, 4.0, -3.0}}};
+  const grid::Pose2D before = PoseAt(r, 0.0), mid = PoseAt(r, 2.0), after = PoseAt(r, 9.0);
+  EXPECT_DOUBLE_EQ(before.x, 0.0);
+  EXPECT_DOUBLE_EQ(mid.x, 1.0);
+  EXPECT_DOUBLE_EQ(mid.y, 2.0);
+  EXPECT_NEAR(std::fabs(mid.yaw), M_PI, 1e-9);  // through pi, not through 0
+  EXPECT_DOUBLE_EQ(after.y, 4.0);
+}
+
+// A temporary scene file.
+std::string SceneFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+const std::string kWorld = std::string(MULTIROBOT_AUDIO_MAPS_DIR) + "/test_room_acoustic_world.yaml";
+
+TEST(SceneRender, AScenesPacketsAreDecodedFromTheWrittenRecordings) {
+  const world_sim::LoadedWorld world = world_sim::LoadWorldFile(kWorld);
+  ASSERT_TRUE(world.config.acoustics.has_value());
+  // The room profile (nava's FSK does not survive this room's reverberation at 2 m, DRR +1 dB).
+  const std::string file = SceneFile("round_trip", R"(
+profile: room
+duration: 5.5
+robots:
+  robot_0: [[0.0, 1.5, 1.0, 0.0]]
+  robot_1: [[0.0, 1.5, 3.0, 0.0], [2.0, 2.0, 3.0, 0.0]]
+packets:
+  - {time: 0.3, sender: robot_0, data: [1, 2, 3, 4]}
+  - {time: 2.8, sender: robot_1, data: [250, 6, 7, 8]}
+)");
+  const Scene scene = LoadScene(file);
+  std::vector<std::string> names;
+  std::vector<Eigen::Vector2d> resting;
+  for (const world_sim::RobotSpec& r : world.config.robots) names.push_back(r.name), resting.push_back(r.start.position());
+  CheckScene(file, scene, names, world.map);
+  const PropagationModel propagation(world.map, Everywhere());
+  const AcousticModel model(propagation, *world.config.acoustics, FlatTable("room"), names);
+  const SceneRenderer renderer(model, names, resting, {});
+  const SceneRendering r = renderer.Render(scene);
+  ASSERT_EQ(r.listeners.size(), 2u);
+  ASSERT_EQ(r.hearings.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const ListenerRecording& l = r.listeners[k];
+    const std::string wav = ::testing::TempDir() + "/" + l.robot + ".wav";
+    nava_modem::WriteFloatWavFile(wav, l.Mix(), r.sample_rate);
+    const nava_modem::Audio audio = nava_modem::ReadAudioFile(wav);
+    ASSERT_EQ(audio.samples.size(), 264000u);
+    // Float WAV keeps the absolute level: no clipping, no scaling.
+    EXPECT_NEAR(audio.samples[1000], l.Mix()[1000], 1e-9);
+    const auto receiver = nava_modem::MakeProfile(nava_modem::Profile::kRoom, {})->MakeReceiver({});
+    std::vector<nava_modem::RxEvent> events;
+    receiver->Process(audio.samples.data(), audio.samples.size(), events);
+    receiver->Flush(events);
+    // Each robot hears the other's packet, and when it arrives.
+    const ScenePacket& sent = scene.packets[k == 0 ? 1 : 0];
+    const PacketHearing& h = r.hearings[k == 0 ? 1 : 0];
+    EXPECT_EQ(h.listener, l.robot);
+    int right = 0;
+    for (const nava_modem::RxEvent& e : events) {
+      if (e.kind != nava_modem::RxEvent::Kind::kPacket) continue;
+      EXPECT_EQ(e.data, std::vector<std::uint8_t>(sent.data.begin(), sent.data.end())) << l.robot;
+      EXPECT_NEAR(e.start, h.arrival, 0.05) << l.robot;
+      ++right;
+    }
+    EXPECT_EQ(right, 1) << l.robot;
+  }
+}
+
+// The message of the InputError `load` throws.
+template <class F>
+std::string ErrorOf(F load) {
+  try {
+    load();
+  } catch (const grid::InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SceneRender, BadScenesAreRefusedWithTheFileFieldAndValue) {
+  const world_sim::LoadedWorld world = world_sim::LoadWorldFile(kWorld);
+  const std::vector<std::string> names = {"robot_0", "robot_1", "robot_2"};
+  const std::string head = "duration: 2\nrobots:\n  robot_0: [[0, 1.5, 1.0, 0]]\n";
+  auto load = [&](const std::string& name, const std::string& text) {
+    const std::string file = SceneFile(name, text);
+    return ErrorOf([&] { CheckScene(file, LoadScene(file), names, world.map); });
+  };
+  std::string e = load("short_data", head + "packets:\n  - {time: 0.5, sender: robot_0, data: [1, 2, 3]}\n");
+  EXPECT_NE(e.find("short_data.yaml: packets[0].data: expected 4 bytes"), std::string::npos) << e;
+  EXPECT_NE(e.find("[1, 2, 3]"), std::string::npos) << e;
+  e = load("big_byte", head + "packets:\n  - {time: 0.5, sender: robot_0, data: [1, 2, 3, 256]}\n");
+  EXPECT_NE(e.find("packets[0].data"), std::string::npos) << e;
+  EXPECT_NE(e.find("256"), std::string::npos) << e;
+  e = load("profile", "profile: fast\n" + head);
+  EXPECT_NE(e.find("profile.yaml: profile: expected nava or room, got 'fast'"), std::string::npos) << e;
+  e = load("stranger", head + "  robot_9: [[0, 1.5, 3.0, 0]]\n");
+  EXPECT_NE(e.find("stranger.yaml: robots.robot_9: no robot named 'robot_9'"), std::string::npos) << e;
+  e = load("in_wall", "duration: 2\nrobots:\n  robot_0: [[0, 1.5, 1.0, 0], [1, 3.07, 1.0, 0]]\n");
+  EXPECT_NE(e.find("in_wall.yaml: robots.robot_0[1]: (3.07, 1) is not in the map's free space"), std::string::npos) << e;
+  e = load("order", "duration: 2\nrobots:\n  robot_0: [[1, 1.5, 1.0, 0], [0.5, 1.5, 2.0, 0]]\n");
+  EXPECT_NE(e.find("robots.robot_0[1]: keyframe time 0.5 s"), std::string::npos) << e;
+  e = load("sender", head + "packets:\n  - {time: 0.5, sender: robot_1, data: [1, 2, 3, 4]}\n");
+  EXPECT_NE(e.find("packets[0].sender: 'robot_1' is not one of the scene's robots"), std::string::npos) << e;
+  e = load("late", head + "packets:\n  - {time: 2.5, sender: robot_0, data: [1, 2, 3, 4]}\n");
+  EXPECT_NE(e.find("packets[0].time: 2.5 s"), std::string::npos) << e;
+  e = ErrorOf([] { LoadScene("/nonexistent/scene.yaml"); });
+  EXPECT_NE(e.find("/nonexistent/scene.yaml: scene file not found"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace audio_propagation

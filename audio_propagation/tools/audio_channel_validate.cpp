@@ -1,0 +1,277 @@
+// audio_channel_validate: how well the `acoustic` channel model predicts the real receiver
+// (channel_validation.h). Random links between free points at least 0.3 m from walls (in the free
+// space the world's robots stand in), each at a random moment of the noise sources' duty cycles:
+// the model's decode probability (Predict with the noise of that moment) against the real
+// receiver's decode of K packets rendered at the listener by the scene renderer.
+//
+//   audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4]
+//                          [--table FILE] [--seed 1] [--out DIR] [--threads 2]
+//   audio_channel_validate --world W [--map M] [--profile P] [--table FILE] [--time 0]
+//                          --predict X1,Y1 X2,Y2
+//
+// Prints a table per path-length bin (0-3, 3-6, 6-10, 10-15, 15-20, 20-30, 30+ m; a bin of fewer
+// than 15 links merged into its neighbour): links, the model's and the rendered delivery and the
+// noise gap (the rendered noise during the packets against the model's), then the packets by the
+// model's SNR, by its loudest disturbance and by the noise gap, and
+//   agreement: max |model - rendered| = X points over K distance bins
+// and writes DIR/validate_<profile>.png (delivery against path length, both). Links run on
+// --threads threads; the same seed gives the same output. The table defaults to the profile's
+// shipped one.
+// With --predict: one JSON line for a packet from (X1, Y1) to (X2, Y2) at time --time (the world's
+// robots where the world puts them), no rendering: path_length, corners, direct_db,
+// reverberant_db, noise_db, drr_db, snr_db, rt60, kind, probability (null figures without a path).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include "acoustic_world.h"
+#include "tool_args/line_chart.h"
+
+namespace {
+
+using namespace audio_propagation;
+
+const char* kUsage =
+    "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
+    "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
+    "--predict X1,Y1 X2,Y2";
+constexpr int kMinBinLinks = 15;
+
+Eigen::Vector2d ParsePoint(const multirobot_audio::tools::ToolArgs& args, const std::string& text) {
+  std::istringstream in(text);
+  double x = 0.0, y = 0.0;
+  char comma = 0;
+  std::string rest;
+  if (!(in >> x >> comma >> y) || comma != ',' || (in >> rest) || !std::isfinite(x) || !std::isfinite(y)) {
+    args.Fail("--predict: expected two points X1,Y1 X2,Y2 in m, got '" + text + "'");
+  }
+  return {x, y};
+}
+
+std::string Json(double v) {
+  if (!std::isfinite(v)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", v);
+  return text;
+}
+
+int Predict(const multirobot_audio::tools::ToolArgs& args, const tools::AcousticWorld& world, const DecodeTable& table,
+            const std::string& first, double time) {
+  // "--predict X1,Y1 X2,Y2": the second point is the next argument (or the same one, quoted).
+  std::string a = first, b;
+  const auto space = first.find(' ');
+  if (space != std::string::npos) {
+    a = first.substr(0, space);
+    b = first.substr(first.find_first_not_of(' ', space));
+    if (!args.positional().empty()) args.Fail("unexpected argument " + args.positional().front());
+  } else {
+    if (args.positional().size() != 1) args.Fail("--predict: expected two points X1,Y1 X2,Y2");
+    b = args.positional().front();
+  }
+  args.CheckAllUsed();
+  const Eigen::Vector2d from = ParsePoint(args, a), to = ParsePoint(args, b);
+  for (const Eigen::Vector2d& p : {from, to}) {
+    if (!world.loaded.map.IsFreeAt(p)) {
+      std::ostringstream s;
+      s << "--predict: (" << p.x() << ", " << p.y() << ") is not in the map's free space";
+      args.Fail(s.str());
+    }
+  }
+  const AcousticModel model(*world.propagation, world.acoustics, table, world.robots);
+  const SoundPath path = world.propagation->Path(from, to);
+  if (!path.reachable) {
+    std::printf("{\"path_length\": null, \"corners\": null, \"direct_db\": null, \"reverberant_db\": null, "
+                "\"noise_db\": null, \"drr_db\": null, \"snr_db\": null, \"rt60\": null, \"kind\": null, "
+                "\"probability\": 0}\n");
+    return 0;
+  }
+  const LinkPrediction p = model.Predict(path, to, model.NoiseAt(to, time, world.resting));
+  std::printf("{\"path_length\": %s, \"corners\": %d, \"direct_db\": %s, \"reverberant_db\": %s, \"noise_db\": %s, "
+              "\"drr_db\": %s, \"snr_db\": %s, \"rt60\": %s, \"kind\": \"%s\", \"probability\": %s}\n",
+              Json(p.path_length).c_str(), p.corners, Json(p.signal.direct_db).c_str(),
+              Json(p.signal.reverberant_db).c_str(), Json(p.noise_db).c_str(), Json(p.signal.drr_db).c_str(),
+              Json(p.snr_db).c_str(), Json(p.signal.rt60).c_str(), InterferenceName(p.kind),
+              Json(p.probability).c_str());
+  return 0;
+}
+
+// Delivery of a group of packets, in %.
+struct Group {
+  int links = 0, packets = 0, decoded = 0, gaps = 0;
+  double model = 0.0, noise_gap = 0.0;
+  void Add(const JudgedPacket& p) {
+    ++packets;
+    model += p.probability;
+    decoded += p.decoded;
+    if (std::isfinite(p.noise_gap_db)) {
+      noise_gap += p.noise_gap_db;
+      ++gaps;
+    }
+  }
+  void Add(const ValidationLink& l) {
+    ++links;
+    for (const JudgedPacket& p : l.judged) Add(p);
+    packets += l.packets - static_cast<int>(l.judged.size());  // no path: neither decodes
+  }
+  // The first column counts links, or packets where the group was filled packet by packet.
+  void Print(const std::string& label) const {
+    if (packets == 0) return;
+    std::printf("  %-16s %7d %9.1f %11.1f %+7.1f %+10.1f\n", label.c_str(), links ? links : packets,
+                100.0 * model / packets, 100.0 * decoded / packets, 100.0 * (model - decoded) / packets,
+                gaps ? noise_gap / gaps : 0.0);
+  }
+};
+
+std::string Range(double low, double high) {
+  char text[32];
+  if (std::isinf(high)) {
+    std::snprintf(text, sizeof text, "%g+", low);
+  } else {
+    std::snprintf(text, sizeof text, "%g-%g", low, high);
+  }
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string program = "audio_channel_validate";
+  const multirobot_audio::tools::ToolArgs args(program, kUsage, argc, argv);
+  const std::string world_file = args.Required("--world");
+  const std::string map_file = args.String("--map", "");
+  const std::string profile_name = args.String("--profile", "nava");
+  const std::string table_file = args.String("--table", "");
+  const std::string predict = args.String("--predict", "");
+  const double time = args.Double("--time", 0.0, -1e9, 1e9);
+  ValidationOptions options;
+  options.links = static_cast<int>(args.Int("--links", 300, 1, 100000));
+  options.packets = static_cast<int>(args.Int("--packets", 4, 1, 1000));
+  options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
+  options.threads = static_cast<int>(args.Int("--threads", 2, 1, 64));
+  const std::string out = args.String("--out", ".");
+  if (predict.empty()) args.CheckAllUsed();
+  const auto profile = nava_modem::ParseProfile(profile_name);
+  if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got " + profile_name);
+  options.profile = *profile;
+
+  const double cpu_start = nava_modem::tools::CpuNow();
+  const auto wall_start = std::chrono::steady_clock::now();
+  const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, map_file);
+  const DecodeTable table = tools::LoadTable(program, options.profile, table_file);
+  if (!predict.empty()) {
+    try {
+      return Predict(args, world, table, predict, time);
+    } catch (const std::exception& e) {
+      tools::Fail(program, e.what());
+    }
+  }
+  options.speech = tools::SpeechFor(program, world.acoustics, options.sample_rate, options.seed);
+  // The simulated channel's own propagation model (default options) hears no further than this.
+  const double channel_hearing = PropagationModel(grid::OccupancyMap(1, 1, 1.0), PropagationOptions()).HearingDistance();
+  options.channel_hearing_distance = channel_hearing;
+
+  std::printf("%s: %s, profile %s, table %s (%s), %d links of %d packets, seed %u\n", program.c_str(),
+              world_file.c_str(), profile_name.c_str(), table_file.empty() ? "shipped" : table_file.c_str(),
+              table.command.c_str(), options.links, options.packets, options.seed);
+  std::fflush(stdout);
+  std::vector<ValidationLink> links;
+  try {
+    links = ValidateLinks(*world.propagation, world.acoustics, table, world.robots, world.resting, options, [&](int done) {
+      if (done % std::max(1, options.links / 10) == 0) std::fprintf(stderr, "  %d/%d links\n", done, options.links);
+    });
+  } catch (const std::exception& e) {
+    tools::Fail(program, world_file + ": " + e.what());
+  }
+
+  const std::vector<double> edges(std::begin(kDefaultEdges), std::end(kDefaultEdges));
+  const std::vector<DistanceBin> bins = BinByLength(links, edges, kMinBinLinks);
+  std::printf("  %-16s %7s %9s %11s %7s %10s\n", "path (m)", "links", "model %", "rendered %", "diff", "noise gap");
+  for (const DistanceBin& b : bins) {
+    Group g;
+    for (const ValidationLink& l : links) {
+      if (l.path_length >= b.low && (l.path_length < b.high || std::isinf(b.high))) g.Add(l);
+    }
+    g.Print(Range(b.low, b.high));
+  }
+  // The same packets grouped by what the model saw (the count is of packets).
+  std::vector<JudgedPacket> packets;
+  for (const ValidationLink& l : links) packets.insert(packets.end(), l.judged.begin(), l.judged.end());
+  auto print_by = [&](const char* title, const std::vector<std::pair<std::string, std::function<bool(const JudgedPacket&)>>>& rows) {
+    std::printf("%s\n", title);
+    for (const auto& [label, holds] : rows) {
+      Group g;
+      for (const JudgedPacket& p : packets) {
+        if (holds(p)) g.Add(p);
+      }
+      g.Print(label);
+    }
+  };
+  std::vector<std::pair<std::string, std::function<bool(const JudgedPacket&)>>> by_snr, by_kind, by_gap;
+  const double snr_edges[] = {-1e9, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0, 1e9};
+  for (std::size_t k = 0; k + 1 < std::size(snr_edges); ++k) {
+    const double lo = snr_edges[k], hi = snr_edges[k + 1];
+    by_snr.push_back({k == 0 ? "< -5" : k + 2 == std::size(snr_edges) ? ">= 20" : Range(lo, hi),
+                      [lo, hi](const JudgedPacket& p) { return p.snr_db >= lo && p.snr_db < hi; }});
+  }
+  for (std::size_t k = 0; k < kInterferenceCount; ++k) {
+    const Interference kind = static_cast<Interference>(k);
+    by_kind.push_back({InterferenceName(kind), [kind](const JudgedPacket& p) { return p.kind == kind; }});
+  }
+  by_gap.push_back({"within 3 dB", [](const JudgedPacket& p) { return std::fabs(p.noise_gap_db) <= 3.0; }});
+  by_gap.push_back({"louder by > 3", [](const JudgedPacket& p) { return p.noise_gap_db > 3.0; }});
+  by_gap.push_back({"quieter by > 3", [](const JudgedPacket& p) { return p.noise_gap_db < -3.0; }});
+  print_by("packets by the model's SNR (dB):", by_snr);
+  print_by("packets by the model's loudest disturbance:", by_kind);
+  print_by("packets by the rendered noise during them against the model's noise:", by_gap);
+  int unreachable = 0;
+  Group beyond;
+  for (const ValidationLink& l : links) {
+    if (l.beyond_hearing && l.reachable) beyond.Add(l);
+    unreachable += !l.reachable;
+  }
+  std::printf("(noise gap: the rendered noise's level during a packet minus the model's unweighted sum of the "
+              "disturbances, dB, mean; links without a path: %d)\n",
+              unreachable);
+  std::printf("links beyond the simulated channel's hearing distance (%.1f m, ~threshold_db), which the channel "
+              "drops (0 %%) and the model above judges: %d",
+              channel_hearing, beyond.links);
+  if (beyond.packets > 0) {
+    std::printf(", model %.1f %%, rendered %.1f %%", 100.0 * beyond.model / beyond.packets,
+                100.0 * beyond.decoded / beyond.packets);
+  }
+  std::printf("\n");
+  std::printf("agreement: max |model - rendered| = %.1f points over %zu distance bins\n", Agreement(bins), bins.size());
+
+  multirobot_audio::tools::LineChart chart;
+  chart.title = std::filesystem::path(world_file).filename().string() + ", " + profile_name +
+                ": model and rendered delivery";
+  chart.x_label = "path length (m), mean of each bin";
+  chart.y_label = "packets decoded (%)";
+  multirobot_audio::tools::LineSeries model_series, rendered_series;
+  model_series.label = "model (table)";
+  rendered_series.label = "rendered + decoded";
+  rendered_series.colour = 1;
+  rendered_series.style = multirobot_audio::tools::LineSeries::Style::kDashed;
+  for (const DistanceBin& b : bins) {
+    model_series.x.push_back(b.mean_length);
+    model_series.y.push_back(b.model);
+    rendered_series.x.push_back(b.mean_length);
+    rendered_series.y.push_back(b.rendered);
+  }
+  chart.series = {model_series, rendered_series};
+  const std::string plot = out + "/validate_" + profile_name + ".png";
+  try {
+    std::filesystem::create_directories(out);
+    multirobot_audio::tools::WriteLineChart(plot, chart);
+  } catch (const std::exception& e) {
+    tools::Fail(program, e.what());
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  std::printf("plot: %s\ncpu: %.1f s (wall %.1f s) on %d threads\n", plot.c_str(), nava_modem::tools::CpuNow() - cpu_start,
+              wall, options.threads);
+  return 0;
+}
