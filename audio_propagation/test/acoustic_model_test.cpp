@@ -133,14 +133,14 @@ TEST(AcousticModel, OverAPacketANoiseSourceCountsForTheShareOfItThatItSounds) {
   world_sim::NoiseSourceSpec s;
   s.duty = 0.5;
   s.period = 10.0;
-  s.phase = 2.0;  // on from 8 to 13 s, 18 to 23 s, ...
-  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 8.5, 12.5), 1.0);
-  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 13.0, 18.0), 0.0);
-  EXPECT_NEAR(world_sim::SoundingFraction(s, 12.0, 14.0), 0.5, 1e-12);
-  EXPECT_NEAR(world_sim::SoundingFraction(s, 7.0, 27.0), 0.5, 1e-12);
-  EXPECT_NEAR(world_sim::SoundingFraction(s, -3.0, -1.0), 0.5, 1e-12);  // on from -2 to 3 s
-  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 9.0, 9.0), 1.0);      // a moment: Sounding
-  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 14.0, 14.0), 0.0);
+  s.phase = 2.0;  // on from 2 to 7 s, 12 to 17 s, ...
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 2.5, 6.5), 1.0);
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 7.0, 12.0), 0.0);
+  EXPECT_NEAR(world_sim::SoundingFraction(s, 6.0, 8.0), 0.5, 1e-12);
+  EXPECT_NEAR(world_sim::SoundingFraction(s, 1.0, 21.0), 0.5, 1e-12);
+  EXPECT_NEAR(world_sim::SoundingFraction(s, -4.0, -2.0), 0.5, 1e-12);  // on from -8 to -3 s
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 3.0, 3.0), 1.0);      // a moment: Sounding
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 8.0, 8.0), 0.0);
   s.duty = 1.0;
   EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 14.0, 15.0), 1.0);
 

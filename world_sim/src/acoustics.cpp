@@ -40,9 +40,9 @@ double SoundingFraction(const NoiseSourceSpec& source, double t0, double t1) {
   if (!(t1 > t0)) return Sounding(source, t0) ? 1.0 : 0.0;
   if (source.duty >= 1.0) return 1.0;
   const double period = source.period, on = source.duty * period;
-  // The time it has sounded from the start of the cycle holding 0 up to `t`.
+  // The time it has sounded from the start of the period holding `phase` up to `t`.
   auto sounded = [&](double t) {
-    const double u = t + source.phase;
+    const double u = t - source.phase;
     const double cycles = std::floor(u / period);
     return cycles * on + std::min(u - cycles * period, on);
   };
