@@ -107,17 +107,22 @@ std::vector<Disturbance> AcousticModel::NoiseDuring(const Eigen::Vector2d& at, d
   return out;
 }
 
+std::optional<Eigen::Vector2d> AcousticModel::SourcePosition(std::size_t k,
+                                                            const std::vector<Eigen::Vector2d>& robots) const {
+  const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources.at(k);
+  if (source_robot_[k] < 0) return Eigen::Vector2d(s.x, s.y);
+  if (static_cast<std::size_t>(source_robot_[k]) >= robots.size()) return std::nullopt;
+  return robots[static_cast<std::size_t>(source_robot_[k])];
+}
+
 std::optional<double> AcousticModel::SourceLevelDb(std::size_t k, const Eigen::Vector2d& at,
                                                    const std::vector<Eigen::Vector2d>& robots) const {
   const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources.at(k);
-  Eigen::Vector2d from(s.x, s.y);
-  if (source_robot_[k] >= 0) {
-    if (static_cast<std::size_t>(source_robot_[k]) >= robots.size()) return std::nullopt;
-    from = robots[static_cast<std::size_t>(source_robot_[k])];
-  }
+  const std::optional<Eigen::Vector2d> from = SourcePosition(k, robots);
+  if (!from) return std::nullopt;
   // A robot's own motors are right by its microphone: heard at their 1 m level, direct.
-  if ((from - at).norm() < 1e-9) return s.level_db;
-  const SoundPath p = PathBetween(k, from, at);
+  if ((*from - at).norm() < 1e-9) return s.level_db;
+  const SoundPath p = PathBetween(k, *from, at);
   if (!p.reachable) return std::nullopt;
   const PropagationOptions& o = propagation_.options();
   return LinkBudget(s.level_db, o.reference_distance, p.length, p.bends, acoustics_.corner_loss_db,
@@ -125,22 +130,52 @@ std::optional<double> AcousticModel::SourceLevelDb(std::size_t k, const Eigen::V
       .total_db;
 }
 
+std::uint64_t AcousticModel::PathKey(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const {
+  const grid::OccupancyMap& map = propagation_.map();
+  const Eigen::Vector2i a = map.WorldToCell(from), b = map.WorldToCell(to);
+  auto bits = [](int v) { return static_cast<std::uint64_t>(v) & 0x3fffu; };  // 14 bits a coordinate
+  return (static_cast<std::uint64_t>(source & 0xffu) << 56) | (bits(a.x()) << 42) | (bits(a.y()) << 28) |
+         (bits(b.x()) << 14) | bits(b.y());
+}
+
+void AcousticModel::Keep(std::uint64_t key, SoundPath path) const {
+  if (kept_paths_.size() > kMaxKeptPaths) kept_paths_.clear();
+  path.polyline.clear();  // only the length and corners are needed
+  kept_paths_.emplace(key, std::move(path));
+}
+
 SoundPath AcousticModel::PathBetween(std::size_t source, const Eigen::Vector2d& from,
                                      const Eigen::Vector2d& to) const {
   // Paths are kept by (source, its cell, the listener's cell): a listener standing still, or a
   // robot carrying its motors past the same cells again, costs a lookup.
-  const grid::OccupancyMap& map = propagation_.map();
-  const Eigen::Vector2i a = map.WorldToCell(from), b = map.WorldToCell(to);
-  auto bits = [](int v) { return static_cast<std::uint64_t>(v) & 0x3fffu; };  // 14 bits a coordinate
-  const std::uint64_t key = (static_cast<std::uint64_t>(source & 0xffu) << 56) | (bits(a.x()) << 42) |
-                            (bits(a.y()) << 28) | (bits(b.x()) << 14) | bits(b.y());
+  const std::uint64_t key = PathKey(source, from, to);
   const auto it = kept_paths_.find(key);
   if (it != kept_paths_.end()) return it->second;
-  if (kept_paths_.size() > kMaxKeptPaths) kept_paths_.clear();
-  SoundPath p = propagation_.Path(from, to);
-  p.polyline.clear();  // only the length and corners are needed
-  kept_paths_.emplace(key, p);
-  return p;
+  Keep(key, propagation_.Path(from, to));
+  return kept_paths_.at(key);
+}
+
+void AcousticModel::PreparePaths(const std::vector<Eigen::Vector2d>& listeners,
+                                 const std::vector<Eigen::Vector2d>& robots) const {
+  for (std::size_t k = 0; k < acoustics_.noise_sources.size(); ++k) {
+    const std::optional<Eigen::Vector2d> from = SourcePosition(k, robots);
+    if (!from) continue;
+    std::vector<Eigen::Vector2d> missing;
+    std::vector<std::uint64_t> keys;
+    for (const Eigen::Vector2d& at : listeners) {
+      const std::uint64_t key = PathKey(k, *from, at);
+      if ((*from - at).norm() < 1e-9 || kept_paths_.count(key) ||
+          std::find(keys.begin(), keys.end(), key) != keys.end()) {
+        continue;
+      }
+      missing.push_back(at);
+      keys.push_back(key);
+    }
+    if (missing.empty()) continue;
+    // One search from the source serves every listener (it sees its corners once).
+    std::vector<SoundPath> paths = propagation_.From(*from, missing);
+    for (std::size_t m = 0; m < missing.size(); ++m) Keep(keys[m], std::move(paths[m]));
+  }
 }
 
 double AcousticModel::EffectivePower(const Disturbance& d) const {

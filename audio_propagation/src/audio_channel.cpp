@@ -56,6 +56,7 @@ std::vector<Eigen::Vector2d> AudioChannel::Positions() const {
 
 void AudioChannel::UpdateNoise() {
   const std::vector<Eigen::Vector2d> at = Positions();
+  acoustic_->PreparePaths(at, at);
   for (std::size_t r = 0; r < at.size(); ++r) {
     double power = 0.0;
     for (const Disturbance& d : acoustic_->NoiseAt(at[r], time(), at)) power += d.power;

@@ -157,8 +157,10 @@ std::vector<SoundPath> PropagationModel::From(const Eigen::Vector2d& source,
   for (const Eigen::Vector2d& listener : listeners) {
     const Eigen::Vector2d r = map_.WorldToCellCoords(listener);
     std::vector<Visible> seen_from_r;
+    bool r_known = false;
     out.push_back(Between(s, r, from_s, [&]() -> const std::vector<Visible>& {
-      return seen_from_r = VisibleNodes(r);
+      if (!r_known) seen_from_r = VisibleNodes(r), r_known = true;
+      return seen_from_r;
     }));
   }
   return out;

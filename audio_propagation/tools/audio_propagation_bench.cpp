@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
       if (!acoustic) continue;
       const auto a0 = Clock::now();
       const double t = 0.37 * k;  // moves the noise sources' duty cycles along
+      acoustic->PreparePaths(positions, positions);
       std::vector<std::vector<Disturbance>> noise(positions.size());
       for (std::size_t r = 0; r < positions.size(); ++r) noise[r] = acoustic->NoiseAt(positions[r], t, positions);
       for (std::size_t s = 0; s < positions.size(); ++s)

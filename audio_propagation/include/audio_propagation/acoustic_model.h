@@ -94,6 +94,11 @@ class AcousticModel {
   // The levels of a packet arriving along `path` at `listener`.
   LinkLevels Levels(const SoundPath& path, const Eigen::Vector2d& listener) const;
 
+  // Finds, in one search per noise source, the paths from every source to every listener at
+  // `listeners` that are not kept yet, so that the NoiseAt calls for those listeners that follow
+  // cost lookups (what a channel step does for its whole team).
+  void PreparePaths(const std::vector<Eigen::Vector2d>& listeners, const std::vector<Eigen::Vector2d>& robots) const;
+
   // The prediction for a packet along `path`, heard at `listener` against `disturbances` (from
   // NoiseAt, plus a kPacket disturbance for each overlapping packet, its power weighted by the
   // overlapping fraction).
@@ -116,6 +121,9 @@ class AcousticModel {
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
+  std::optional<Eigen::Vector2d> SourcePosition(std::size_t k, const std::vector<Eigen::Vector2d>& robots) const;
+  std::uint64_t PathKey(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
+  void Keep(std::uint64_t key, SoundPath path) const;
   static constexpr std::size_t kMaxKeptPaths = 200000;
   mutable std::unordered_map<std::uint64_t, SoundPath> kept_paths_;  // (source, its cell, listener cell)
 };
