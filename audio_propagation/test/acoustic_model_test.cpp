@@ -141,6 +141,13 @@ TEST(AcousticModel, OverAPacketANoiseSourceCountsForTheShareOfItThatItSounds) {
   EXPECT_NEAR(world_sim::SoundingFraction(s, -4.0, -2.0), 0.5, 1e-12);  // on from -8 to -3 s
   EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 3.0, 3.0), 1.0);      // a moment: Sounding
   EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 8.0, 8.0), 0.0);
+  // The fraction and Sounding agree moment by moment (they drifted apart once, when the phase
+  // turned round in one and not the other).
+  for (double t0 = -10.0; t0 < 10.0; t0 += 0.37) {
+    int on = 0;
+    for (int k = 0; k < 1000; ++k) on += world_sim::Sounding(s, t0 + (k + 0.5) * 0.003);
+    EXPECT_NEAR(world_sim::SoundingFraction(s, t0, t0 + 3.0), on / 1000.0, 0.002) << t0;
+  }
   s.duty = 1.0;
   EXPECT_DOUBLE_EQ(world_sim::SoundingFraction(s, 14.0, 15.0), 1.0);
 
