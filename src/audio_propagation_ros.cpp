@@ -52,6 +52,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   o.packet_bytes = IntParam(pnh, "packet_bytes", o.packet_bytes, 1, 1024);
   auto& m = o.model;
   m.source_level_db = NumberParam(pnh, "source_level_db", m.source_level_db, -1000.0, 1000.0);
+  o.threshold_given = pnh.hasParam("threshold_db");
   m.threshold_db = NumberParam(pnh, "threshold_db", m.threshold_db, -1000.0, 1000.0);
   if (m.threshold_db > m.source_level_db) {
     throw ParamError(pnh.resolveName("threshold_db") + ": expected at most ~source_level_db (" +
@@ -150,6 +151,11 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
       }
       microphones_[k] = *mic;
     }
+  }
+  if (options_.channel_model == "acoustic" && acoustics && !options_.threshold_given) {
+    // Paths to every listener the model might judge audible, not only those above 40 dB.
+    options_.model.threshold_db = std::min(options_.model.source_level_db,
+                                           audio_propagation::AcousticThresholdDb(*acoustics));
   }
   const ros::WallTime t0 = ros::WallTime::now();
   model_ = std::make_unique<audio_propagation::PropagationModel>(std::move(map), options_.model);

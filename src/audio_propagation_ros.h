@@ -39,6 +39,7 @@ struct AudioPropagationOptions {
   double delivery_map_period = 5.0;
   double delivery_map_resolution = 0.5;
   audio_propagation::PropagationOptions model;  // ~source_level_db, ~threshold_db, ~max_range, ~speed_of_sound, ~rule
+  bool threshold_given = false;  // ~threshold_db was set (else the acoustic model picks its own)
   audio_propagation::ChannelOptions channel;    // ~capture_margin_db, ~bit_rate, ~direction_noise, ~seed
 };
 

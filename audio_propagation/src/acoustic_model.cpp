@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "nava_modem/modem_options.h"
+
 namespace audio_propagation {
 namespace {
 
@@ -14,17 +16,29 @@ double Db(double power) { return 10.0 * std::log10(power); }
 // the sound has come, i.e. 10 log10(e) * 0.04 = 0.174 dB per metre per second of RT60.
 constexpr double kReverberantDecay = 0.174;
 
-// The fraction of a whine's power (harmonics at 1x, 2x and 3x, 0, -6 and -12 dB in amplitude)
-// that falls within a band widened by 10 % each side (a receiver's filters skirt past it).
-double InBand(double hz, double low, double high) {
+// How much of a whine a receiver minds, as a fraction of its power: each harmonic (1x, 2x and
+// 3x, at 0, -6 and -12 dB in amplitude) that falls within the band widened by 10 % each side
+// counts by its share of the power, and, for a profile with a few tones (`tones`, empty for one
+// whose tones fill its band), by how close it comes to a tone: fully within half a bit-rate
+// of one, falling as the square of the distance beyond, to a floor of -10 dB (nava_decode copes
+// with a whine between its tones some 10 dB louder than one on a tone).
+double WhineHarm(double hz, double low, double high, const std::vector<double>& tones) {
   const double weights[3] = {1.0, 0.25, 0.0625};
-  double in = 0.0, all = 0.0;
+  constexpr double kNear = 150.0;  // Hz: half of nava's 300 bit/s
+  double harm = 0.0, all = 0.0;
   for (int h = 0; h < 3; ++h) {
     const double f = hz * (h + 1);
     all += weights[h];
-    if (f >= 0.9 * low && f <= 1.1 * high) in += weights[h];
+    if (f < 0.9 * low || f > 1.1 * high) continue;
+    double closeness = 1.0;
+    if (!tones.empty()) {
+      double gap = 1e300;
+      for (double t : tones) gap = std::min(gap, std::abs(f - t));
+      closeness = std::clamp((kNear / std::max(gap, 1.0)) * (kNear / std::max(gap, 1.0)), 0.1, 1.0);
+    }
+    harm += weights[h] * closeness;
   }
-  return in / all;
+  return harm / all;
 }
 
 void RequireRoom(const world_sim::RoomAcoustics& room, const std::string& where) {
@@ -38,6 +52,8 @@ void RequireRoom(const world_sim::RoomAcoustics& room, const std::string& where)
 }
 
 }  // namespace
+
+double AcousticThresholdDb(const world_sim::Acoustics& acoustics) { return acoustics.ambient_db - 30.0; }
 
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
                       const world_sim::RoomAcoustics& room) {
@@ -64,6 +80,10 @@ AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Aco
     throw std::invalid_argument("acoustic model: corner_loss_db must be >= 0 dB");
   }
   if (table_.cells.empty()) throw std::invalid_argument("acoustic model: the decode table is empty");
+  if (table_.profile == "nava") {
+    const nava_modem::ModemOptions modem;  // the thesis's tones, which the table was measured with
+    tones_ = {modem.mark_hz, modem.space_hz};
+  }
   for (const world_sim::NoiseSourceSpec& s : acoustics_.noise_sources) {
     if (s.robot.empty()) {
       if (!propagation_.map().IsFreeAt({s.x, s.y})) {
@@ -180,8 +200,8 @@ void AcousticModel::PreparePaths(const std::vector<Eigen::Vector2d>& listeners,
 
 double AcousticModel::EffectivePower(const Disturbance& d) const {
   if (d.kind != Interference::kWhine) return d.power;
-  const double reference = InBand(table_.whine_hz, table_.band_low_hz, table_.band_high_hz);
-  const double here = InBand(d.frequency, table_.band_low_hz, table_.band_high_hz);
+  const double reference = WhineHarm(table_.whine_hz, table_.band_low_hz, table_.band_high_hz, tones_);
+  const double here = WhineHarm(d.frequency, table_.band_low_hz, table_.band_high_hz, tones_);
   // Out of band a whine still leaks a little through the receiver's filters (-20 dB).
   return d.power * std::max(here, 0.01) / std::max(reference, 0.01);
 }
@@ -205,6 +225,16 @@ LinkPrediction AcousticModel::Predict(const SoundPath& path, const Eigen::Vector
   p.noise_db = Db(noise);
   p.snr_db = p.signal.total_db - p.noise_db;
   p.outcome = table_.Lookup(p.kind, p.snr_db, p.signal.drr_db, p.signal.rt60);
+  // Below the quietest SNR measured the table holds its last figures; the receiver does not:
+  // whatever it still made of a packet fades out over kFadeDb.
+  const double below = table_.snr_db.front() - p.snr_db;
+  if (below > 0.0) {
+    const double keep = std::max(0.0, 1.0 - below / kFadeDb);
+    p.outcome.packet *= keep;
+    p.outcome.zero_byte *= keep;
+    p.outcome.one_byte *= keep;
+    p.outcome.bad_crc *= keep;
+  }
   p.probability = p.outcome.packet;
   return p;
 }

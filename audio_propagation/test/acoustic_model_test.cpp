@@ -163,16 +163,39 @@ TEST(AcousticModel, OverAPacketANoiseSourceCountsForTheShareOfItThatItSounds) {
   EXPECT_EQ(model.NoiseDuring(listener, 5.5, 9.5, {}).size(), 1u);  // off all the while
 }
 
-TEST(AcousticModel, AWhineCountsByHowMuchOfItFallsInTheProfilesBand) {
+TEST(AcousticModel, AWhineCountsByItsHarmonicsInTheBandAndHowCloseTheyComeToNavasTones) {
   Strip strip;
-  const AcousticModel model(strip.model, Quiet(), LinearTable(), {});
-  Disturbance in{Interference::kWhine, 1.0, 3000.0};
-  Disturbance low{Interference::kWhine, 1.0, 200.0};  // harmonics at 400 and 600 Hz: all below
-  Disturbance half{Interference::kWhine, 1.0, 1200.0};  // only its 3600 Hz third harmonic hits
-  EXPECT_NEAR(model.EffectivePower(in), 1.0, 1e-12);
-  EXPECT_NEAR(model.EffectivePower(low), 0.01 / (1.0 / 1.3125), 1e-9);
-  EXPECT_GT(model.EffectivePower(half), model.EffectivePower(low));
-  EXPECT_LT(model.EffectivePower(half), model.EffectivePower(in));
+  const AcousticModel model(strip.model, Quiet(), LinearTable(), {});  // nava: tones 2300, 3700 Hz
+  // The table's whine, between the tones: its fundamental counts at the -10 dB floor.
+  const double between = 0.1 / 1.3125;
+  Disturbance table{Interference::kWhine, 1.0, 3000.0};
+  Disturbance low{Interference::kWhine, 1.0, 200.0};      // harmonics at 400 and 600 Hz: all below
+  Disturbance on_tone{Interference::kWhine, 1.0, 2300.0};  // fundamental on MARK, 4600 Hz out of band
+  Disturbance near{Interference::kWhine, 1.0, 1200.0};     // 2400 and 3600 Hz: 100 Hz from a tone
+  EXPECT_NEAR(model.EffectivePower(table), 1.0, 1e-12);
+  EXPECT_NEAR(model.EffectivePower(low), 0.01 / between, 1e-9);  // leaks at -20 dB
+  EXPECT_NEAR(model.EffectivePower(on_tone), (1.0 / 1.3125) / between, 1e-9);  // 10 dB worse
+  EXPECT_NEAR(model.EffectivePower(near), (0.3125 / 1.3125) / between, 1e-9);
+  EXPECT_GT(model.EffectivePower(near), model.EffectivePower(table));
+  EXPECT_NEAR(model.EffectivePower({Interference::kSpeech, 2.5, 0.0}), 2.5, 1e-12);  // others as they are
+}
+
+TEST(AcousticModel, BelowTheTablesQuietestSnrWhatTheReceiverStillDecodesFadesOut) {
+  DecodeTable table = LinearTable();
+  for (DecodeOutcome& o : table.cells) o = {0.6, 0.2, 0.1, 0.0};  // flat: the table cannot tell
+  Strip strip;
+  world_sim::Acoustics a = Quiet();
+  const AcousticModel model(strip.model, a, table, {});
+  const SoundPath path = strip.Path(2.0, 7.0);
+  auto at = [&](double snr_db) {
+    const double signal = model.Levels(path, {7.0, 2.5}).total_db;
+    return model.Predict(path, {7.0, 2.5}, {{Interference::kWhite, std::pow(10.0, (signal - snr_db) / 10.0), 0.0}});
+  };
+  EXPECT_NEAR(at(-10.0).probability, 0.6, 1e-9);  // the axis' lowest SNR
+  EXPECT_NEAR(at(-15.0).probability, 0.3, 1e-9);
+  EXPECT_NEAR(at(-15.0).outcome.zero_byte, 0.1, 1e-9);
+  EXPECT_NEAR(at(-20.0).probability, 0.0, 1e-9);
+  EXPECT_NEAR(at(-40.0).outcome.Nothing(), 1.0, 1e-9);
 }
 
 TEST(AcousticModel, NoiseSourcesMustStandInFreeSpaceOrRideOnATeamRobot) {

@@ -12,7 +12,8 @@
 // Channel: --channel threshold (the thesis's) or acoustic, with --profile nava|room (the robots'
 //   modem: packet length and decode table), --table FILE (default: the profile's shipped table)
 //   and --acoustics WORLD.yaml (a world file whose acoustics section the generated configurations
-//   get; with --worlds each world's own section is used unless --acoustics is given).
+//   get; with --worlds each world's own section is used unless --acoustics is given). With the
+//   acoustic model there is no hearing range unless --hearing is given: the model judges.
 // --quick: a small protocol for CI (3 configurations, 6 trials, 8 jobs, all three modes, on the
 //   project's office map unless --map is given).
 //
@@ -29,6 +30,7 @@
 #include <thread>
 
 #include "grid/input_error.h"
+#include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/decode_table.h"
 #include "grid/map_file.h"
 #include "nava_modem/modem_profile.h"
@@ -193,6 +195,13 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
 
   audio_propagation::PropagationOptions audio;
   audio.max_range = hearing;
+  if (trial.decode_table) {
+    // The acoustic model judges every path: no hearing range unless one is asked for, and paths
+    // down to 30 dB under the quietest world's ambient noise.
+    if (args.String("--hearing", "").empty()) audio.max_range = 0.0;
+    for (const world_sim::WorldConfig& c : setup.configs)
+      audio.threshold_db = std::min(audio.threshold_db, audio_propagation::AcousticThresholdDb(*c.acoustics));
+  }
   const audio_propagation::PropagationModel model(setup.map, audio);
   std::fprintf(stderr, "sounds_good_experiment: %d configurations x %zu modes x %d trials on %s\n",
                config_count, options.modes.size(), options.trials, setup.map_file.c_str());

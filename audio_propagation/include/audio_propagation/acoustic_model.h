@@ -13,7 +13,8 @@
 //                      through its own path: direct and reverberant), plus other packets in the
 //                      air, as the receiver's disturbance;
 // and looks the decode probability, and the noise classes of a failure, up in the profile's
-// decode table (decode_table.h) by SNR, DRR, RT60 and the loudest disturbance's kind.
+// decode table (decode_table.h) by SNR, DRR, RT60 and the loudest disturbance's kind (below the
+// table's lowest SNR, whatever it still decodes fades out over 10 dB).
 // No ROS. The scene renderer (scene_render.h) uses the same levels to make the waveforms the
 // model is validated against.
 #include <cstddef>
@@ -44,6 +45,11 @@ struct LinkLevels {
 // corners, in `room`.
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
                       const world_sim::RoomAcoustics& room);
+
+// The quietest direct level worth a path with the acoustic model (propagation threshold_db):
+// 30 dB under the ambient noise, so that the model, not the threshold, judges every link a
+// receiver could decode (the room profile still decodes some 25 dB under the noise).
+double AcousticThresholdDb(const world_sim::Acoustics& acoustics);
 
 // One disturbance at a listener: its kind and power (linear, 10^(dB / 10)).
 struct Disturbance {
@@ -106,7 +112,8 @@ class AcousticModel {
                          const std::vector<Disturbance>& disturbances) const;
 
   // The power a disturbance counts for with this profile: a whine counts by how much of its
-  // power falls in the profile's band, relative to the table's whine.
+  // power falls in the profile's band and, for nava, how close its harmonics come to the two
+  // tones, relative to the table's whine (which nava's table measures between its tones).
   double EffectivePower(const Disturbance& d) const;
 
   const world_sim::Acoustics& acoustics() const { return acoustics_; }
@@ -119,6 +126,8 @@ class AcousticModel {
   DecodeTable table_;
   std::vector<std::string> robot_names_;
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
+  std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band
+  static constexpr double kFadeDb = 10.0;  // below the table's lowest SNR, delivery fades out over this
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   std::optional<Eigen::Vector2d> SourcePosition(std::size_t k, const std::vector<Eigen::Vector2d>& robots) const;
