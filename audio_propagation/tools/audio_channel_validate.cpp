@@ -170,8 +170,11 @@ int main(int argc, char** argv) {
     }
   }
   options.speech = tools::SpeechFor(program, world.acoustics, options.sample_rate, options.seed);
-  // The simulated channel's own propagation model (default options) hears no further than this.
-  const double channel_hearing = PropagationModel(grid::OccupancyMap(1, 1, 1.0), PropagationOptions()).HearingDistance();
+  // The acoustic channel's propagation model (threshold 30 dB under the ambient noise, as the
+  // node sets it) computes no path longer than this.
+  PropagationOptions channel_paths;
+  channel_paths.threshold_db = std::min(channel_paths.source_level_db, AcousticThresholdDb(world.acoustics));
+  const double channel_hearing = PropagationModel(grid::OccupancyMap(1, 1, 1.0), channel_paths).HearingDistance();
   options.channel_hearing_distance = channel_hearing;
 
   std::printf("%s: %s, profile %s, table %s (%s), %d links of %d packets, seed %u\n", program.c_str(),
@@ -236,7 +239,7 @@ int main(int argc, char** argv) {
   std::printf("(noise gap: the rendered noise's level during a packet minus the model's unweighted sum of the "
               "disturbances, dB, mean; links without a path: %d)\n",
               unreachable);
-  std::printf("links beyond the simulated channel's hearing distance (%.1f m, ~threshold_db), which the channel "
+  std::printf("links beyond the acoustic channel's reach (%.1f m, ~threshold_db), which the channel "
               "drops (0 %%) and the model above judges: %d",
               channel_hearing, beyond.links);
   if (beyond.packets > 0) {
