@@ -540,7 +540,7 @@ int DoaTable(const multirobot_audio::tools::ToolArgs& args) {
 
 int main(int argc, char** argv) {
   const std::string usage = std::string(
-      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2] [--snr-db LIST]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
   const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa", "--quick"});
   if (!args.String("--table", "").empty()) {
