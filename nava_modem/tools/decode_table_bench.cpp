@@ -260,7 +260,7 @@ int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::s
   const int threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
   s.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   const std::string out = args.String("--out", "decode_table_" + t.profile + ".yaml");
-  const std::string dir = TempDir(args, args.String("--dir", ""));
+  const std::string dir_arg = args.String("--dir", "");
   const std::string snr_list = args.String("--snr-db", "");
   args.CheckAllUsed();
   const std::filesystem::path folder = std::filesystem::path(out).parent_path();
@@ -294,7 +294,8 @@ int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::s
     t.whine_hz = 2500.0;
   }
   t.Resize();
-  s.speech = Speech(dir, s.modem.sample_rate, s.seed);
+  // Made only now, so that bad arguments leave no folder behind.
+  s.speech = Speech(TempDir(args, dir_arg), s.modem.sample_rate, s.seed);
 
   const std::size_t per_kind = t.rt60.size() * t.drr_db.size() * t.snr_db.size();
   const std::size_t cells = t.cells.size();
