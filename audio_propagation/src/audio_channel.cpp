@@ -12,6 +12,8 @@ namespace {
 
 // Acoustic model: an arrival this far below the noise (dB) is not tracked.
 constexpr double kNegligibleSnrDb = -30.0;
+// Acoustic model: how often (s) the noise at each robot is worked out again.
+constexpr double kNoiseUpdateSeconds = 0.05;
 
 }  // namespace
 
@@ -46,6 +48,7 @@ AudioChannel::AudioChannel(const PropagationModel& model,
   arrivals_.resize(n);
   sending_.resize(n);
   noise_powers_.assign(n, 0.0);
+  noise_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(kNoiseUpdateSeconds / (16.0 * tick_)));
 }
 
 std::vector<Eigen::Vector2d> AudioChannel::Positions() const {
@@ -217,7 +220,9 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
   while (ticks_ < target) {
     // Long silences (robots that say something every few seconds) are skipped in one go; the
     // check runs once a bit, so at most a bit of silence is ticked through.
-    if (acoustic_ && ticks_ % 16 == 0) UpdateNoise();  // noise sources change at most each bit
+    // The noise changes as robots move a cell or a source turns on or off: every 50 ms is often
+    // enough, and the check for quiet below runs on the same bit boundaries.
+    if (acoustic_ && ticks_ % noise_ticks_ == 0) UpdateNoise();
     if (ticks_ % 16 == 0 && Quiet()) {
       for (nava_modem::CsmaMac& mac : macs_) mac.SkipIdle(static_cast<std::uint64_t>(target - ticks_));
       ticks_ = target;

@@ -129,6 +129,7 @@ class AudioChannel {
   const PropagationModel& model_;
   const AcousticModel* acoustic_;
   std::vector<double> noise_powers_;  // acoustic model: per robot, linear
+  std::int64_t noise_ticks_ = 16;     // acoustic model: ticks between noise updates (whole bits)
   std::vector<world_sim::Microphone> microphones_;
   ChannelOptions options_;
   std::vector<nava_modem::CsmaMac> macs_;
