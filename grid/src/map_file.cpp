@@ -22,6 +22,10 @@ struct MapFileFields {
 };
 
 MapFileFields ParseFields(const std::string& file) {
+  // The thesis's map is not shipped: say how to get it rather than only that it is missing.
+  if (file.find("maps/thesis/") != std::string::npos && !std::filesystem::exists(file)) {
+    throw InputError(file, "", "map file not found; the thesis's map is not shipped: run scripts/get_thesis_map.sh");
+  }
   const YamlFields root = YamlFields::Load(file, "map file");
   root.ExpectOnlyKeys(
       {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"});

@@ -95,6 +95,10 @@ TEST_F(MapFileTest, LoadsColourImageByChannelAverage) {
 
 TEST_F(MapFileTest, MissingYaml) { ExpectError((dir_ / "nope.yaml").string(), "not found"); }
 
+TEST_F(MapFileTest, AMissingThesisMapSaysHowToGetIt) {
+  ExpectError((dir_ / "maps" / "thesis" / "hospital_section.yaml").string(), "run scripts/get_thesis_map.sh");
+}
+
 TEST_F(MapFileTest, MalformedYaml) {
   ExpectError(Write("bad.yaml", "image: [unclosed\nresolution: 0.1\n"), "malformed YAML");
 }
