@@ -24,18 +24,29 @@ grid::Pose2D FromPose(const geometry_msgs::Pose& pose) {
   return {pose.position.x, pose.position.y, FromQuaternionYaw(pose.orientation)};
 }
 
-nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
-                                        const ros::Time& stamp) {
+namespace {
+
+// An empty grid: its header and geometry (origin at (x, y), turned by yaw).
+nav_msgs::OccupancyGrid EmptyGrid(const std::string& frame, const ros::Time& stamp, double resolution, int width,
+                                  int height, const grid::Pose2D& origin) {
   nav_msgs::OccupancyGrid msg;
   msg.header.frame_id = frame;
   msg.header.stamp = stamp;
   msg.info.map_load_time = stamp;
-  msg.info.resolution = static_cast<float>(map.resolution());
-  msg.info.width = map.width();
-  msg.info.height = map.height();
-  msg.info.origin.position.x = map.origin().x;
-  msg.info.origin.position.y = map.origin().y;
-  msg.info.origin.orientation = ToYawQuaternion(map.origin().yaw);
+  msg.info.resolution = static_cast<float>(resolution);
+  msg.info.width = static_cast<std::uint32_t>(width);
+  msg.info.height = static_cast<std::uint32_t>(height);
+  msg.info.origin.position.x = origin.x;
+  msg.info.origin.position.y = origin.y;
+  msg.info.origin.orientation = ToYawQuaternion(origin.yaw);
+  return msg;
+}
+
+}  // namespace
+
+nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std::string& frame,
+                                        const ros::Time& stamp) {
+  nav_msgs::OccupancyGrid msg = EmptyGrid(frame, stamp, map.resolution(), map.width(), map.height(), map.origin());
   msg.data.reserve(map.cells().size());
   for (grid::Cell c : map.cells()) {
     msg.data.push_back(c == grid::Cell::kFree ? 0 : (c == grid::Cell::kOccupied ? 100 : -1));
@@ -45,16 +56,8 @@ nav_msgs::OccupancyGrid ToOccupancyGrid(const grid::OccupancyMap& map, const std
 
 nav_msgs::OccupancyGrid ToOccupancyGrid(const audio_propagation::DeliveryMap& map, const std::string& frame,
                                         const ros::Time& stamp) {
-  nav_msgs::OccupancyGrid msg;
-  msg.header.frame_id = frame;
-  msg.header.stamp = stamp;
-  msg.info.map_load_time = stamp;
-  msg.info.resolution = static_cast<float>(map.resolution);
-  msg.info.width = static_cast<std::uint32_t>(map.width);
-  msg.info.height = static_cast<std::uint32_t>(map.height);
-  msg.info.origin.position.x = map.origin.x();
-  msg.info.origin.position.y = map.origin.y();
-  msg.info.origin.orientation.w = 1.0;
+  nav_msgs::OccupancyGrid msg =
+      EmptyGrid(frame, stamp, map.resolution, map.width, map.height, {map.origin.x(), map.origin.y(), 0.0});
   msg.data.reserve(map.probability.size());
   for (double p : map.probability) {
     msg.data.push_back(std::isfinite(p) ? static_cast<std::int8_t>(std::lround(100.0 * std::clamp(p, 0.0, 1.0))) : -1);

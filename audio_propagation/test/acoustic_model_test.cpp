@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "flat_table.h"
+#include "run_channel.h"
+
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/delivery_map.h"
 #include "nava_modem/modem_profile.h"
@@ -18,12 +21,8 @@ using world_sim::Microphone;
 // 1 at +10 dB, whatever the kind, halved at DRR -20 dB; of the failures a quarter are
 // zero_byte and a quarter one_byte, the rest unheard.
 DecodeTable LinearTable() {
-  DecodeTable t;
-  t.profile = "nava";
+  DecodeTable t = test::FlatTable("nava");
   t.packets = 100;
-  t.whine_hz = 3000.0;
-  t.band_low_hz = 2150.0;
-  t.band_high_hz = 3850.0;
   t.snr_db = {-10.0, 10.0};
   t.drr_db = {-20.0, 0.0};
   t.rt60 = {0.5};
@@ -235,16 +234,7 @@ struct AcousticTeam {
     for (std::size_t k = 0; k < xs.size(); ++k) channel->SetPose(k, {xs[k], 2.5, 0.0});
     Run(nava_modem::MacOptions().calibration_time);  // every robot calibrates on the room's noise
   }
-  AudioChannel::Events Run(double seconds) {
-    AudioChannel::Events all;
-    const double end = channel->time() + seconds;
-    while (channel->time() < end - 1e-9) {
-      auto e = channel->AdvanceTo(std::min(end, channel->time() + 0.05));
-      for (auto& s : e.started) all.started.push_back(std::move(s));
-      for (auto& r : e.received) all.received.push_back(std::move(r));
-    }
-    return all;
-  }
+  AudioChannel::Events Run(double seconds) { return test::RunFor(*channel, seconds); }
 };
 
 TEST(AcousticChannel, PacketsAreDecodedAndFailuresReportedAtTheTablesRates) {

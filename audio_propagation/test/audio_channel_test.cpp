@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "run_channel.h"
+
 #include "nava_modem/modem_profile.h"
 
 namespace audio_propagation {
@@ -30,16 +32,7 @@ struct Team {
   }
 
   // Runs for `seconds` and gathers everything.
-  AudioChannel::Events Run(double seconds) {
-    AudioChannel::Events all;
-    const double end = channel->time() + seconds;
-    while (channel->time() < end - 1e-9) {
-      auto e = channel->AdvanceTo(std::min(end, channel->time() + 0.05));
-      for (auto& s : e.started) all.started.push_back(std::move(s));
-      for (auto& r : e.received) all.received.push_back(std::move(r));
-    }
-    return all;
-  }
+  AudioChannel::Events Run(double seconds) { return test::RunFor(*channel, seconds); }
 };
 
 TEST(AudioChannel, APacketArrivesAfterItsDurationAndTravelTimeWithItsLevel) {
