@@ -1,6 +1,7 @@
 #include "tool_args/record.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -14,8 +15,10 @@ void RecordWriter::Word(const char* word) {
 }
 
 void RecordWriter::PutDouble(double value) {
+  // The shortest text that reads back to the same double (36.6, not 36.600000000000001).
   char word[40];
-  std::snprintf(word, sizeof word, "%.17g", value);
+  const auto end = std::to_chars(word, word + sizeof word - 1, value).ptr;
+  *end = '\0';
   Word(word);
 }
 

@@ -205,6 +205,10 @@ const std::vector<std::string>& MergedShards::Records(std::size_t trials) const 
   return records_;
 }
 
+std::string MergedShards::Where(std::size_t trial) const {
+  return Path(dirs_[trial % dirs_.size()], kShardRecords) + ": trial " + std::to_string(trial);
+}
+
 void MergedShards::CopyFiles(const std::string& out) const {
   for (const std::string& dir : dirs_) {
     if (fs::exists(out) && fs::equivalent(dir, out))

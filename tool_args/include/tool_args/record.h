@@ -1,7 +1,7 @@
 #pragma once
 // One trial's results as one line of words that reads back to the very same values: whole
-// numbers as they are, doubles with 17 significant digits (enough for every double to come back
-// bit for bit, infinities and NaN included). A batch tool makes its report from records read
+// numbers as they are, doubles in the shortest text that reads back bit for bit (infinities and
+// NaN included). A batch tool makes its report from records read
 // back, in a whole run as in a merge of shards, so the two reports cannot differ.
 #include <cstdint>
 #include <limits>
@@ -65,12 +65,15 @@ class RecordReader {
   }
   // A whole number from lo to hi (an enum's values, say).
   long long GetInRange(long long lo, long long hi) { return GetSigned(lo, hi); }
+  // A count of things that follow, each of `words` words: no more than the words left, so that
+  // a damaged count fails here and not in a huge allocation.
+  std::size_t GetCount(std::size_t words = 1) {
+    const std::size_t left = next_ < words_.size() ? words_.size() - next_ - 1 : 0;
+    return GetUnsigned(left / words);
+  }
   template <class T>
   std::vector<T> GetList() {
-    // No list can be longer than the words left: a damaged count fails here, not in a huge
-    // allocation.
-    const std::size_t left = next_ < words_.size() ? words_.size() - next_ - 1 : 0;
-    std::vector<T> values(GetUnsigned(left));
+    std::vector<T> values(GetCount());
     for (T& v : values) v = Get<T>();
     return values;
   }

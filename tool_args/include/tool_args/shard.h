@@ -47,6 +47,8 @@ class MergedShards {
   // Every trial's record in the whole run's order. `trials` is the count the tool makes of the
   // options: a different count (shards of another version of the tool) throws.
   const std::vector<std::string>& Records(std::size_t trials) const;
+  // Where trial i's record came from, for errors in it: "DIR/shard_trials.txt: trial i".
+  std::string Where(std::size_t trial) const;
   // Copies the files the shards wrote besides their manifests and records (configurations,
   // worlds) into `out`, refusing two different files of one name and an `out` that is a shard.
   void CopyFiles(const std::string& out) const;
