@@ -176,7 +176,8 @@ MergedShards::MergedShards(const std::vector<std::string>& dirs, const std::stri
       throw std::runtime_error("--merge: shard " + Shard{k + 1, first.shard.count}.Name() +
                                " missing: expected one directory for each shard 1/" +
                                std::to_string(first.shard.count) + " to " + std::to_string(first.shard.count) +
-                               "/" + std::to_string(first.shard.count) + ", got " + std::to_string(dirs.size()));
+                               "/" + std::to_string(first.shard.count) + ", got " + std::to_string(dirs.size()) +
+                               (dirs.size() == 1 ? " directory" : " directories"));
     }
   }
   options_ = first.options;

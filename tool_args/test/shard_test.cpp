@@ -104,7 +104,7 @@ TEST_F(ShardFilesTest, RefusesShardsThatAreNotOneWholeRun) {
   WriteShard("e", "2/2", {"--seed", "3", "--extra", "x"});
   WriteShard("f", "2/2", {"--seed", "3"}, 6);
   EXPECT_EQ(MergeError({"a", "b"}), "");
-  EXPECT_EQ(MergeError({"a"}), "--merge: shard 2/2 missing: expected one directory for each shard 1/2 to 2/2, got 1");
+  EXPECT_EQ(MergeError({"a"}), "--merge: shard 2/2 missing: expected one directory for each shard 1/2 to 2/2, got 1 directory");
   EXPECT_EQ(MergeError({"a", "b", "b"}), Dir("b") + ": shard 2/2 again (" + Dir("b") + " is shard 2/2 too)");
   EXPECT_EQ(MergeError({"a", "c"}), Dir("c") + ": run with --seed 4, but " + Dir("a") +
                                         " with --seed 3: expected shards of one run (the same options but --shard)");
