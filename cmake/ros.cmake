@@ -143,6 +143,7 @@ if(MULTIROBOT_AUDIO_TESTS)
                            DEPENDENCIES local_mutex_node charging_demo_node)
   roslaunch_add_file_check(launch/charging_robot.launch robot_id:=11 chargers:=100
                            DEPENDENCIES nava_modem_node local_mutex_node charging_demo_node)
+  roslaunch_add_file_check(launch/wanderer_robot.launch DEPENDENCIES nava_modem_node wanderer_node)
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
   endforeach()
