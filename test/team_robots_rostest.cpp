@@ -1,7 +1,8 @@
 // launch/team_robots.launch brought up on this machine alone (every host localhost), each robot's
 // nava_modem on one PulseAudio "air" (test/team_robots.test, run by test/nava_air.sh): every
-// robot's link and controller run in its own namespace with its robot_id as seed, and with
-// ~announcements the wanderers' announcements cross the air from robot to robot.
+// robot's link and controller run in its own namespace with its robot_id as seed, no topic
+// carries messages from one robot's nodes to another's, and with ~announcements the wanderers'
+// announcements cross the air from robot to robot.
 //
 // Parameters: ~ids (the robots' robot_ids, robot_k's first), ~controller (the task's node),
 // ~announcements (wait for the wanderers' packets).
@@ -86,6 +87,38 @@ TEST(TeamRobots, EachRobotsLinkAndControllerRunInItsNamespace) {
       EXPECT_EQ(robot_id, ids[k]) << Robot(k) << "/" << controller;
     }
   }
+}
+
+// In the topic graph, robot_k's nodes publish to and subscribe from robot_k's nodes only: on
+// real robots, where each robot's nodes share its machine, their messages need no network but
+// /rosout's (log lines to the master's machine) and what others subscribe to. (/diagnostics has
+// every robot's link as publisher and, here, no subscriber.)
+TEST(TeamRobots, NoMessageGoesFromOneRobotToAnother) {
+  XmlRpc::XmlRpcValue args, result, state;
+  args[0] = ros::this_node::getName();
+  ASSERT_TRUE(ros::master::execute("getSystemState", args, result, state, true));
+  // state: [publishers, subscribers, services], each a list of [topic, [node, ...]]
+  std::map<std::string, std::set<std::string>> ends[2];  // [publishers, subscribers]: topic -> nodes
+  for (int side = 0; side < 2; ++side) {
+    for (int t = 0; t < state[side].size(); ++t) {
+      for (int n = 0; n < state[side][t][1].size(); ++n) {
+        ends[side][static_cast<std::string>(state[side][t][0])].insert(static_cast<std::string>(state[side][t][1][n]));
+      }
+    }
+  }
+  // "/robot_1" for "/robot_1/nava_modem"; a node outside the robots stands for itself.
+  auto owner = [](const std::string& node) { return node.rfind("/robot_", 0) == 0 ? node.substr(0, node.find('/', 1)) : node; };
+  int linked = 0;
+  for (const auto& [topic, subscribers] : ends[1]) {
+    if (topic == "/rosout") continue;
+    for (const std::string& sub : subscribers) {
+      for (const std::string& pub : ends[0][topic]) {
+        EXPECT_EQ(owner(pub), owner(sub)) << topic << ": " << pub << " publishes to " << sub;
+        linked += owner(pub) == owner(sub);
+      }
+    }
+  }
+  EXPECT_GE(linked, static_cast<int>(ids.size())) << "each robot's controller talks to its link";
 }
 
 // The wanderers announce 'W' and their seed's low three bytes: robot_k's announcement is
