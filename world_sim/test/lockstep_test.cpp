@@ -1,0 +1,161 @@
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "world_sim/lockstep_coordinator.h"
+#include "world_sim/lockstep_inbox.h"
+
+namespace world_sim {
+namespace {
+
+LockstepCoordinator TwoRobots() {
+  LockstepCoordinator c(LockstepOptions{"/world_sim", {"/robot_0/ctl", "/audio"}, 2.0});
+  c.SetOwnStreams({"/robot_0/cmd_vel"}, {"/robot_0/scan"});
+  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan", "/robot_0/rx"}, {1, 1}, {"/robot_0/cmd_vel", "/robot_0/tx"}, true});
+  c.Hello(ParticipantHello{"/audio", {"/robot_0/tx"}, {1}, {"/robot_0/rx"}, true});
+  return c;
+}
+
+TEST(LockstepCoordinator, RefusesANegativeTimeoutAndANameGivenTwice) {
+  EXPECT_THROW(LockstepCoordinator(LockstepOptions{"/w", {"/a"}, -1.0}), std::invalid_argument);
+  EXPECT_THROW(LockstepCoordinator(LockstepOptions{"/w", {"/a", "/a"}, 1.0}), std::invalid_argument);
+}
+
+TEST(LockstepCoordinator, IsReadyOnlyWhenEveryParticipantHearsEveryPublisher) {
+  LockstepCoordinator c(LockstepOptions{"/world_sim", {"/robot_0/ctl", "/audio"}, 2.0});
+  c.SetOwnStreams({"/robot_0/cmd_vel"}, {"/robot_0/scan"});
+  std::string why;
+  EXPECT_FALSE(c.Ready({}, &why));
+  EXPECT_NE(why.find("/audio has not said hello"), std::string::npos) << why;
+  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan"}, {0}, {"/robot_0/cmd_vel"}, true});
+  c.Hello(ParticipantHello{"/audio", {}, {}, {}, true});
+  EXPECT_FALSE(c.Ready({{"/robot_0/cmd_vel", 1}}, &why));
+  EXPECT_NE(why.find("hears 0 of the 1 publishers of /robot_0/scan"), std::string::npos) << why;
+  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan"}, {1}, {"/robot_0/cmd_vel"}, true});
+  EXPECT_FALSE(c.Ready({}, &why));
+  EXPECT_NE(why.find("the world hears 0 of the 1 publishers of /robot_0/cmd_vel"), std::string::npos) << why;
+  EXPECT_TRUE(c.Ready({{"/robot_0/cmd_vel", 1}}, &why)) << why;
+  EXPECT_FALSE(c.Hello(ParticipantHello{"/stranger", {}, {}, {}, true}));
+}
+
+TEST(LockstepCoordinator, DropsWhoeverIsNotReadyAtTheStart) {
+  LockstepCoordinator c(LockstepOptions{"/world_sim", {"/a", "/b"}, 2.0});
+  c.Hello(ParticipantHello{"/a", {}, {}, {}, true});
+  EXPECT_EQ(c.DropUnready({}), std::vector<std::string>{"/b"});
+  EXPECT_TRUE(c.Ready({}, nullptr));
+  EXPECT_EQ(c.dropped(), std::vector<std::string>{"/b"});
+}
+
+TEST(LockstepCoordinator, OrdersTheStreamsThatGrewAndWaitsOnlyForWhoTakesPart) {
+  LockstepCoordinator c = TwoRobots();
+  // The first step: everyone (no timer known yet).
+  auto orders = c.BeginStep(1, 1.02, 0.0);
+  ASSERT_EQ(orders.size(), 2u);
+  c.Ack("/robot_0/ctl", 1, {}, 1.1, 0.001);
+  c.Ack("/audio", 1, {}, 1.03, 0.002);
+  EXPECT_TRUE(c.Pending().empty());
+  c.EndStep(0.002);
+  // Step 2 at 1.04: the world published a scan; audio's timer is due, the controller's is not,
+  // but the scan makes it take part.
+  c.OwnPublished("/robot_0/scan", 1);
+  orders = c.BeginStep(2, 1.04, 0.01);
+  ASSERT_EQ(orders.size(), 2u);
+  EXPECT_EQ(orders[0].node, "/audio");
+  EXPECT_TRUE(orders[0].totals.empty());
+  EXPECT_EQ(orders[1].node, "/robot_0/ctl");
+  ASSERT_EQ(orders[1].totals.size(), 1u);
+  EXPECT_EQ(orders[1].totals[0].stream, (StreamId{"/robot_0/scan", "/world_sim"}));
+  EXPECT_EQ(orders[1].totals[0].total, 1u);
+  EXPECT_EQ(c.Pending(), (std::vector<std::string>{"/audio", "/robot_0/ctl"}));
+  // The controller sent a command and a packet.
+  c.Ack("/robot_0/ctl", 2, {{{"/robot_0/cmd_vel", "/robot_0/ctl"}, 1}, {{"/robot_0/tx", "/robot_0/ctl"}, 1}}, 1.1, 0.02);
+  EXPECT_EQ(c.Pending(), std::vector<std::string>{"/audio"});
+  EXPECT_FALSE(c.OwnCaughtUp());  // the world has not had the command yet
+  c.OwnReceived({"/robot_0/cmd_vel", "/robot_0/ctl"}, 1);
+  EXPECT_TRUE(c.OwnCaughtUp());
+  c.Ack("/audio", 2, {}, 1.05, 0.03);
+  c.EndStep(0.03);
+  // Step 3 at 1.06: only audio (timer due and the packet); the controller sits it out.
+  orders = c.BeginStep(3, 1.06, 0.04);
+  ASSERT_EQ(orders.size(), 1u);
+  EXPECT_EQ(orders[0].node, "/audio");
+  ASSERT_EQ(orders[0].totals.size(), 1u);
+  EXPECT_EQ(orders[0].totals[0].stream.topic, "/robot_0/tx");
+  double slowest = 0.0;
+  EXPECT_EQ(c.Slowest(&slowest), "/audio");
+  EXPECT_NEAR(slowest, 0.002 + 0.02, 1e-12);
+  EXPECT_NEAR(c.waiting_wall(), 0.002 + 0.02, 1e-12);
+}
+
+TEST(LockstepCoordinator, DropsAParticipantThatKeepsTheStepWaitingPastTheTimeout) {
+  LockstepCoordinator c = TwoRobots();
+  c.BeginStep(1, 1.02, 10.0);
+  c.Ack("/audio", 1, {}, 1.03, 10.1);
+  EXPECT_TRUE(c.DropLate(11.9).empty());
+  EXPECT_EQ(c.DropLate(12.1), std::vector<std::string>{"/robot_0/ctl"});
+  EXPECT_TRUE(c.Pending().empty());
+  // Dropped for good: no more orders, its late answer ignored.
+  c.Ack("/robot_0/ctl", 1, {{{"/robot_0/tx", "/robot_0/ctl"}, 5}}, 1.1, 12.2);
+  const auto orders = c.BeginStep(2, 1.04, 12.3);
+  ASSERT_EQ(orders.size(), 1u);
+  EXPECT_TRUE(orders[0].totals.empty());
+  EXPECT_EQ(c.CountedPublishers(), (std::vector<std::string>{"/world_sim", "/audio"}));
+}
+
+TEST(LockstepInbox, HoldsCountedMessagesUntilAnOrderCoversThemThenHandsThemOnInOneOrder) {
+  LockstepInbox inbox;
+  std::vector<std::string> log;
+  const StreamId scan{"/r/scan", "/world"}, rx{"/r/rx", "/audio"}, other{"/r/rx", "/rostopic"};
+  inbox.Arrive(rx, [&] { log.push_back("rx1"); });
+  inbox.Arrive(scan, [&] { log.push_back("scan1"); });
+  inbox.Arrive(other, [&] { log.push_back("other"); });
+  inbox.Arrive(rx, [&] { log.push_back("rx2"); });
+  EXPECT_TRUE(log.empty());
+  EXPECT_FALSE(inbox.Ready());
+  // Only rx1 belongs to this step; the uncounted publisher's message goes on at once.
+  inbox.Order(StepOrder{"/r/ctl", 1, 1.0, {{rx, 1}, {scan, 1}}}, {"/world", "/audio"});
+  EXPECT_EQ(log, std::vector<std::string>{"other"});
+  ASSERT_TRUE(inbox.Ready());
+  inbox.Run();
+  EXPECT_EQ(log, (std::vector<std::string>{"other", "rx1", "scan1"}));
+  // The next order waits for a second scan that has not come yet.
+  inbox.Order(StepOrder{"/r/ctl", 2, 1.02, {{rx, 2}, {scan, 2}}}, {});
+  EXPECT_FALSE(inbox.Ready());
+  inbox.Arrive(scan, [&] { log.push_back("scan2"); });
+  ASSERT_TRUE(inbox.Ready());
+  inbox.Run();
+  EXPECT_EQ(log, (std::vector<std::string>{"other", "rx1", "scan1", "rx2", "scan2"}));
+  EXPECT_EQ(inbox.held(), 0u);
+}
+
+TEST(LockstepInbox, RunsTimersAtTheStepsTimeOnceEachEarliestFirst) {
+  LockstepInbox inbox;
+  std::vector<std::string> log;
+  inbox.AddTimer(0.1, 1.0, [&](double expected, double now) { log.push_back("slow " + std::to_string(expected) + " " + std::to_string(now)); });
+  inbox.AddTimer(0.01, 0.0, [&](double, double now) { log.push_back("fast " + std::to_string(now)); });
+  EXPECT_EQ(inbox.NextDue(), 0.0);  // the fast timer starts with the first step
+  inbox.Order(StepOrder{"/n", 1, 1.02, {}}, {"/world"});
+  inbox.Run();
+  EXPECT_TRUE(log.empty());  // slow due at 1.1, fast at 1.03
+  EXPECT_NEAR(inbox.NextDue(), 1.03, 1e-9);
+  inbox.Order(StepOrder{"/n", 2, 1.1, {}}, {});
+  inbox.Run();
+  ASSERT_EQ(log.size(), 2u);
+  EXPECT_EQ(log[0], "fast 1.100000");  // due at 1.03, fires once for the jump
+  EXPECT_EQ(log[1], "slow 1.100000 1.100000");
+  EXPECT_NEAR(inbox.NextDue(), 1.11, 1e-9);
+}
+
+TEST(LockstepInbox, BoundsWhatItHoldsAndCountsTheOverflow) {
+  LockstepInbox inbox(2);
+  int handed = 0;
+  const StreamId s{"/t", "/p"};
+  for (int i = 0; i < 5; ++i) inbox.Arrive(s, [&] { ++handed; });
+  EXPECT_EQ(handed, 3);
+  EXPECT_EQ(inbox.overflow(), 3u);
+  EXPECT_EQ(inbox.held(), 2u);
+}
+
+}  // namespace
+}  // namespace world_sim
