@@ -9,6 +9,9 @@ add_message_files(DIRECTORY msg FILES
   Job.msg
   LockState.msg
   ChargingState.msg
+  LockstepHello.msg
+  LockstepOrder.msg
+  LockstepAck.msg
 )
 add_action_files(DIRECTORY action FILES AcquireLock.action)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs actionlib_msgs)
@@ -20,6 +23,7 @@ catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sens
 add_library(multirobot_audio_ros STATIC
   src/conversions.cpp
   src/params.cpp
+  src/lockstep_participant.cpp
   src/world_sim_ros.cpp
   src/wanderer_ros.cpp
   src/audio_propagation_ros.cpp
@@ -76,6 +80,10 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp test/rostest_main.cpp)
   target_link_libraries(world_sim_rostest multirobot_audio_ros)
   add_dependencies(world_sim_rostest world_sim_node)
+
+  add_rostest_gtest(lockstep_rostest test/lockstep.test test/lockstep_rostest.cpp)
+  target_link_libraries(lockstep_rostest multirobot_audio_ros)
+  add_dependencies(lockstep_rostest world_sim_node wanderer_node)
 
   add_rostest_gtest(record_rostest test/record.test test/record_rostest.cpp)
   target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})

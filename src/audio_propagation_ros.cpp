@@ -109,7 +109,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
 
 AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh,
                                          const AudioPropagationOptions& options)
-    : nh_(nh), pnh_(pnh), options_(options), tf_listener_(tf_buffer_) {
+    : nh_(nh), pnh_(pnh), lockstep_(nh), options_(options), tf_listener_(tf_buffer_) {
   grid::OccupancyMap map;
   std::vector<world_sim::RobotSpec> specs;
   std::optional<world_sim::Acoustics> acoustics;
@@ -193,16 +193,24 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
   have_pose_.assign(n, false);
   for (std::size_t k = 0; k < n; ++k) {
     ros::NodeHandle rnh(nh_, options_.robots[k]);
-    tx_subs_.push_back(rnh.subscribe<multirobot_audio::AudioPacket>(
-        "audio/tx", 10, [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { OnTx(k, m); }));
-    rx_pubs_.push_back(rnh.advertise<multirobot_audio::AudioReception>("audio/rx", 50));
-    carrier_pubs_.push_back(rnh.advertise<multirobot_audio::CarrierSense>("audio/carrier", 10));
+    tx_subs_.push_back(lockstep_.Subscribe<multirobot_audio::AudioPacket>(
+        rnh, "audio/tx", 10, [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { OnTx(k, m); }));
+    rx_pubs_.push_back(lockstep_.Advertise<multirobot_audio::AudioReception>(rnh, "audio/rx", 50));
+    carrier_pubs_.push_back(lockstep_.Advertise<multirobot_audio::CarrierSense>(rnh, "audio/carrier", 10));
+    truth_.emplace_back();
+    if (lockstep_.enabled()) {
+      truth_subs_.push_back(lockstep_.Subscribe<nav_msgs::Odometry>(
+          rnh, "ground_truth", 10, [this, k](const nav_msgs::Odometry::ConstPtr& m) {
+            truth_[k] = std::make_unique<grid::Pose2D>(grid::Pose2D{
+                m->pose.pose.position.x, m->pose.pose.position.y, FromQuaternionYaw(m->pose.pose.orientation)});
+          }));
+    }
     channel_->SetPose(k, {kUnknown, kUnknown, 0.0});
   }
   paths_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("paths", 10);
   points_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("diffraction_points", 1, true);
   PublishDiffractionPoints();
-  timer_ = nh_.createTimer(ros::Duration(1.0 / options_.update_rate), &AudioPropagationRos::OnTimer, this);
+  timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.update_rate), &AudioPropagationRos::OnTimer, this);
 }
 
 AudioPropagationRos::~AudioPropagationRos() {
@@ -238,9 +246,14 @@ void AudioPropagationRos::UpdatePoses() {
   for (std::size_t k = 0; k < options_.robots.size(); ++k) {
     const std::string frame = options_.robots[k] + "/base_link";
     try {
-      const auto t = tf_buffer_.lookupTransform("map", frame, ros::Time(0));
-      const grid::Pose2D pose{t.transform.translation.x, t.transform.translation.y,
-                              FromQuaternionYaw(t.transform.rotation)};
+      grid::Pose2D pose;
+      if (lockstep_.enabled()) {
+        if (!truth_[k]) throw tf2::LookupException("no " + options_.robots[k] + "/ground_truth yet");
+        pose = *truth_[k];
+      } else {
+        const auto t = tf_buffer_.lookupTransform("map", frame, ros::Time(0));
+        pose = grid::Pose2D{t.transform.translation.x, t.transform.translation.y, FromQuaternionYaw(t.transform.rotation)};
+      }
       if (!model_->map().IsFreeAt(pose.position())) {
         ROS_WARN_THROTTLE(5.0, "audio_propagation: %s is inside a wall or off the map at (%.2f, %.2f): it neither hears nor is heard",
                           options_.robots[k].c_str(), pose.x, pose.y);

@@ -9,9 +9,12 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <nav_msgs/Odometry.h>
+
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/propagation_model.h"
+#include "lockstep_participant.h"
 
 namespace multirobot_audio {
 
@@ -60,6 +63,7 @@ class AudioPropagationRos {
   void PublishDeliveryMap(const ros::Time& now);
 
   ros::NodeHandle nh_, pnh_;
+  LockstepParticipant lockstep_;  // before what it hands messages and timers to
   AudioPropagationOptions options_;
   std::vector<world_sim::Microphone> microphones_;
   std::unique_ptr<audio_propagation::PropagationModel> model_;
@@ -67,8 +71,11 @@ class AudioPropagationRos {
   std::unique_ptr<audio_propagation::AudioChannel> channel_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
-  std::vector<ros::Subscriber> tx_subs_;
-  std::vector<ros::Publisher> rx_pubs_, carrier_pubs_;
+  std::vector<ros::Subscriber> tx_subs_, truth_subs_;
+  std::vector<CountedPublisher> rx_pubs_, carrier_pubs_;
+  // In lockstep the poses come from <robot>/ground_truth (the same poses world_sim sends on /tf),
+  // counted like every other message, rather than from the TF listener's own thread.
+  std::vector<std::unique_ptr<grid::Pose2D>> truth_;
   std::vector<bool> last_carrier_, have_pose_;
   ros::Publisher paths_pub_, points_pub_, delivery_pub_;
   std::size_t delivery_robot_ = 0;

@@ -52,6 +52,7 @@ LocalMutexNodeOptions ReadLocalMutexNodeOptions(const ros::NodeHandle& pnh) {
 
 LocalMutexRos::LocalMutexRos(ros::NodeHandle nh, const LocalMutexNodeOptions& options)
     : nh_(nh),
+      lockstep_(nh),
       options_(options),
       lock_(options.mutex, [this](const std::vector<std::uint8_t>& packet) {
         multirobot_audio::AudioPacket msg;
@@ -62,16 +63,16 @@ LocalMutexRos::LocalMutexRos(ros::NodeHandle nh, const LocalMutexNodeOptions& op
       acquire_server_(nh, "local_mutex/acquire", false) {
   state_since_ = Now();
   lock_.SetObserver([this](const local_mutex::MutexEvent& e) { OnEvent(e); });
-  tx_pub_ = nh_.advertise<multirobot_audio::AudioPacket>("audio/tx", 10);
-  state_pub_ = nh_.advertise<multirobot_audio::LockState>("local_mutex/state", 10, true);
-  rx_sub_ = nh_.subscribe("audio/rx", 50, &LocalMutexRos::OnRx, this);
+  tx_pub_ = lockstep_.Advertise<multirobot_audio::AudioPacket>(nh_, "audio/tx", 10);
+  state_pub_ = lockstep_.Advertise<multirobot_audio::LockState>(nh_, "local_mutex/state", 10, true);
+  rx_sub_ = lockstep_.Subscribe(nh_, "audio/rx", 50, &LocalMutexRos::OnRx, this);
   release_srv_ = nh_.advertiseService("local_mutex/release", &LocalMutexRos::OnRelease, this);
   acquire_server_.registerGoalCallback([this] { OnGoal(); });
   acquire_server_.registerPreemptCallback([this] { OnPreempt(); });
   acquire_server_.start();
-  tick_timer_ = nh_.createTimer(ros::Duration(kTickPeriod), &LocalMutexRos::OnTick, this);
+  tick_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(kTickPeriod), &LocalMutexRos::OnTick, this);
   if (options_.state_rate > 0.0) {
-    state_timer_ = nh_.createTimer(ros::Duration(1.0 / options_.state_rate), [this](const ros::TimerEvent&) { PublishState(); });
+    state_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.state_rate), [this](const ros::TimerEvent&) { PublishState(); });
   }
   PublishState();
   const local_mutex::MutexOptions& m = options_.mutex;

@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
+#include "lockstep_participant.h"
 #include "local_mutex/local_mutex.h"
 
 namespace multirobot_audio {
@@ -48,11 +49,12 @@ class LocalMutexRos {
   void PublishState();
 
   ros::NodeHandle nh_;
+  LockstepParticipant lockstep_;  // before what it hands messages and timers to
   LocalMutexNodeOptions options_;
   local_mutex::LocalMutex lock_;
   local_mutex::State last_state_ = local_mutex::State::kReleased;
   double state_since_ = 0.0;  // when last_state_ was entered (the node's start for the first)
-  ros::Publisher tx_pub_, state_pub_;
+  CountedPublisher tx_pub_, state_pub_;
   ros::Subscriber rx_sub_;
   ros::ServiceServer release_srv_;
   ros::Timer tick_timer_, state_timer_;

@@ -19,12 +19,12 @@ world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
 
 WandererRos::WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options,
                          std::uint32_t seed, double announce_period)
-    : nh_(nh), wanderer_(options, seed), seed_(seed) {
-  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 10);
-  scan_sub_ = nh_.subscribe("scan", 10, &WandererRos::OnScan, this);
+    : nh_(nh), lockstep_(nh), wanderer_(options, seed), seed_(seed) {
+  cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
+  scan_sub_ = lockstep_.Subscribe(nh_, "scan", 10, &WandererRos::OnScan, this);
   if (announce_period > 0.0) {
-    audio_pub_ = nh_.advertise<multirobot_audio::AudioPacket>("audio/tx", 10);
-    announce_timer_ = nh_.createTimer(ros::Duration(announce_period), [this](const ros::TimerEvent&) {
+    audio_pub_ = lockstep_.Advertise<multirobot_audio::AudioPacket>(nh_, "audio/tx", 10);
+    announce_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(announce_period), [this](const ros::TimerEvent&) {
       multirobot_audio::AudioPacket packet;
       packet.header.stamp = ros::Time::now();
       packet.data = {'W', static_cast<std::uint8_t>(seed_ >> 16), static_cast<std::uint8_t>(seed_ >> 8),

@@ -5,6 +5,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 
+#include "lockstep_participant.h"
 #include "world_sim/wanderer.h"
 
 namespace multirobot_audio {
@@ -26,9 +27,10 @@ class WandererRos {
   void OnScan(const sensor_msgs::LaserScan::ConstPtr& scan);
 
   ros::NodeHandle nh_;
+  LockstepParticipant lockstep_;  // before what it hands messages and timers to
   world_sim::Wanderer wanderer_;
   ros::Subscriber scan_sub_;
-  ros::Publisher cmd_pub_, audio_pub_;
+  CountedPublisher cmd_pub_, audio_pub_;
   ros::Timer announce_timer_;
   std::uint32_t seed_;
   ros::Time last_scan_;

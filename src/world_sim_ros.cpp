@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <multirobot_audio/LockstepOrder.h>
+
 #include <multirobot_audio/FiducialArray.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Odometry.h>
@@ -10,6 +12,8 @@
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/LaserScan.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <ros/callback_queue.h>
 
 #include "conversions.h"
 #include "params.h"
@@ -32,6 +36,12 @@ WorldSimOptions ReadWorldSimOptions(const ros::NodeHandle& pnh) {
       1.0 / NumberParam(pnh, "camera_rate", 1.0 / o.world.camera_period, 1e-3, max_rate);
   o.world.odom_period = 1.0 / NumberParam(pnh, "odom_rate", 1.0 / o.world.odom_period, 1e-3, max_rate);
   o.markers_rate = NumberParam(pnh, "markers_rate", o.markers_rate, 1e-3, max_rate);
+  o.lockstep = BoolParam(pnh, "lockstep", o.lockstep);
+  o.lockstep_timeout = NumberParam(pnh, "lockstep_timeout", o.lockstep_timeout, 1e-3, 1e6);
+  o.lockstep_start_timeout = NumberParam(pnh, "lockstep_start_timeout", o.lockstep_start_timeout, 1e-3, 1e6);
+  if (pnh.hasParam("lockstep_participants") && !pnh.getParam("lockstep_participants", o.participants)) {
+    throw ParamError(pnh.resolveName("lockstep_participants") + ": expected a list of node names");
+  }
   return o;
 }
 
@@ -57,21 +67,29 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
     RobotIo& io = io_[k];
     io.odom_frame = name + "/odom";
     io.base_frame = name + "/base_link";
-    io.cmd_vel = rnh.subscribe<geometry_msgs::Twist>(
-        "cmd_vel", 10, [this, k](const geometry_msgs::Twist::ConstPtr& m) { OnCmdVel(k, m); });
+    io.cmd_vel_topic = rnh.resolveName("cmd_vel");
+    io.cmd_vel = rnh.subscribe<geometry_msgs::Twist>("cmd_vel", 100,
+                               boost::function<void(const ros::MessageEvent<geometry_msgs::Twist const>&)>(
+                                   [this, k](const ros::MessageEvent<geometry_msgs::Twist const>& e) { OnCmdVel(k, e); }));
     io.scan = rnh.advertise<sensor_msgs::LaserScan>("scan", 10);
     io.odom = rnh.advertise<nav_msgs::Odometry>("odom", 10);
     io.ground_truth = rnh.advertise<nav_msgs::Odometry>("ground_truth", 10);
     io.fiducials = rnh.advertise<multirobot_audio::FiducialArray>("fiducials", 10);
     io.battery = rnh.advertise<sensor_msgs::BatteryState>("battery", 2);
   }
+  if (options_.lockstep) SetUpLockstep();
   map_pub_.publish(ToOccupancyGrid(world_->map(), "map", ros::Time(world_->time())));
   ROS_INFO("world_sim: %zu robots on %s (%d x %d cells at %.3f m), step %.3f s, speed %g",
            io_.size(), world_->config().map_file.c_str(), world_->map().width(),
            world_->map().height(), world_->map().resolution(), options_.world.step, options_.speed);
 }
 
-void WorldSimRos::OnCmdVel(std::size_t index, const geometry_msgs::Twist::ConstPtr& msg) {
+void WorldSimRos::OnCmdVel(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event) {
+  const geometry_msgs::Twist::ConstPtr& msg = event.getConstMessage();
+  if (lockstep_) {
+    const world_sim::StreamId stream{io_[index].cmd_vel_topic, event.getPublisherName()};
+    lockstep_->OwnReceived(stream, ++cmd_received_[stream]);
+  }
   if (!std::isfinite(msg->linear.x) || !std::isfinite(msg->angular.z)) {
     ROS_WARN_THROTTLE(5.0, "world_sim: %s/cmd_vel: ignoring a non-finite command",
                       world_->robots()[index].name.c_str());
@@ -79,6 +97,127 @@ void WorldSimRos::OnCmdVel(std::size_t index, const geometry_msgs::Twist::ConstP
   }
   world_->SetCommand(index, msg->linear.x, msg->angular.z);
   io_[index].last_cmd_time = world_->time();
+}
+
+void WorldSimRos::SetUpLockstep() {
+  world_sim::LockstepOptions lo;
+  lo.self = ros::this_node::getName();
+  lo.timeout = options_.lockstep_timeout;
+  lo.participants = options_.participants;
+  // A participant inside a robot's namespace must be one of the world's robots.
+  for (const std::string& name : lo.participants) {
+    if (name.empty() || name[0] != '/') {
+      throw ParamError(pnh_.resolveName("lockstep_participants") + ": expected node names from the root (/robot_0/wanderer), got '" + name + "'");
+    }
+    const std::size_t slash = name.find('/', 1);
+    if (slash == std::string::npos) continue;
+    const std::string robot = name.substr(1, slash - 1);
+    bool known = false;
+    for (const auto& r : world_->robots()) known = known || r.name == robot;
+    if (!known) {
+      throw ParamError(pnh_.resolveName("lockstep_participants") + ": " + name + " is in the namespace of robot '" + robot +
+                       "', which is not in " + options_.world_file);
+    }
+  }
+  lockstep_ = std::make_unique<world_sim::LockstepCoordinator>(lo);  // throws on a name given twice
+  std::vector<std::string> subscribed, advertised;
+  for (const RobotIo& io : io_) {
+    subscribed.push_back(io.cmd_vel_topic);
+    for (const ros::Publisher* p : {&io.scan, &io.odom, &io.ground_truth, &io.fiducials, &io.battery}) {
+      advertised.push_back(p->getTopic());
+    }
+  }
+  lockstep_->SetOwnStreams(subscribed, advertised);
+  nh_.setParam("/lockstep", true);
+  hello_sub_ = nh_.subscribe("/lockstep/hello", 100, &WorldSimRos::OnHello, this);
+  ack_sub_ = nh_.subscribe("/lockstep/ack", 1000, &WorldSimRos::OnAck, this);
+}
+
+void WorldSimRos::Count(const ros::Publisher& pub) {
+  if (!lockstep_) return;
+  const std::string& topic = pub.getTopic();
+  lockstep_->OwnPublished(topic, ++published_[topic]);
+}
+
+void WorldSimRos::OnHello(const multirobot_audio::LockstepHello::ConstPtr& msg) {
+  world_sim::ParticipantHello hello{msg->node, msg->subscribed, {}, msg->advertised, msg->order_connected};
+  hello.connected.assign(msg->connected.begin(), msg->connected.end());
+  if (!lockstep_->Hello(hello)) {
+    if (!lockstep_->IsParticipant(msg->node) && strangers_.insert(msg->node).second) {
+      ROS_WARN("world_sim: lockstep: %s is not in ~lockstep_participants: it runs without the lockstep", msg->node.c_str());
+    }
+    return;
+  }
+  if (order_pubs_.count(msg->node) == 0) {
+    order_pubs_[msg->node] = nh_.advertise<multirobot_audio::LockstepOrder>(msg->node + "/lockstep_order", 100);
+  }
+}
+
+void WorldSimRos::OnAck(const multirobot_audio::LockstepAck::ConstPtr& msg) {
+  std::vector<world_sim::StreamCount> published;
+  for (std::size_t i = 0; i < msg->topics.size() && i < msg->totals.size(); ++i) {
+    published.push_back(world_sim::StreamCount{{msg->topics[i], msg->node}, msg->totals[i]});
+  }
+  lockstep_->Ack(msg->node, msg->step, published, msg->next_due, ros::WallTime::now().toSec());
+}
+
+std::map<std::string, int> WorldSimRos::OwnConnected() const {
+  std::map<std::string, int> connected;
+  for (const RobotIo& io : io_) connected[io.cmd_vel_topic] = static_cast<int>(io.cmd_vel.getNumPublishers());
+  return connected;
+}
+
+void WorldSimRos::StartLockstep() {
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(options_.lockstep_start_timeout);
+  std::string missing;
+  ros::WallTime next_note = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (ros::ok() && !lockstep_->Ready(OwnConnected(), &missing)) {
+    if (ros::WallTime::now() > give_up) {
+      for (const std::string& name : lockstep_->DropUnready(OwnConnected())) {
+        ROS_WARN("world_sim: lockstep: %s not ready after %.0f s (wall): dropped from the lockstep", name.c_str(),
+                 options_.lockstep_start_timeout);
+      }
+      break;
+    }
+    if (ros::WallTime::now() > next_note) {
+      ROS_INFO("world_sim: lockstep: waiting for the participants: %s", missing.c_str());
+      next_note = ros::WallTime::now() + ros::WallDuration(5.0);
+    }
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.01));
+  }
+  ROS_INFO("world_sim: lockstep with %zu participants", options_.participants.size() - lockstep_->dropped().size());
+}
+
+void WorldSimRos::RunStepWithParticipants() {
+  const double wall_start = ros::WallTime::now().toSec();
+  const auto orders = lockstep_->BeginStep(++lockstep_step_, world_->time(), wall_start);
+  for (const world_sim::StepOrder& o : orders) {
+    multirobot_audio::LockstepOrder msg;
+    msg.step = o.step;
+    msg.stamp = ros::Time(o.time);
+    if (ordered_.insert(o.node).second) msg.counted = lockstep_->CountedPublishers();
+    for (const world_sim::StreamCount& c : o.totals) {
+      msg.topics.push_back(c.stream.topic);
+      msg.publishers.push_back(c.stream.publisher);
+      msg.totals.push_back(c.total);
+    }
+    order_pubs_[o.node].publish(msg);
+  }
+  bool warned = false;
+  while (ros::ok() && (!lockstep_->Pending().empty() || !lockstep_->OwnCaughtUp())) {
+    ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.001));
+    const double wall = ros::WallTime::now().toSec();
+    for (const std::string& name : lockstep_->DropLate(wall)) {
+      ROS_WARN("world_sim: lockstep: %s has not answered step %lu (t = %.2f s) for %.1f s (wall): dropped from the lockstep",
+               name.c_str(), static_cast<unsigned long>(lockstep_step_), world_->time(), options_.lockstep_timeout);
+    }
+    if (lockstep_->Pending().empty() && !lockstep_->OwnCaughtUp() && wall - wall_start > options_.lockstep_timeout) {
+      if (!warned) ROS_WARN("world_sim: lockstep: commands reported sent have not arrived after %.1f s: going on", options_.lockstep_timeout);
+      warned = true;
+      break;
+    }
+  }
+  lockstep_->EndStep(ros::WallTime::now().toSec());
 }
 
 void WorldSimRos::Publish() {
@@ -98,16 +237,21 @@ void WorldSimRos::Publish() {
       transforms.push_back(ToTransform(map_to_odom, "map", io.odom_frame, now));
       transforms.push_back(ToTransform(r.odom, io.odom_frame, io.base_frame, now));
       io.odom.publish(ToOdometry(r.odom, r.v, r.w, io.odom_frame, io.base_frame, now));
+      Count(io.odom);
       io.ground_truth.publish(ToOdometry(r.pose, r.v, r.w, "map", io.base_frame, now));
+      Count(io.ground_truth);
     }
     if (r.scan_step == w.steps()) {
       io.scan.publish(ToLaserScan(r.scan, w.config().model, io.base_frame, now));
+      Count(io.scan);
     }
     if (r.fiducials_step == w.steps()) {
       io.fiducials.publish(ToFiducialArray(r.fiducials, io.base_frame, now));
+      Count(io.fiducials);
     }
     if (w.steps() % battery_every_ == 0) {
       io.battery.publish(ToBatteryState(r.battery, r.docked, w.config().model.battery, io.base_frame, now));
+      Count(io.battery);
     }
   }
   if (!transforms.empty()) tf_.sendTransform(transforms);
@@ -117,8 +261,12 @@ void WorldSimRos::Publish() {
 }
 
 std::string WorldSimRos::Run() {
+  // In lockstep nothing is published before every participant is listening: a message sent
+  // before its subscriber is connected would be lost and never counted.
+  if (lockstep_) StartLockstep();
   const ros::WallTime wall_start = ros::WallTime::now();
   Publish();
+  if (lockstep_) RunStepWithParticipants();
   while (ros::ok()) {
     ros::spinOnce();
     for (std::size_t k = 0; k < io_.size(); ++k) {
@@ -126,6 +274,7 @@ std::string WorldSimRos::Run() {
     }
     world_->Step();
     Publish();
+    if (lockstep_) RunStepWithParticipants();
     if (options_.duration > 0.0 && world_->elapsed() >= options_.duration - 1e-9) break;
     if (options_.speed > 0.0) {
       const ros::WallTime due = wall_start + ros::WallDuration(world_->elapsed() / options_.speed);
@@ -133,13 +282,22 @@ std::string WorldSimRos::Run() {
     }
   }
   const double wall = (ros::WallTime::now() - wall_start).toSec();
-  char line[256];
+  char line[512];
   std::snprintf(line, sizeof line,
-                "world_sim summary: robots %zu, simulated %.1f s, wall %.1f s, real-time factor "
-                "%.1f, distance driven %.1f m, collisions %d",
-                io_.size(), world_->elapsed(), wall, wall > 0 ? world_->elapsed() / wall : 0.0,
-                world_->TotalDistance(), world_->TotalCollisions());
-  return line;
+                "world_sim summary: robots %zu, simulated %.1f s, distance driven %.3f m, collisions %d\n"
+                "world_sim timing: wall %.1f s, real-time factor %.1f",
+                io_.size(), world_->elapsed(), world_->TotalDistance(), world_->TotalCollisions(), wall,
+                wall > 0 ? world_->elapsed() / wall : 0.0);
+  std::string summary = line;
+  if (lockstep_) {
+    double slowest_s = 0.0;
+    const std::string slowest = lockstep_->Slowest(&slowest_s);
+    std::snprintf(line, sizeof line, ", lockstep waiting %.1f s (slowest %s: %.1f s), dropped %zu",
+                  lockstep_->waiting_wall(), slowest.empty() ? "none" : slowest.c_str(), slowest_s,
+                  lockstep_->dropped().size());
+    summary += line;
+  }
+  return summary;
 }
 
 }  // namespace multirobot_audio

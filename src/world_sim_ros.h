@@ -1,6 +1,8 @@
 #pragma once
 
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -8,6 +10,10 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <multirobot_audio/LockstepAck.h>
+#include <multirobot_audio/LockstepHello.h>
+
+#include "world_sim/lockstep_coordinator.h"
 #include "world_sim/world.h"
 
 namespace multirobot_audio {
@@ -22,6 +28,11 @@ struct WorldSimOptions {
   int seed = -1;                // ~seed: replaces the world file's seed when >= 0
   double markers_rate = 10.0;   // ~markers_rate: Hz of the rviz markers
   world_sim::WorldOptions world;  // ~step, ~scan_rate, ~camera_rate, ~odom_rate
+  // ~lockstep: step only when every participant has answered the step (docs/simulation.md)
+  bool lockstep = false;
+  double lockstep_timeout = 5.0;          // ~lockstep_timeout: wall s before a silent participant is dropped
+  double lockstep_start_timeout = 60.0;   // ~lockstep_start_timeout: wall s to wait for them all at the start
+  std::vector<std::string> participants;  // ~lockstep_participants: node names
 };
 
 // Reads the options from `pnh`; throws ParamError on anything out of range.
@@ -34,19 +45,29 @@ class WorldSimRos {
   // Loads the world; throws grid::InputError or std::invalid_argument on bad input.
   WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSimOptions& options);
 
-  // Steps until shutdown or the set duration; returns the one-line summary.
+  // Steps until shutdown or the set duration; returns the summary: a line of simulated figures
+  // (the same for the same world, seed and commands) and a line of wall-clock ones.
   std::string Run();
 
  private:
   struct RobotIo {
     ros::Subscriber cmd_vel;
+    std::string cmd_vel_topic;
     ros::Publisher scan, odom, ground_truth, fiducials, battery;
     double last_cmd_time = -1e9;
     std::string odom_frame, base_frame;
   };
 
-  void OnCmdVel(std::size_t index, const geometry_msgs::Twist::ConstPtr& msg);
+  void OnCmdVel(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event);
   void Publish();
+  void SetUpLockstep();
+  // Lockstep: counts a message the world published on `topic`.
+  void Count(const ros::Publisher& pub);
+  void OnHello(const multirobot_audio::LockstepHello::ConstPtr& msg);
+  void OnAck(const multirobot_audio::LockstepAck::ConstPtr& msg);
+  std::map<std::string, int> OwnConnected() const;
+  void StartLockstep();          // waits until every participant is ready (or dropped)
+  void RunStepWithParticipants(); // sends the step's orders, waits for the answers
 
   ros::NodeHandle nh_, pnh_;
   WorldSimOptions options_;
@@ -56,6 +77,15 @@ class WorldSimRos {
   tf2_ros::TransformBroadcaster tf_;
   std::uint64_t markers_every_ = 1;
   std::uint64_t battery_every_ = 1;
+  // Lockstep
+  std::unique_ptr<world_sim::LockstepCoordinator> lockstep_;
+  ros::Subscriber hello_sub_, ack_sub_;
+  std::map<std::string, ros::Publisher> order_pubs_;
+  std::set<std::string> ordered_;                    // participants that have had an order
+  std::map<std::string, std::uint64_t> published_;   // own counted topics -> messages
+  std::map<world_sim::StreamId, std::uint64_t> cmd_received_;
+  std::uint64_t lockstep_step_ = 0;
+  std::set<std::string> strangers_;  // hellos from nodes that are not participants
 };
 
 }  // namespace multirobot_audio
