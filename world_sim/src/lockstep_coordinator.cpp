@@ -23,8 +23,15 @@ void LockstepCoordinator::SetOwnStreams(const std::vector<std::string>& subscrib
   own_advertised_ = std::set<std::string>(advertised.begin(), advertised.end());
 }
 
+void LockstepCoordinator::SetTotal(const StreamId& stream, std::uint64_t total) {
+  std::uint64_t& known = totals_[stream];
+  if (total <= known) return;
+  known = total;
+  grown_.insert(stream);
+}
+
 void LockstepCoordinator::OwnPublished(const std::string& topic, std::uint64_t total) {
-  totals_[StreamId{topic, options_.self}] = total;
+  SetTotal(StreamId{topic, options_.self}, total);
 }
 
 void LockstepCoordinator::OwnReceived(const StreamId& stream, std::uint64_t total) {
@@ -38,6 +45,7 @@ bool LockstepCoordinator::Hello(const ParticipantHello& hello) {
   p.said_hello = true;
   p.hello = hello;
   p.subscribed = std::set<std::string>(hello.subscribed.begin(), hello.subscribed.end());
+  for (const std::string& topic : p.subscribed) listeners_[topic].insert(hello.node);
   return true;
 }
 
@@ -104,19 +112,30 @@ std::vector<std::string> LockstepCoordinator::DropUnready(const std::map<std::st
 std::vector<StepOrder> LockstepCoordinator::BeginStep(std::uint64_t step, double time, double wall_now) {
   step_ = step;
   step_wall_ = wall_now;
+  // Only the streams that grew since the last orders can add to an order: a step costs what
+  // happened in it, not the size of the team.
+  std::map<std::string, StepOrder> grown_for;
+  for (const StreamId& stream : grown_) {
+    const std::uint64_t total = totals_[stream];
+    const auto listeners = listeners_.find(stream.topic);
+    if (listeners == listeners_.end()) continue;
+    for (const std::string& name : listeners->second) {
+      Participant& p = participants_.at(name);
+      if (p.dropped || stream.publisher == name || p.subscribed.count(stream.topic) == 0) continue;
+      std::uint64_t& told = p.told[stream];
+      if (total <= told) continue;
+      told = total;
+      grown_for[name].totals.push_back(StreamCount{stream, total});
+    }
+  }
+  grown_.clear();
   std::vector<StepOrder> orders;
   for (auto& [name, p] : participants_) {
     if (p.dropped) continue;
+    auto g = grown_for.find(name);
+    if (g == grown_for.end() && p.next_due > time + 1e-9) continue;
     StepOrder order{name, step, time, {}};
-    for (const auto& [stream, total] : totals_) {
-      if (stream.publisher == name || p.subscribed.count(stream.topic) == 0) continue;
-      std::uint64_t& told = p.told[stream];
-      if (total > told) {
-        told = total;
-        order.totals.push_back(StreamCount{stream, total});
-      }
-    }
-    if (order.totals.empty() && p.next_due > time + 1e-9) continue;
+    if (g != grown_for.end()) order.totals = std::move(g->second.totals);
     p.waiting = true;
     orders.push_back(std::move(order));
   }
@@ -130,8 +149,7 @@ void LockstepCoordinator::Ack(const std::string& node, std::uint64_t step,
   Participant& p = it->second;
   for (const StreamCount& c : published) {
     if (c.stream.publisher != node) continue;  // a participant speaks for its own streams only
-    std::uint64_t& total = totals_[c.stream];
-    if (c.total > total) total = c.total;
+    SetTotal(c.stream, c.total);
   }
   p.next_due = next_due;
   if (p.waiting) {

@@ -115,10 +115,13 @@ class LockstepCoordinator {
   };
 
   int KnownPublishers(const std::string& topic, const std::string& except) const;
+  void SetTotal(const StreamId& stream, std::uint64_t total);
 
   LockstepOptions options_;
   std::map<std::string, Participant> participants_;
   std::map<StreamId, std::uint64_t> totals_;
+  std::set<StreamId> grown_;  // streams whose totals grew since the last step's orders
+  std::map<std::string, std::set<std::string>> listeners_;  // topic -> participants counting it
   std::set<std::string> own_subscribed_, own_advertised_;
   std::map<StreamId, std::uint64_t> own_received_;
   std::uint64_t step_ = 0;
