@@ -6,16 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "grid/option_checks.h"
 #include "grid/pose2d.h"
-#include "sounds_good_explorer/option_checks.h"
 
 namespace charging_demo {
 
 void ValidateOptions(const SearchOptions& o) {
-  sounds_good_explorer::RequireAbove("search cell (m)", o.cell, 0.0);
-  sounds_good_explorer::RequireAbove("search goal_distance (m)", o.goal_distance, 0.0);
-  sounds_good_explorer::RequireAbove("search hold (s)", o.hold, 0.0);
-  sounds_good_explorer::RequireAtLeast("search unreachable_penalty (s)", o.unreachable_penalty, 0.0);
+  grid::RequireAbove("search cell (m)", o.cell, 0.0);
+  grid::RequireAbove("search goal_distance (m)", o.goal_distance, 0.0);
+  grid::RequireAbove("search hold (s)", o.hold, 0.0);
+  grid::RequireAtLeast("search unreachable_penalty (s)", o.unreachable_penalty, 0.0);
   if (o.directions < 1)
     throw std::invalid_argument("search directions must be at least 1, got " + std::to_string(o.directions));
 }

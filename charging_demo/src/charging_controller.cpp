@@ -7,7 +7,7 @@
 #include <string>
 
 #include "charging_demo/keep_out.h"
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace charging_demo {
 
@@ -43,16 +43,16 @@ void ValidateOptions(const ControllerOptions& o) {
   ValidateOptions(o.charging);
   ValidateOptions(o.search);
   sounds_good_explorer::ValidateOptions(o.navigation);
-  sounds_good_explorer::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
+  grid::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
   ValidateOptions(o.trail);
   ValidateOptions(o.wall_follow);
-  sounds_good_explorer::RequireAtLeast("charging follow_after (s)", o.follow_after, 0.0);
-  sounds_good_explorer::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
+  grid::RequireAtLeast("charging follow_after (s)", o.follow_after, 0.0);
+  grid::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
   if (!(o.retrace_after < o.charging.approach_timeout))
     throw std::invalid_argument("charging retrace_after must be below approach_timeout (" +
                                 std::to_string(o.charging.approach_timeout) + " s), or an approach gives up first; got " +
                                 std::to_string(o.retrace_after));
-  sounds_good_explorer::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
+  grid::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
   if (!(o.keep_out < o.charging.wait_distance))
     throw std::invalid_argument("charging keep_out must be below wait_distance (" +
                                 std::to_string(o.charging.wait_distance) + " m), got " +

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace charging_demo {
 
@@ -20,7 +20,7 @@ constexpr double kArcLimit = 1.5 * M_PI;
 }  // namespace
 
 void ValidateOptions(const WallFollowOptions& o) {
-  using sounds_good_explorer::RequireAbove;
+  using grid::RequireAbove;
   RequireAbove("wall_follow distance (m)", o.distance, 0.0);
   RequireAbove("wall_follow speed (m/s)", o.speed, 0.0);
   RequireAbove("wall_follow gain", o.gain, 0.0);

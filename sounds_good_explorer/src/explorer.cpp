@@ -8,8 +8,6 @@
 #include "sounds_good_explorer/frontiers.h"
 #include "sounds_good_explorer/marker_packet.h"
 
-#include "sounds_good_explorer/option_checks.h"
-
 namespace sounds_good_explorer {
 
 namespace {

@@ -6,9 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAtLeast;
 
 void ValidateOptions(const FrontierOptions& o) {
   RequireAtLeast("frontier noise_std (m)", o.noise_std, 0.0);

@@ -5,9 +5,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 void ValidateOptions(const LocalMapOptions& o) {
   if (o.size < 3 || o.size % 2 == 0 || o.size > 4001)

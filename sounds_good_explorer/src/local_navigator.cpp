@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 namespace {
 

@@ -7,9 +7,12 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 namespace {
 
