@@ -27,7 +27,7 @@
 #include "charging_demo/charging_world.h"
 #include "grid/input_error.h"
 #include "grid/map_file.h"
-#include "sounds_good_explorer/parallel_for.h"
+#include "tool_args/parallel_for.h"
 #include "tool_args/progress_bar.h"
 #include "tool_args/tool_args.h"
 #include "world_sim/world_file.h"
@@ -147,7 +147,7 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
                runs[0].world.robots.size(), runs[0].world.chargers.size());
   multirobot_audio::tools::ProgressBar bar("trials");
   const auto start = std::chrono::steady_clock::now();
-  sounds_good_explorer::ParallelFor(
+  multirobot_audio::tools::ParallelFor(
       runs.size(), threads,
       [&](std::size_t i) {
         ChargingTrialOptions o = options;

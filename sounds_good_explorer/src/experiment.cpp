@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/parallel_for.h"
+#include "tool_args/parallel_for.h"
 
 namespace sounds_good_explorer {
 
@@ -33,7 +33,7 @@ std::vector<TrialRow> RunExperiment(const grid::OccupancyMap& map,
         rows.push_back(row);
       }
 
-  ParallelFor(
+  multirobot_audio::tools::ParallelFor(
       rows.size(), options.threads,
       [&](std::size_t i) {
         TrialRow& row = rows[i];
