@@ -77,7 +77,7 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   ch.recheck_time = PositiveParam(pnh, "recheck_time", ch.recheck_time);
 
   // The local-map navigation, with the names the sounds_good_explorer node uses.
-  sounds_good_explorer::NavigatorOptions& n = c.navigation;
+  local_navigation::NavigatorOptions& n = c.navigation;
   ReadNavigationParams(pnh, n.map, n.clear_sectors, n.planner, n.motion);
 
   // The duty: wandering, with the wanderer node's names.

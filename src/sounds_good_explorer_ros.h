@@ -32,7 +32,7 @@ SoundsGoodExplorerNodeOptions ReadSoundsGoodExplorerNodeOptions(const ros::NodeH
 
 // The local map as an OccupancyGrid in `frame` (the odom frame the map lives in): unknown -1,
 // free 0, occupied 100, row 0 at the map's lower edge.
-nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& map,
+nav_msgs::OccupancyGrid ToOccupancyGrid(const local_navigation::LocalMap& map,
                                         const std::string& frame, const ros::Time& stamp);
 // Plan points (odom frame) as a Path; every pose faces along the path to the next point.
 nav_msgs::Path ToPath(const std::vector<Eigen::Vector2d>& points, const std::string& frame,

@@ -47,7 +47,7 @@ double ChargerSearch::Neighbourhood(const Eigen::Vector2d& position) const {
 }
 
 Eigen::Vector2d ChargerSearch::ChooseGoal(const Eigen::Vector2d& position,
-                                          const sounds_good_explorer::LocalMap& map, std::mt19937& rng,
+                                          const local_navigation::LocalMap& map, std::mt19937& rng,
                                           std::optional<double> excluded_direction) const {
   std::vector<Eigen::Vector2d> best;
   double best_score = std::numeric_limits<double>::infinity();
@@ -62,7 +62,7 @@ Eigen::Vector2d ChargerSearch::ChooseGoal(const Eigen::Vector2d& position,
     // Half-cell steps, so that no cell on the way is stepped over.
     for (double d = 0.5 * map.resolution(); d <= 0.5 * options_.goal_distance && !blocked; d += 0.5 * map.resolution()) {
       const Eigen::Vector2i cell = map.CellOf(position + d * u);
-      blocked = map.Inside(cell) && map.at(cell) == sounds_good_explorer::CellState::kOccupied;
+      blocked = map.Inside(cell) && map.at(cell) == local_navigation::CellState::kOccupied;
     }
     if (blocked) continue;
     const Eigen::Vector2d goal = position + options_.goal_distance * u;

@@ -18,7 +18,7 @@ void ValidateOptions(const FrontierOptions& o) {
   RequireAtLeast("frontier min_distance (m)", o.min_distance, 0.0);
 }
 
-std::optional<Eigen::Vector2i> ChooseFrontier(const LocalMap& map,
+std::optional<Eigen::Vector2i> ChooseFrontier(const local_navigation::LocalMap& map,
                                               const std::vector<Eigen::Vector2i>& frontiers,
                                               const Eigen::Vector2d& robot,
                                               const HeardMessages& heard, std::uint32_t marker,

@@ -1,4 +1,4 @@
-#include "sounds_good_explorer/local_map.h"
+#include "local_navigation/local_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "grid/option_checks.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 using grid::RequireAbove;
 using grid::RequireAtLeast;
@@ -162,4 +162,4 @@ void LocalMap::Expire(double time) {
     if (cells_[i] != CellState::kUnknown && seen_[i] < oldest) cells_[i] = CellState::kUnknown;
 }
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

@@ -1,11 +1,11 @@
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "grid/option_checks.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 using grid::RequireAbove;
 using grid::RequireAtLeast;
@@ -166,4 +166,4 @@ void LocalNavigator::StartBackoff(double time, double turn) {
 
 Velocity LocalNavigator::BackoffCommand() const { return {-kBackoffSpeed, backoff_turn_}; }
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

@@ -8,10 +8,10 @@
 #include <Eigen/Core>
 
 #include "grid/pose2d.h"
-#include "sounds_good_explorer/local_map.h"
-#include "sounds_good_explorer/planner.h"
+#include "local_navigation/local_map.h"
+#include "local_navigation/planner.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 struct MotionOptions {
   double max_speed = 0.3;      // m/s
@@ -128,4 +128,4 @@ class LocalNavigator {
   std::uint64_t stuck_count_ = 0, plans_ = 0, bad_scans_ = 0;
 };
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation
