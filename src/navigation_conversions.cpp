@@ -1,4 +1,4 @@
-#include "sounds_good_conversions.h"
+#include "navigation_conversions.h"
 
 #include <cmath>
 

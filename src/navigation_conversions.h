@@ -12,8 +12,9 @@
 #include "local_navigation/local_map.h"
 #include "local_navigation/local_navigator.h"
 
-// Pure conversions between ROS messages and what the local-map navigation uses (shared by the
-// Sounds Good explorer and the charging robots), and of the explorer's state for rviz.
+// Pure conversions between ROS messages and what local_navigation uses, and of its state (local
+// map, plan) for rviz; shared by every node that drives with it (the Sounds Good explorer, the
+// charging robots).
 namespace multirobot_audio {
 
 // A ring of rangers as range readings: reading k's bearing is angle_min + k * angle_increment
