@@ -76,7 +76,7 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   ch.recheck_distance = PositiveParam(pnh, "recheck_distance", ch.recheck_distance, 100.0);
   ch.recheck_time = PositiveParam(pnh, "recheck_time", ch.recheck_time);
 
-  // The local-map navigation, with the names the sounds_good_explorer node uses.
+  // The local-map navigation, with the same names in every node that drives with it.
   local_navigation::NavigatorOptions& n = c.navigation;
   ReadNavigationParams(pnh, n.map, n.clear_sectors, n.planner, n.motion);
 

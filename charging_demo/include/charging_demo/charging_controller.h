@@ -20,8 +20,8 @@ namespace charging_demo {
 
 struct ControllerOptions {
   ChargingOptions charging;
-  // Driving to the waiting point, onto the charger and away from it: the explorer's local-map
-  // navigation (thesis section 3.3).
+  // Driving to the waiting point, onto the charger and away from it: the local-map navigation
+  // of thesis section 3.3 (local_navigation/, which the Sounds Good explorer drives with too).
   local_navigation::NavigatorOptions navigation;
   // The normal duty: random wandering.
   world_sim::WanderOptions wander;
