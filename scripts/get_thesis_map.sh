@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Puts the thesis's floor plan (the hospital section of the Stage simulator's worlds) at
-# maps/thesis/hospital_section.{png,yaml}, where the README's commands, maps/hospital_world.yaml
+# maps/thesis/hospital_section.{png,yaml}, where the commands in README.md and docs/, maps/hospital_world.yaml
 # and the experiment tools look for it. The image is GPL-2.0 data of the Stage project and is
 # not committed here (maps/thesis/ is git-ignored).
 #

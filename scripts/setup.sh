@@ -41,6 +41,8 @@ packages=(
   libfec-dev libfftw3-dev libsamplerate0-dev espeak-ng sox
   # headless rviz and screenshots
   xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
+  # scripts/get_thesis_map.sh downloads the thesis's map from Stage's repository
+  curl ca-certificates
 )
 
 missing=()

@@ -1,4 +1,4 @@
-// audio_propagation: every simulated robot's audio link. See README.md for topics and parameters.
+// audio_propagation: every simulated robot's audio link. See docs/nodes.md for topics and parameters.
 #include <cstdio>
 
 #include <ros/ros.h>

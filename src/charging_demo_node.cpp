@@ -1,6 +1,6 @@
 // charging_demo: one charging robot (thesis section 7.2): works until its battery is low, finds
 // a charger, waits for the robot's local mutex beside it, docks only while holding it, charges,
-// backs away and lets go. Run it in the robot's namespace beside local_mutex. See README.md.
+// backs away and lets go. Run it in the robot's namespace beside local_mutex. See docs/nodes.md and docs/real_robots.md.
 #include <cstdio>
 #include <functional>
 #include <string>

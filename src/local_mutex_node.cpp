@@ -1,5 +1,5 @@
 // local_mutex: one robot's audio-based local mutual exclusion (thesis chapter 7). Run it in the
-// robot's namespace beside the robot's audio link. See README.md for its interface.
+// robot's namespace beside the robot's audio link. See docs/nodes.md for its interface.
 #include <cstdio>
 #include <stdexcept>
 

@@ -1,4 +1,4 @@
-// nava_modem: a robot's audio link on its sound card. See README.md for topics and parameters.
+// nava_modem: a robot's audio link on its sound card. See docs/nodes.md for topics and parameters.
 #include <cstdio>
 
 #include <ros/ros.h>

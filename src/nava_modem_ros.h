@@ -21,7 +21,7 @@ namespace multirobot_audio {
 // Options of the nava_modem node, filled from its private parameters.
 struct NavaModemOptions {
   nava_modem::AlsaOptions alsa;   // ~device, ~sample_rate, ~latency
-  nava_modem::LinkOptions link;   // modem, MAC and receiver settings (see README)
+  nava_modem::LinkOptions link;   // modem, MAC and receiver settings (see docs/nodes.md)
   std::string frame_id = "base_link";  // ~frame_id: stamped on what is published
   double carrier_rate = 10.0;     // ~carrier_rate: Hz of audio/carrier besides every change
 };

@@ -1,6 +1,6 @@
 // sounds_good_explorer: one Sounds Good robot (thesis chapter 3), exploring with a local map
 // and heard marker announcements to carry out the transport task. Run it in the robot's
-// namespace beside the robot's audio link. See README.md for its interface.
+// namespace beside the robot's audio link. See docs/nodes.md for its interface.
 #include <cstdio>
 #include <functional>
 #include <string>

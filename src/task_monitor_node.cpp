@@ -1,5 +1,5 @@
 // task_monitor: counts a Sounds Good team's jobs and reports how long the team took to reach
-// its goal, then stops. See README.md for its interface.
+// its goal, then stops. See docs/nodes.md for its interface.
 #include <cstdio>
 
 #include <ros/ros.h>

@@ -1,4 +1,4 @@
-// world_sim: the team's simulated world and clock. See README.md for topics and parameters.
+// world_sim: the team's simulated world and clock. See docs/nodes.md for topics and parameters.
 #include <cstdio>
 
 #include <ros/ros.h>

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # charging_experiment end to end on the test room: every output, the summary line with no double
-# docking and no robot run flat, a saved world replays; then the tool's answers to bad input.
+# docking and no robot run flat, a saved world replays; a small run in shards merges into the
+# whole run's report; then the tool's answers to bad input.
 #   experiment_quick.sh CHARGING_EXPERIMENT MAPS_DIR
 set -uo pipefail
 tool=$1
@@ -28,6 +29,12 @@ echo "$line" | grep -Eq '^double_dockings 0 robots_flat 0 charges [0-9]+ utilisa
 # A saved world replays through --world.
 "$tool" --world "$out/run/worlds/seed_002.yaml" --hours 0.5 --seeds 1 --out "$out/replay" >"$out/replay.out" 2>&1 \
   || { cat "$out/replay.out"; fail "replaying a saved world failed"; }
+
+# Over machines: shards 1/2 and 2/2 of a small run merge into the whole run's report (the
+# timeline too), to the byte.
+report_args=(--out @OUT@ --timeline @OUT@/timeline.png)
+check_shards --map "$maps/test_room.yaml" --robots 3 --hours 0.3 --seeds 3
+expect_error "--timeline: give it to --merge" --map "$maps/test_room.yaml" --shard 1/2 --timeline "$out/t.png" --out "$out/x"
 
 # Bad input: a clear message and exit status 1 (expect_error).
 expect_error "low_battery must be within (0, 1), got 1.5" --map "$maps/test_room.yaml" --low 1.5 --out "$out/x"

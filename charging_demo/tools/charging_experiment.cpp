@@ -12,11 +12,16 @@
 // Ends with the line
 //   double_dockings D robots_flat F charges C utilisation U mean_wait_s W
 // summed (D, F, C) or averaged (U over trials, W over charges) over every seed.
+//
+// Over machines (tool_args/shard.h): --shard K/N runs every Nth seed and writes their worlds and
+// records into DIR; --merge DIR... [--out DIR] [--timeline FILE.png] makes the whole run's report
+// from the shards.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <string>
@@ -29,6 +34,8 @@
 #include "grid/map_file.h"
 #include "tool_args/parallel_for.h"
 #include "tool_args/progress_bar.h"
+#include "tool_args/record.h"
+#include "tool_args/shard.h"
 #include "tool_args/tool_args.h"
 #include "world_sim/world_file.h"
 
@@ -36,12 +43,14 @@ namespace {
 
 using namespace charging_demo;
 namespace fs = std::filesystem;
+using multirobot_audio::tools::BatchRun;
+using multirobot_audio::tools::ToolArgs;
 
 const char* kUsage =
     "charging_experiment [--map MAP.yaml | --world WORLD.yaml] [--robots 4] [--chargers 1]\n"
     "  [--hours 2] [--seeds 10] [--seed 1] [--out charging_results] [--timeline FILE.png]\n"
     "  [--hearing 15] [--spacing 12] [--low 0.3] [--full 0.98] [--wait-distance 1]\n"
-    "  [--lock-timeout 1500] [--threads 0]";
+    "  [--lock-timeout 1500] [--threads 0] [--shard K/N] | --merge SHARD_DIR... [--out DIR] [--timeline FILE.png]";
 
 double Mean(const std::vector<double>& values) {
   if (values.empty()) return std::nan("");
@@ -52,7 +61,6 @@ double Mean(const std::vector<double>& values) {
 
 struct Seeded {
   std::uint32_t seed = 0;
-  world_sim::WorldConfig world;
   ChargingTrialResult result;
 };
 
@@ -85,84 +93,125 @@ void WriteCsv(const fs::path& out, const std::vector<Seeded>& runs) {
   if (!trials || !robots) throw std::runtime_error((out / "trials.csv").string() + ": cannot write");
 }
 
-int Run(const multirobot_audio::tools::ToolArgs& args) {
-  const std::string world_file = args.String("--world", "");
-  const std::string map_file = args.String("--map", MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml");
+// What the command line asks for.
+struct Protocol {
+  std::string world_file, map_file, out_dir, timeline;
   ChargingWorldOptions placement;
+  double hours = 2.0, hearing = 15.0;
+  int seeds = 10, threads = 0;
+  std::uint32_t first_seed = 1;
+  ChargingTrialOptions options;
+};
+
+Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
+  Protocol p;
+  p.world_file = args.String("--world", "");
+  p.map_file = args.String("--map", MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml");
+  ChargingWorldOptions& placement = p.placement;
   placement.robots = static_cast<int>(args.Int("--robots", placement.robots, 1, 255));
   placement.chargers = static_cast<int>(args.Int("--chargers", placement.chargers, 1, 1000));
   placement.charger_spacing = args.Double("--spacing", placement.charger_spacing, 0.0, 1e6);
-  const double hours = args.Double("--hours", 2.0, 1e-3, 1000.0);
-  const int seeds = static_cast<int>(args.Int("--seeds", 10, 1, 100000));
-  const std::uint32_t first_seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
-  const double hearing = args.Double("--hearing", 15.0, 0.0, 1e6);
-  ChargingTrialOptions options;
-  options.duration = hours * 3600.0;
+  p.hours = args.Double("--hours", 2.0, 1e-3, 1000.0);
+  p.seeds = static_cast<int>(args.Int("--seeds", 10, 1, 100000));
+  p.first_seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
+  p.hearing = args.Double("--hearing", 15.0, 0.0, 1e6);
+  ChargingTrialOptions& options = p.options;
+  options.duration = p.hours * 3600.0;
   ChargingOptions& charging = options.controller.charging;
   charging.low_battery = args.Double("--low", charging.low_battery, -1e9, 1e9);
   charging.full_battery = args.Double("--full", charging.full_battery, -1e9, 1e9);
   charging.wait_distance = args.Double("--wait-distance", charging.wait_distance, -1e9, 1e9);
   charging.lock_timeout = args.Double("--lock-timeout", charging.lock_timeout, -1e9, 1e9);
-  const int threads = static_cast<int>(args.Int("--threads", 0, 0, 256));
-  const std::string out_dir = args.String("--out", "charging_results");
-  const std::string timeline = args.String("--timeline", "");
-  if (!world_file.empty() && (!args.String("--robots", "").empty() || !args.String("--chargers", "").empty() ||
-                              !args.String("--map", "").empty() || !args.String("--spacing", "").empty()))
+  p.threads = static_cast<int>(args.Int("--threads", 0, 0, 256));
+  p.out_dir = args.String("--out", "charging_results");
+  p.timeline = args.String("--timeline", "");
+  if (!p.world_file.empty() && (!args.String("--robots", "").empty() || !args.String("--chargers", "").empty() ||
+                                !args.String("--map", "").empty() || !args.String("--spacing", "").empty()))
     args.Fail("--world gives the robots, chargers and map: drop --robots, --chargers, --map and --spacing");
+  if (batch.sharded() && !p.timeline.empty())
+    args.Fail("--timeline: give it to --merge, which draws the first seed's trial from the shards");
   args.CheckAllUsed();
   // The options' own checks name the field (a threshold outside (0, 1), ...) before any work.
   charging.chargers = {placement.first_marker};
   ValidateOptions(options.controller);
   ValidateOptions(options);
+  return p;
+}
 
-  std::vector<Seeded> runs(seeds);
-  grid::OccupancyMap map;
-  if (!world_file.empty()) {
-    world_sim::LoadedWorld loaded = world_sim::LoadWorldFile(world_file);
-    ValidateChargingWorld(world_file, loaded.config);
-    map = std::move(loaded.map);
-    for (int s = 0; s < seeds; ++s) runs[s].world = loaded.config;
-  } else {
-    const std::string absolute = fs::absolute(map_file).lexically_normal().string();
-    map = grid::LoadMapFile(absolute);
-    for (int s = 0; s < seeds; ++s) {
-      std::mt19937 rng(first_seed + static_cast<std::uint32_t>(s));
-      runs[s].world = RandomChargingWorld(map, absolute, world_sim::RobotModel{}, placement, rng);
+// One trial's result as a record (tool_args/record.h), and back. Only the first seed's record
+// keeps the phases and battery samples: they are for the timeline, which draws that trial. The
+// lock counters are in no report and in no record.
+std::string Record(std::uint32_t seed, const ChargingTrialResult& r, bool with_timeline) {
+  multirobot_audio::tools::RecordWriter w;
+  w.Put(seed).Put(r.duration).Put(r.double_dockings).Put(r.collisions).Put(r.packets_sent).Put(r.queue_overflows);
+  w.PutList(r.charger_busy).Put(r.robots.size());
+  for (const RobotRecord& robot : r.robots) {
+    w.Put(robot.charges).Put(robot.give_ups).Put(robot.redocks).Put(robot.retraces).Put(robot.wall_loops);
+    w.Put(robot.flat).Put(robot.min_battery).PutList(robot.waits).PutList(robot.seeks);
+    w.Put(with_timeline ? robot.phases.size() : 0);
+    if (with_timeline)
+      for (const PhaseSpan& span : robot.phases) w.Put(static_cast<int>(span.phase)).Put(span.start).Put(span.end);
+    w.Put(with_timeline ? robot.battery.size() : 0);
+    if (with_timeline)
+      for (const auto& [t, level] : robot.battery) w.Put(t).Put(level);
+  }
+  return w.text();
+}
+
+ChargingTrialResult ReadRecord(const std::string& text, const std::string& where, std::uint32_t seed) {
+  multirobot_audio::tools::RecordReader in(text, where);
+  ChargingTrialResult r;
+  in.Expect(seed, "seed");
+  r.duration = in.Get<double>();
+  r.double_dockings = in.Get<std::uint64_t>();
+  r.collisions = in.Get<int>();
+  r.packets_sent = in.Get<std::uint64_t>();
+  r.queue_overflows = in.Get<std::uint64_t>();
+  r.charger_busy = in.GetList<double>();
+  r.robots.resize(in.GetCount());
+  for (RobotRecord& robot : r.robots) {
+    robot.charges = in.Get<std::uint64_t>();
+    robot.give_ups = in.Get<std::uint64_t>();
+    robot.redocks = in.Get<std::uint64_t>();
+    robot.retraces = in.Get<std::uint64_t>();
+    robot.wall_loops = in.Get<std::uint64_t>();
+    robot.flat = in.Get<bool>();
+    robot.min_battery = in.Get<double>();
+    robot.waits = in.GetList<double>();
+    robot.seeks = in.GetList<double>();
+    robot.phases.resize(in.GetCount(3));
+    for (PhaseSpan& span : robot.phases) {
+      span.phase = static_cast<Phase>(in.GetInRange(0, static_cast<int>(Phase::kUndock)));
+      span.start = in.Get<double>();
+      span.end = in.Get<double>();
+    }
+    robot.battery.resize(in.GetCount(2));
+    for (auto& [t, level] : robot.battery) {
+      t = in.Get<double>();
+      level = in.Get<double>();
     }
   }
-  const fs::path out(out_dir);
-  fs::create_directories(out / "worlds");
-  for (int s = 0; s < seeds; ++s) {
-    runs[s].seed = first_seed + static_cast<std::uint32_t>(s);
-    runs[s].world.seed = runs[s].seed;
-    char name[32];
-    std::snprintf(name, sizeof name, "seed_%03u.yaml", runs[s].seed);
-    world_sim::SaveWorldFile((out / "worlds" / name).string(), runs[s].world);
+  in.End();
+  return r;
+}
+
+// The report, the same for a whole run and a merge of shards: it is made from records read back.
+void Report(const Protocol& p, const std::vector<std::string>& records,
+            const std::function<std::string(std::size_t)>& where) {
+  std::vector<Seeded> runs(records.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    runs[i].seed = p.first_seed + static_cast<std::uint32_t>(i);
+    runs[i].result = ReadRecord(records[i], where(i), runs[i].seed);
   }
-
-  audio_propagation::PropagationOptions audio;
-  audio.max_range = hearing;
-  const audio_propagation::PropagationModel model(map, audio);
-  std::fprintf(stderr, "charging_experiment: %d seeds x %.2f h, %zu robots, %zu chargers\n", seeds, hours,
-               runs[0].world.robots.size(), runs[0].world.chargers.size());
-  multirobot_audio::tools::ProgressBar bar("trials");
-  const auto start = std::chrono::steady_clock::now();
-  multirobot_audio::tools::ParallelFor(
-      runs.size(), threads,
-      [&](std::size_t i) {
-        ChargingTrialOptions o = options;
-        o.seed = runs[i].seed;
-        runs[i].result = RunChargingTrial(map, runs[i].world, model, o);
-      },
-      bar);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
+  const fs::path out(p.out_dir);
+  fs::create_directories(out);
   WriteCsv(out, runs);
-  if (!timeline.empty())
-    WriteChargingTimeline(timeline, runs[0].result, charging.low_battery,
+  const ChargingTrialResult& first = runs[0].result;
+  if (!p.timeline.empty())
+    WriteChargingTimeline(p.timeline, first, p.options.controller.charging.low_battery,
                           "charging trial, seed " + std::to_string(runs[0].seed) + ": " +
-                              std::to_string(runs[0].world.robots.size()) + " robots, " +
-                              std::to_string(runs[0].world.chargers.size()) + " chargers");
+                              std::to_string(first.robots.size()) + " robots, " +
+                              std::to_string(first.charger_busy.size()) + " chargers");
 
   std::uint64_t double_dockings = 0, charges = 0;
   std::size_t flat = 0;
@@ -176,19 +225,87 @@ int Run(const multirobot_audio::tools::ToolArgs& args) {
     for (const RobotRecord& r : run.result.robots)
       for (double w : r.waits) wait_sum += w, ++waits;
   }
-  std::printf("trials %d wall_s %.1f out %s\n", seeds, wall, out_dir.c_str());
+  std::printf("trials %zu\n", runs.size());
   std::printf("double_dockings %llu robots_flat %zu charges %llu utilisation %.3f mean_wait_s %.1f\n",
               static_cast<unsigned long long>(double_dockings), flat,
               static_cast<unsigned long long>(charges), utilisation, waits ? wait_sum / waits : std::nan(""));
+}
+
+// A whole run, or one shard of it.
+int Run(const ToolArgs& args, const BatchRun& batch) {
+  const Protocol p = ParseProtocol(args, batch);
+  const std::vector<std::size_t> which = batch.Trials(p.seeds);
+  std::vector<world_sim::WorldConfig> worlds(p.seeds);
+  grid::OccupancyMap map;
+  if (!p.world_file.empty()) {
+    world_sim::LoadedWorld loaded = world_sim::LoadWorldFile(p.world_file);
+    ValidateChargingWorld(p.world_file, loaded.config);
+    map = std::move(loaded.map);
+    for (std::size_t s : which) worlds[s] = loaded.config;
+  } else {
+    const std::string absolute = fs::absolute(p.map_file).lexically_normal().string();
+    map = grid::LoadMapFile(absolute);
+    for (std::size_t s : which) {
+      std::mt19937 rng(p.first_seed + static_cast<std::uint32_t>(s));
+      worlds[s] = RandomChargingWorld(map, absolute, world_sim::RobotModel{}, p.placement, rng);
+    }
+  }
+  const fs::path out(p.out_dir);
+  fs::create_directories(out / "worlds");
+  for (std::size_t s : which) {
+    worlds[s].seed = p.first_seed + static_cast<std::uint32_t>(s);
+    char name[32];
+    std::snprintf(name, sizeof name, "seed_%03u.yaml", worlds[s].seed);
+    world_sim::SaveWorldFile((out / "worlds" / name).string(), worlds[s]);
+  }
+
+  audio_propagation::PropagationOptions audio;
+  audio.max_range = p.hearing;
+  const audio_propagation::PropagationModel model(map, audio);
+  if (!which.empty()) {
+    std::fprintf(stderr, "charging_experiment: %d seeds x %.2f h, %zu robots, %zu chargers%s\n", p.seeds, p.hours,
+                 worlds[which[0]].robots.size(), worlds[which[0]].chargers.size(),
+                 batch.sharded() ? (", shard " + batch.shard().Name()).c_str() : "");
+  }
+  multirobot_audio::tools::ProgressBar bar("trials");
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::string> records(p.seeds);
+  multirobot_audio::tools::ParallelFor(
+      which.size(), p.threads,
+      [&](std::size_t k) {
+        const std::size_t s = which[k];
+        ChargingTrialOptions o = p.options;
+        o.seed = worlds[s].seed;
+        records[s] = Record(o.seed, RunChargingTrial(map, worlds[s], model, o), s == 0);
+      },
+      bar);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (batch.sharded()) {
+    batch.WriteShard(p.out_dir, records);
+  } else {
+    Report(p, records, [](std::size_t i) { return "trial " + std::to_string(i); });
+  }
+  std::fprintf(stderr, "charging_experiment: %zu trials in %.1f s, written to %s\n", which.size(), wall,
+               p.out_dir.c_str());
+  return 0;
+}
+
+int Merge(const BatchRun& batch) {
+  const multirobot_audio::tools::MergedShards shards = batch.Merge();
+  const Protocol p = ParseProtocol(batch.MergedArgs(shards), batch);
+  const std::vector<std::string>& records = shards.Records(p.seeds);
+  shards.CopyFiles(p.out_dir);
+  Report(p, records, [&](std::size_t i) { return shards.Where(i); });
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const multirobot_audio::tools::ToolArgs args("charging_experiment", kUsage, argc, argv);
+  const ToolArgs args("charging_experiment", kUsage, argc, argv, {"--merge"});
+  const BatchRun batch(args, {"--out", "--threads", "--timeline"});
   try {
-    return Run(args);
+    return batch.merging() ? Merge(batch) : Run(args, batch);
   } catch (const std::exception& e) {
     std::cerr << "charging_experiment: " << e.what() << "\n";
   }

@@ -85,34 +85,51 @@ std::unique_ptr<TeamSim> RunTrial(const audio_propagation::PropagationModel& mod
   return sim;
 }
 
-TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
-                       const TeamSimOptions& options, int count) {
+TrialOutcome RunTrialOutcome(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                             const TeamSimOptions& options, int index) {
+  const std::unique_ptr<TeamSim> trial = RunTrial(model, trials, options, index);
+  const TeamSim& sim = *trial;
+  TrialOutcome outcome;
+  outcome.seed = options.seed + static_cast<std::uint32_t>(index);
+  outcome.violations = sim.violations();
+  outcome.liveness_bound = LivenessBound(trials, options.mutex, static_cast<int>(sim.size()));
+  for (const Grant& g : sim.grants()) outcome.waits.push_back(g.granted - g.wanted);
+  std::size_t wished = 0;
+  for (std::size_t k = 0; k < sim.size(); ++k) wished += sim.robot(k).demands.size();
+  outcome.unserved = wished - sim.grants().size();
+  for (std::size_t k = 0; k < sim.size(); ++k) outcome.packets_sent += sim.mutex(k).counters().sent;
+  outcome.corrupted = sim.corrupted();
+  outcome.lost = sim.lost();
+  return outcome;
+}
+
+TrialSummary Summarize(const std::vector<TrialOutcome>& outcomes) {
   TrialSummary s;
   double wait_sum = 0.0;
-  for (int t = 0; t < count; ++t) {
-    const std::unique_ptr<TeamSim> trial = RunTrial(model, trials, options, t);
-    const TeamSim& sim = *trial;
-    const double bound = LivenessBound(trials, options.mutex, static_cast<int>(sim.size()));
+  for (const TrialOutcome& o : outcomes) {
     ++s.trials;
-    s.violations += sim.violations();
-    s.trials_with_violations += sim.violations() > 0;
-    for (const Grant& g : sim.grants()) {
-      const double wait = g.granted - g.wanted;
+    s.violations += o.violations;
+    s.trials_with_violations += o.violations > 0;
+    for (const double wait : o.waits) {
       ++s.grants;
       wait_sum += wait;
       s.max_wait = std::max(s.max_wait, wait);
-      s.liveness_failures += wait > bound;
+      s.liveness_failures += wait > o.liveness_bound;
     }
-    // Demands still waiting, or never even wanted (their wish came after the run ended).
-    std::size_t wished = 0;
-    for (std::size_t k = 0; k < sim.size(); ++k) wished += sim.robot(k).demands.size();
-    s.liveness_failures += wished - sim.grants().size();
-    for (std::size_t k = 0; k < sim.size(); ++k) s.packets_sent += sim.mutex(k).counters().sent;
-    s.corrupted += sim.corrupted();
-    s.lost += sim.lost();
+    s.liveness_failures += o.unserved;
+    s.packets_sent += o.packets_sent;
+    s.corrupted += o.corrupted;
+    s.lost += o.lost;
   }
   s.mean_wait = s.grants ? wait_sum / s.grants : 0.0;
   return s;
+}
+
+TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                       const TeamSimOptions& options, int count) {
+  std::vector<TrialOutcome> outcomes;
+  for (int t = 0; t < count; ++t) outcomes.push_back(RunTrialOutcome(model, trials, options, t));
+  return Summarize(outcomes);
 }
 
 }  // namespace local_mutex

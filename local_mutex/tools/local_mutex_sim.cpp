@@ -15,20 +15,31 @@
 //   trials N violations V liveness_failures L mean_wait_s M max_wait_s X
 // --sweep runs N trials per cell of two tables (corrupted packets, lost receptions) against the
 // number of requests sent in one t_grab, beside the thesis's (p)^n bound.
+//
+// Over machines (tool_args/shard.h): --trials or --sweep with --shard K/N --out DIR runs every
+// Nth trial (the sweep's in table, row, trial order) into DIR; --merge DIR... prints the whole
+// run's report from the shards.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <functional>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "local_mutex/scenarios.h"
 #include "local_mutex/timeline_plot.h"
+#include "tool_args/record.h"
+#include "tool_args/shard.h"
 #include "tool_args/tool_args.h"
 
 namespace {
 
 using namespace local_mutex;
+using multirobot_audio::tools::BatchRun;
+using multirobot_audio::tools::ToolArgs;
 
 void ParseRange(const multirobot_audio::tools::ToolArgs& args, const std::string& text, int& lo, int& hi) {
   const auto dots = text.find("..");
@@ -87,48 +98,22 @@ void PrintSummary(const TrialSummary& s) {
               s.mean_wait, s.max_wait);
 }
 
-void Sweep(const TrialOptions& trials, const TeamSimOptions& base, int count) {
-  auto model = OpenFloor();
-  const double grab = base.mutex.grab_time;
-  for (const bool lose : {false, true}) {
-    std::printf("\n%s, %d trials per cell, %d..%d robots\n\n",
-                lose ? "Receptions lost outright (not even a carrier)" : "Packets corrupted (heard as noise)", count,
-                trials.min_robots, trials.max_robots);
-    std::printf("| p | n requests | t_request s | violations / grant | p^n | liveness failures | mean wait s |\n");
-    std::printf("|---|---|---|---|---|---|---|\n");
-    for (const double p : {0.0, 0.1, 0.2, 0.3, 0.5}) {
-      for (int n = 1; n <= 4; ++n) {
-        TeamSimOptions o = base;
-        // n requests fit in one t_grab of silence: at t_request, 2 t_request, ... n t_request.
-        o.mutex.request_mean = grab / (n + 0.5);
-        o.mutex.request_sd = o.mutex.request_mean * 2.0 / 15.0;
-        o.mutex.lock_mean = std::min(base.mutex.lock_mean, o.mutex.request_mean);
-        o.mutex.lock_sd = o.mutex.lock_mean * 0.1;
-        (lose ? o.loss : o.noise) = p;
-        const TrialSummary s = RunTrials(*model, trials, o, count);
-        std::printf("| %.1f | %d | %.1f | %.4f | %.4f | %llu | %.1f |\n", p, n, o.mutex.request_mean,
-                    s.grants ? static_cast<double>(s.violations) / s.grants : 0.0, std::pow(p, n),
-                    static_cast<unsigned long long>(s.liveness_failures), s.mean_wait);
-        std::fflush(stdout);
-      }
-    }
-  }
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  const multirobot_audio::tools::ToolArgs args(
-      "local_mutex_sim",
-      "local_mutex_sim --scenario single|three [--timeline out.png] | --trials N [--robots 2..6] [--noise P] "
-      "[--loss Q] | --sweep N; timers --grab --request --request-sd --lock --lock-sd; trials --radius "
-      "--want-spread --hold-min --hold-max --cycles --bound; --seed S",
-      argc, argv);
-  const std::string scenario = args.String("--scenario", "");
-  const std::string timeline = args.String("--timeline", "");
-  const long trial_count = args.Int("--trials", 0, 0, 100000000);
-  const long sweep = args.Int("--sweep", 0, 0, 100000000);
+// What the command line asks for.
+struct Request {
+  std::string scenario, timeline, out;
+  int trial_count = 0, sweep = 0;
   TeamSimOptions options;
+  TrialOptions trials;
+};
+
+Request ParseRequest(const ToolArgs& args, const BatchRun& batch) {
+  Request r;
+  r.scenario = args.String("--scenario", "");
+  r.timeline = args.String("--timeline", "");
+  r.out = args.String("--out", "");
+  r.trial_count = static_cast<int>(args.Int("--trials", 0, 0, 100000000));
+  r.sweep = static_cast<int>(args.Int("--sweep", 0, 0, 100000000));
+  TeamSimOptions& options = r.options;
   options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
   options.noise = args.Double("--noise", 0.0, 0.0, 1.0);
   options.loss = args.Double("--loss", 0.0, 0.0, 1.0);
@@ -138,7 +123,7 @@ int main(int argc, char** argv) {
   m.request_sd = args.Double("--request-sd", m.request_sd, 0.0, 1e6);
   m.lock_mean = args.Double("--lock", m.lock_mean, 1e-3, 1e6);
   m.lock_sd = args.Double("--lock-sd", m.lock_sd, 0.0, 1e6);
-  TrialOptions trials;
+  TrialOptions& trials = r.trials;
   ParseRange(args, args.String("--robots", "2..6"), trials.min_robots, trials.max_robots);
   trials.radius = args.Double("--radius", trials.radius, 0.0, 9.0);
   trials.want_spread = args.Double("--want-spread", trials.want_spread, 0.0, 1e6);
@@ -147,30 +132,170 @@ int main(int argc, char** argv) {
   trials.cycles = static_cast<int>(args.Int("--cycles", trials.cycles, 1, 1000));
   trials.liveness_bound = args.Double("--bound", 0.0, 0.0, 1e9);
   args.CheckAllUsed();
-  if ((scenario.empty() ? 0 : 1) + (trial_count > 0) + (sweep > 0) != 1) {
+  if ((r.scenario.empty() ? 0 : 1) + (r.trial_count > 0) + (r.sweep > 0) != 1) {
     args.Fail("give exactly one of --scenario, --trials N, --sweep N");
   }
-  try {
-    ValidateMutexOptions(m);
-    if (!scenario.empty()) return RunScenario(scenario, options, timeline);
-    if (!timeline.empty() && trial_count != 1) args.Fail("--timeline goes with --scenario or --trials 1");
-    if (sweep > 0) {
-      Sweep(trials, options, static_cast<int>(sweep));
-      return 0;
-    }
-    const double cpu0 = CpuSeconds();
-    auto model = OpenFloor();
-    if (!timeline.empty()) {
-      options.record = true;
-      DrawTimeline(*RunTrial(*model, trials, options, 0), timeline);
-      std::printf("timeline written to %s\n", timeline.c_str());
-    }
-    const TrialSummary s = RunTrials(*model, trials, options, static_cast<int>(trial_count));
-    std::printf("grants %llu packets_sent %llu corrupted %llu lost %llu cpu_s %.1f\n",
-                static_cast<unsigned long long>(s.grants), static_cast<unsigned long long>(s.packets_sent),
-                static_cast<unsigned long long>(s.corrupted), static_cast<unsigned long long>(s.lost),
-                CpuSeconds() - cpu0);
+  if (batch.sharded() && !r.scenario.empty()) args.Fail("--shard: for --trials N and --sweep N, not --scenario");
+  if (batch.sharded() && r.out.empty()) args.Fail("--shard: give --out DIR for the shard's files");
+  if (!batch.sharded() && !r.out.empty()) args.Fail("--out: for --shard only (the report is printed)");
+  if (batch.sharded() && !r.timeline.empty()) args.Fail("--timeline draws one trial: give it without --shard");
+  return r;
+}
+
+// The groups of trials a run is made of, each `count` trials of one TeamSimOptions: --trials N
+// is one group of N, --sweep N a group of N per cell of its tables (tables, then rows). Trial t
+// of group g is trial g * count + t of the whole run.
+struct SweepCell {
+  bool lose = false;  // receptions lost (else packets corrupted)
+  double p = 0.0;
+  int n = 0;          // requests in one t_grab
+  TeamSimOptions options;
+};
+
+std::vector<SweepCell> SweepCells(const TeamSimOptions& base) {
+  std::vector<SweepCell> cells;
+  const double grab = base.mutex.grab_time;
+  for (const bool lose : {false, true})
+    for (const double p : {0.0, 0.1, 0.2, 0.3, 0.5})
+      for (int n = 1; n <= 4; ++n) {
+        TeamSimOptions o = base;
+        // n requests fit in one t_grab of silence: at t_request, 2 t_request, ... n t_request.
+        o.mutex.request_mean = grab / (n + 0.5);
+        o.mutex.request_sd = o.mutex.request_mean * 2.0 / 15.0;
+        o.mutex.lock_mean = std::min(base.mutex.lock_mean, o.mutex.request_mean);
+        o.mutex.lock_sd = o.mutex.lock_mean * 0.1;
+        (lose ? o.loss : o.noise) = p;
+        cells.push_back({lose, p, n, o});
+      }
+  return cells;
+}
+
+std::vector<SweepCell> Groups(const Request& r) {
+  return r.sweep > 0 ? SweepCells(r.options) : std::vector<SweepCell>{{false, 0.0, 0, r.options}};
+}
+int PerGroup(const Request& r) { return r.sweep > 0 ? r.sweep : r.trial_count; }
+
+// One trial's outcome as a record (tool_args/record.h), and back.
+std::string Record(const TrialOutcome& o) {
+  multirobot_audio::tools::RecordWriter w;
+  w.Put(o.seed).Put(o.violations).Put(o.unserved).Put(o.liveness_bound).Put(o.packets_sent).Put(o.corrupted);
+  w.Put(o.lost).PutList(o.waits);
+  return w.text();
+}
+
+TrialOutcome ReadRecord(const std::string& text, const std::string& where, std::uint32_t seed) {
+  multirobot_audio::tools::RecordReader in(text, where);
+  TrialOutcome o;
+  in.Expect(seed, "seed");
+  o.seed = seed;
+  o.violations = in.Get<std::uint64_t>();
+  o.unserved = in.Get<std::uint64_t>();
+  o.liveness_bound = in.Get<double>();
+  o.packets_sent = in.Get<std::uint64_t>();
+  o.corrupted = in.Get<std::uint64_t>();
+  o.lost = in.Get<std::uint64_t>();
+  o.waits = in.GetList<double>();
+  in.End();
+  return o;
+}
+
+// The outcomes of one group's trials, as records read back.
+using GroupOutcomes = std::function<std::vector<TrialOutcome>(std::size_t group)>;
+
+// The report of --trials or --sweep, the same for a whole run and a merge of shards. A whole
+// run's sweep prints each row as its cell is done.
+void Report(const Request& r, const GroupOutcomes& outcomes) {
+  const std::vector<SweepCell> groups = Groups(r);
+  if (r.sweep == 0) {
+    const TrialSummary s = Summarize(outcomes(0));
+    std::printf("grants %llu packets_sent %llu corrupted %llu lost %llu\n", static_cast<unsigned long long>(s.grants),
+                static_cast<unsigned long long>(s.packets_sent), static_cast<unsigned long long>(s.corrupted),
+                static_cast<unsigned long long>(s.lost));
     PrintSummary(s);
+    return;
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const SweepCell& cell = groups[g];
+    if (g == 0 || cell.lose != groups[g - 1].lose) {
+      std::printf("\n%s, %d trials per cell, %d..%d robots\n\n",
+                  cell.lose ? "Receptions lost outright (not even a carrier)" : "Packets corrupted (heard as noise)",
+                  r.sweep, r.trials.min_robots, r.trials.max_robots);
+      std::printf("| p | n requests | t_request s | violations / grant | p^n | liveness failures | mean wait s |\n");
+      std::printf("|---|---|---|---|---|---|---|\n");
+    }
+    const TrialSummary s = Summarize(outcomes(g));
+    std::printf("| %.1f | %d | %.1f | %.4f | %.4f | %llu | %.1f |\n", cell.p, cell.n, cell.options.mutex.request_mean,
+                s.grants ? static_cast<double>(s.violations) / s.grants : 0.0, std::pow(cell.p, cell.n),
+                static_cast<unsigned long long>(s.liveness_failures), s.mean_wait);
+    std::fflush(stdout);
+  }
+}
+
+// --trials or --sweep: the whole run, or one shard of it.
+void RunTrialsOrSweep(const Request& r, const BatchRun& batch) {
+  const double cpu0 = CpuSeconds();
+  auto model = OpenFloor();
+  const std::vector<SweepCell> groups = Groups(r);
+  const int count = PerGroup(r);
+  if (batch.sharded()) {
+    std::vector<std::string> records(groups.size() * count);
+    for (std::size_t i : batch.Trials(records.size()))
+      records[i] = Record(RunTrialOutcome(*model, r.trials, groups[i / count].options, static_cast<int>(i % count)));
+    batch.WriteShard(r.out, records);
+  } else {
+    Report(r, [&](std::size_t g) {
+      std::vector<TrialOutcome> outcomes;
+      for (int t = 0; t < count; ++t) {
+        const TeamSimOptions& o = groups[g].options;
+        const std::string record = Record(RunTrialOutcome(*model, r.trials, o, t));
+        outcomes.push_back(ReadRecord(record, "trial " + std::to_string(g * count + t), o.seed + t));
+      }
+      return outcomes;
+    });
+  }
+  std::fprintf(stderr, "local_mutex_sim: cpu_s %.1f\n", CpuSeconds() - cpu0);
+}
+
+int Merge(const BatchRun& batch) {
+  const multirobot_audio::tools::MergedShards shards = batch.Merge();
+  const ToolArgs args = batch.MergedArgs(shards);
+  const Request r = ParseRequest(args, batch);
+  const std::vector<SweepCell> groups = Groups(r);
+  const std::size_t count = PerGroup(r);
+  const std::vector<std::string>& records = shards.Records(groups.size() * count);
+  Report(r, [&](std::size_t g) {
+    std::vector<TrialOutcome> outcomes;
+    for (std::size_t t = 0; t < count; ++t)
+      outcomes.push_back(ReadRecord(records[g * count + t], shards.Where(g * count + t),
+                                    groups[g].options.seed + static_cast<std::uint32_t>(t)));
+    return outcomes;
+  });
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const ToolArgs args(
+      "local_mutex_sim",
+      "local_mutex_sim --scenario single|three [--timeline out.png] | --trials N [--robots 2..6] [--noise P] "
+      "[--loss Q] | --sweep N; timers --grab --request --request-sd --lock --lock-sd; trials --radius "
+      "--want-spread --hold-min --hold-max --cycles --bound; --seed S; --shard K/N --out DIR | --merge DIR...",
+      argc, argv, {"--merge"});
+  const BatchRun batch(args, {"--out"});
+  try {
+    if (batch.merging()) return Merge(batch);
+    const Request r = ParseRequest(args, batch);
+    ValidateMutexOptions(r.options.mutex);
+    if (!r.scenario.empty()) return RunScenario(r.scenario, r.options, r.timeline);
+    if (!r.timeline.empty() && r.trial_count != 1) args.Fail("--timeline goes with --scenario or --trials 1");
+    if (!r.timeline.empty()) {
+      TeamSimOptions options = r.options;
+      options.record = true;
+      DrawTimeline(*RunTrial(*OpenFloor(), r.trials, options, 0), r.timeline);
+      std::printf("timeline written to %s\n", r.timeline.c_str());
+    }
+    RunTrialsOrSweep(r, batch);
   } catch (const std::exception& e) {
     std::cerr << "local_mutex_sim: " << e.what() << "\n";
     return 1;

@@ -12,37 +12,50 @@ std::uint32_t TrialSeed(std::uint32_t base, int config, int trial) {
          static_cast<std::uint32_t>(trial);
 }
 
-std::vector<TrialRow> RunExperiment(const grid::OccupancyMap& map,
-                                    const std::vector<world_sim::WorldConfig>& configs,
-                                    const audio_propagation::PropagationModel& model,
-                                    const ExperimentOptions& options,
-                                    const std::function<void(int, int)>& progress) {
+std::vector<TrialRow> ExperimentRows(int configs, const ExperimentOptions& options) {
   if (options.trials < 1)
     throw std::invalid_argument("trials must be at least 1, got " + std::to_string(options.trials));
   if (options.modes.empty()) throw std::invalid_argument("at least one mode is needed");
-  ValidateOptions(options.trial);
   std::vector<TrialRow> rows;
-  for (std::size_t c = 0; c < configs.size(); ++c)
+  for (int c = 1; c <= configs; ++c)
     for (ListenMode mode : options.modes)
       for (int t = 1; t <= options.trials; ++t) {
         TrialRow row;
-        row.config = static_cast<int>(c) + 1;
+        row.config = c;
         row.mode = mode;
         row.trial = t;
         row.seed = TrialSeed(options.seed, row.config, t);
         rows.push_back(row);
       }
+  return rows;
+}
 
+void RunRows(const grid::OccupancyMap& map, const std::vector<world_sim::WorldConfig>& configs,
+             const audio_propagation::PropagationModel& model, const ExperimentOptions& options,
+             const std::vector<std::size_t>& which, std::vector<TrialRow>& rows,
+             const std::function<void(int, int)>& progress) {
+  ValidateOptions(options.trial);
   multirobot_audio::tools::ParallelFor(
-      rows.size(), options.threads,
-      [&](std::size_t i) {
-        TrialRow& row = rows[i];
+      which.size(), options.threads,
+      [&](std::size_t k) {
+        TrialRow& row = rows.at(which[k]);
         TrialOptions o = options.trial;
         o.mode = row.mode;
         o.seed = row.seed;
-        row.result = RunTeamTrial(map, configs[row.config - 1], model, o);
+        row.result = RunTeamTrial(map, configs.at(row.config - 1), model, o);
       },
       progress);
+}
+
+std::vector<TrialRow> RunExperiment(const grid::OccupancyMap& map,
+                                    const std::vector<world_sim::WorldConfig>& configs,
+                                    const audio_propagation::PropagationModel& model,
+                                    const ExperimentOptions& options,
+                                    const std::function<void(int, int)>& progress) {
+  std::vector<TrialRow> rows = ExperimentRows(static_cast<int>(configs.size()), options);
+  std::vector<std::size_t> all(rows.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  RunRows(map, configs, model, options, all, rows, progress);
   return rows;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The quick Sounds Good protocol end to end: it runs, writes every output, and the audio modes
-# beat "no audio" over all its trials; then the tool's answers to bad input.
+# beat "no audio" over all its trials; a small run in shards merges into the whole run's report;
+# then the tool's answers to bad input.
 #   experiment_quick.sh SOUNDS_GOOD_EXPERIMENT MAPS_DIR
 set -uo pipefail
 tool=$1
@@ -32,6 +33,10 @@ done
 # A configuration saved by the run replays through --worlds.
 "$tool" --worlds "$out/run/configs/config_02.yaml" --trials 1 --jobs 2 --modes bidirectional \
   --out "$out/replay" >/dev/null 2>&1 || fail "replaying a saved configuration failed"
+
+# Over machines: shards 1/2 and 2/2 of a small run merge into the whole run's report, to the byte.
+report_args=(--out @OUT@)
+check_shards --quick --configs 2 --trials 2 --jobs 3
 
 # Bad input: a clear message and exit status 1 (expect_error).
 expect_error "expected none, bidirectional or omni, got 'loud'" --quick --modes loud --out "$out/x"

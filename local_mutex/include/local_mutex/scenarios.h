@@ -47,9 +47,26 @@ struct TrialSummary {
   std::uint64_t packets_sent = 0, corrupted = 0, lost = 0;
 };
 
+// What one trial leaves for a summary: enough to sum any number of trials (a whole run's or
+// those gathered from shards) exactly as they were run.
+struct TrialOutcome {
+  std::uint32_t seed = 0;
+  std::uint64_t violations = 0;
+  std::uint64_t unserved = 0;  // demands never granted: still waiting, or wished after the run's end
+  double liveness_bound = 0.0; // s: a longer wait is a liveness failure
+  std::uint64_t packets_sent = 0, corrupted = 0, lost = 0;
+  std::vector<double> waits;   // s from wanting to holding, per grant in grant order
+};
+
 // Trial number `index` of a series (seed options.seed + index), run to its end.
 std::unique_ptr<TeamSim> RunTrial(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
                                   const TeamSimOptions& options, int index);
+// The same trial's outcome.
+TrialOutcome RunTrialOutcome(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
+                             const TeamSimOptions& options, int index);
+
+// The trials summed in order.
+TrialSummary Summarize(const std::vector<TrialOutcome>& outcomes);
 
 // Runs `trials` random trials on `model`, seeds options.seed, options.seed + 1, ...
 TrialSummary RunTrials(const audio_propagation::PropagationModel& model, const TrialOptions& trials,

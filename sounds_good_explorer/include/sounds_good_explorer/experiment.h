@@ -31,6 +31,18 @@ struct TrialRow {
 // controller draws where their runs agree.
 std::uint32_t TrialSeed(std::uint32_t base, int config, int trial);
 
+// Every configuration x mode x trial of an experiment on `configs` configurations, with its
+// seed and no result yet, in (config, mode, trial) order: the order of a whole run, which
+// numbers the trials for shards. Throws std::invalid_argument for no trials or no mode.
+std::vector<TrialRow> ExperimentRows(int configs, const ExperimentOptions& options);
+
+// Runs rows[i] for every i in `which` (a shard's share, or all), spread over `threads` worker
+// threads; `progress` counts them as RunExperiment does.
+void RunRows(const grid::OccupancyMap& map, const std::vector<world_sim::WorldConfig>& configs,
+             const audio_propagation::PropagationModel& model, const ExperimentOptions& options,
+             const std::vector<std::size_t>& which, std::vector<TrialRow>& rows,
+             const std::function<void(int, int)>& progress = {});
+
 // Runs every configuration x mode x trial, spread over `threads` worker threads (each trial is
 // independent and deterministic, so the rows do not depend on the thread count). `progress`
 // is called after each trial with (done, total), from one thread at a time. Rows come back in

@@ -17,9 +17,15 @@ class ToolArgs {
   // `switches` are flags that take no value (e.g. --quick); every other flag takes one.
   ToolArgs(const std::string& program, const std::string& usage, int argc, char** argv,
            const std::set<std::string>& switches = {})
-      : program_(program), usage_(usage) {
-    for (int i = 1; i < argc; ++i) {
-      const std::string flag = argv[i];
+      : ToolArgs(program, usage, std::vector<std::string>(argv + 1, argv + argc), switches) {}
+
+  // The same from words given without the program name (e.g. the options a shard was run with).
+  ToolArgs(const std::string& program, const std::string& usage, const std::vector<std::string>& words,
+           const std::set<std::string>& switches = {})
+      : program_(program), usage_(usage), switches_(switches) {
+    const int argc = static_cast<int>(words.size());
+    for (int i = 0; i < argc; ++i) {
+      const std::string flag = words[i];
       if (flag == "-h" || flag == "--help") {
         std::cout << "usage: " << usage_ << "\n";
         std::exit(0);
@@ -33,7 +39,7 @@ class ToolArgs {
         continue;
       }
       if (i + 1 >= argc) Fail(flag + ": expected --flag VALUE");
-      values_[flag] = argv[++i];
+      values_[flag] = words[++i];
     }
   }
 
@@ -86,6 +92,12 @@ class ToolArgs {
     return positional_;
   }
 
+  // Every flag given, with its value ("" for a switch), whether read or not.
+  const std::map<std::string, std::string>& given() const { return values_; }
+  const std::set<std::string>& switches() const { return switches_; }
+  const std::string& program() const { return program_; }
+  const std::string& usage() const { return usage_; }
+
   // Rejects flags the tool does not know, once all have been read.
   void CheckAllUsed() const {
     for (const auto& [flag, value] : values_) {
@@ -96,6 +108,7 @@ class ToolArgs {
 
  private:
   std::string program_, usage_;
+  std::set<std::string> switches_;
   std::map<std::string, std::string> values_;
   std::vector<std::string> positional_;
   mutable bool positional_read_ = false;

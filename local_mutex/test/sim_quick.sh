@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# local_mutex_sim's random trials and sweep over machines: shards 1/2 and 2/2 of a small run merge
+# into the whole run's report, to the byte; then the tool's answers to bad shard options.
+#   sim_quick.sh LOCAL_MUTEX_SIM
+set -uo pipefail
+tool=$1
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+source "$(dirname "$0")/../../test/tool_checks.sh"
+
+check_shards --trials 7 --robots 2..4 --noise 0.1
+check_shards --sweep 2 --robots 2..3
+
+expect_error "--shard: for --trials N and --sweep N, not --scenario" --scenario single --shard 1/2 --out "$out/x"
+expect_error "--shard: give --out DIR for the shard's files" --trials 3 --shard 1/2
+expect_error "--out: for --shard only (the report is printed)" --trials 3 --out "$out/x"
+expect_error "--timeline draws one trial: give it without --shard" --trials 1 --timeline "$out/t.png" --shard 1/1 --out "$out/x"
+expect_error "--merge takes the options from the shards' manifests: drop --timeline" --merge "$out/shards/1" --timeline "$out/t.png"
+echo "local_mutex_sim_quick: all checks passed"
