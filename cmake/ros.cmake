@@ -124,6 +124,13 @@ if(MULTIROBOT_AUDIO_TESTS)
   multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
                             test/rostest_main.cpp)
   add_dependencies(tests local_mutex_node)
+  # launch/team_robots.launch with every machine localhost: three robots' links on the air and
+  # their controllers (the wanderers' announcements must cross the air), then the mutex task.
+  multirobot_audio_air_test(team_robots_rostest team_robots.test test/team_robots_rostest.cpp)
+  add_test(NAME team_robots_mutex_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh team_robots.test task:=mutex)
+  add_dependencies(tests wanderer_node)
+  # How roslaunch reads the team's machines, for remote hosts too: nothing is started.
+  add_test(NAME team_robots_machines COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/team_robots_machines.py)
 
   foreach(launch_file sim_team.launch)
     roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
@@ -146,6 +153,12 @@ if(MULTIROBOT_AUDIO_TESTS)
                            DEPENDENCIES local_mutex_node charging_demo_node)
   roslaunch_add_file_check(launch/charging_robot.launch robot_id:=11 chargers:=100
                            DEPENDENCIES nava_modem_node local_mutex_node charging_demo_node)
+  roslaunch_add_file_check(launch/wanderer_robot.launch DEPENDENCIES nava_modem_node wanderer_node)
+  # roslaunch-check wants a value for every arg, chargers too.
+  foreach(task wanderer mutex charging)
+    roslaunch_add_file_check(launch/team_robots.launch hosts:=localhost task:=${task} chargers:=100
+                             DEPENDENCIES nava_modem_node wanderer_node local_mutex_node charging_demo_node)
+  endforeach()
   foreach(launch_file record.launch replay.launch)
     roslaunch_add_file_check(launch/${launch_file} bag:=/tmp/check.bag)
   endforeach()

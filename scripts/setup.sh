@@ -24,6 +24,9 @@ packages=(
   libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-geometry-msgs-dev ros-tf2-msgs
   python3-roslaunch python3-rosmaster python3-rosgraph python3-rosnode python3-rosparam
   python3-rosservice rosout rosbash python3-rostopic python3-rosbag librosbag-dev
+  # roslaunch's <machine> tags (launch/team_robots.launch) ssh through paramiko, which Debian's
+  # python3-roslaunch only recommends
+  python3-paramiko
   librostest-dev python3-rostest rviz
   # Python halves of the messages, for rostopic, rosbag and other command-line tools
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs
