@@ -36,13 +36,16 @@ target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_D
 target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem local_mutex world_sim grid
                       ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
+# The local-map navigation's bridges (its ~params, range and map conversions), for every node
+# that drives with local_navigation.
+add_library(navigation_ros STATIC src/navigation_conversions.cpp src/navigation_params.cpp)
+target_link_libraries(navigation_ros PUBLIC multirobot_audio_ros local_navigation)
 # The Sounds Good team's bridges, apart so that only their nodes link the explorer.
-add_library(sounds_good_ros STATIC src/navigation_params.cpp src/sounds_good_conversions.cpp src/sounds_good_explorer_ros.cpp
-            src/task_monitor_ros.cpp)
-target_link_libraries(sounds_good_ros PUBLIC multirobot_audio_ros sounds_good_explorer)
-# The charging robots' bridges; they share the explorer's range conversion.
+add_library(sounds_good_ros STATIC src/sounds_good_explorer_ros.cpp src/task_monitor_ros.cpp)
+target_link_libraries(sounds_good_ros PUBLIC navigation_ros sounds_good_explorer)
+# The charging robots' bridges, apart so that only their nodes link the charging demo.
 add_library(charging_ros STATIC src/charging_conversions.cpp src/charging_demo_ros.cpp)
-target_link_libraries(charging_ros PUBLIC sounds_good_ros charging_demo)
+target_link_libraries(charging_ros PUBLIC navigation_ros charging_demo)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).
 function(multirobot_audio_node target name source)

@@ -12,9 +12,9 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "navigation_conversions.h"
 #include "navigation_params.h"
 #include "params.h"
-#include "sounds_good_conversions.h"
 
 namespace multirobot_audio {
 namespace {
@@ -76,8 +76,8 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   ch.recheck_distance = PositiveParam(pnh, "recheck_distance", ch.recheck_distance, 100.0);
   ch.recheck_time = PositiveParam(pnh, "recheck_time", ch.recheck_time);
 
-  // The local-map navigation, with the names the sounds_good_explorer node uses.
-  sounds_good_explorer::NavigatorOptions& n = c.navigation;
+  // The local-map navigation, with the same names in every node that drives with it.
+  local_navigation::NavigatorOptions& n = c.navigation;
   ReadNavigationParams(pnh, n.map, n.clear_sectors, n.planner, n.motion);
 
   // The duty: wandering, with the wanderer node's names.

@@ -4,9 +4,9 @@
 
 namespace multirobot_audio {
 
-void ReadNavigationParams(const ros::NodeHandle& pnh, sounds_good_explorer::LocalMapOptions& map,
-                          bool& clear_sectors, sounds_good_explorer::PlannerOptions& planner,
-                          sounds_good_explorer::MotionOptions& motion) {
+void ReadNavigationParams(const ros::NodeHandle& pnh, local_navigation::LocalMapOptions& map,
+                          bool& clear_sectors, local_navigation::PlannerOptions& planner,
+                          local_navigation::MotionOptions& motion) {
   constexpr double kBig = 1e6;
   map.size = IntParam(pnh, "local_map_size", map.size, 1, 10001);
   map.resolution = PositiveParam(pnh, "resolution", map.resolution, 100.0);

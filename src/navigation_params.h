@@ -2,7 +2,7 @@
 
 #include <ros/node_handle.h>
 
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 
 namespace multirobot_audio {
 
@@ -11,8 +11,8 @@ namespace multirobot_audio {
 // clear_sectors, robot_radius, risk_scale, risk_decay, grown_cost, max_speed, max_turn_rate,
 // turn_gain, lookahead, goal_tolerance, goal_hold, replan_period, stuck_time, backoff_time.
 // Unset ones keep the values given; a bad one throws ParamError naming it.
-void ReadNavigationParams(const ros::NodeHandle& pnh, sounds_good_explorer::LocalMapOptions& map,
-                          bool& clear_sectors, sounds_good_explorer::PlannerOptions& planner,
-                          sounds_good_explorer::MotionOptions& motion);
+void ReadNavigationParams(const ros::NodeHandle& pnh, local_navigation::LocalMapOptions& map,
+                          bool& clear_sectors, local_navigation::PlannerOptions& planner,
+                          local_navigation::MotionOptions& motion);
 
 }  // namespace multirobot_audio

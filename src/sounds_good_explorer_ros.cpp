@@ -11,9 +11,9 @@
 #include <visualization_msgs/Marker.h>
 
 #include "conversions.h"
+#include "navigation_conversions.h"
 #include "navigation_params.h"
 #include "params.h"
-#include "sounds_good_conversions.h"
 
 namespace multirobot_audio {
 namespace {

@@ -30,14 +30,6 @@ struct SoundsGoodExplorerNodeOptions {
 SoundsGoodExplorerNodeOptions ReadSoundsGoodExplorerNodeOptions(const ros::NodeHandle& pnh,
                                                                 std::uint32_t default_seed);
 
-// The local map as an OccupancyGrid in `frame` (the odom frame the map lives in): unknown -1,
-// free 0, occupied 100, row 0 at the map's lower edge.
-nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& map,
-                                        const std::string& frame, const ros::Time& stamp);
-// Plan points (odom frame) as a Path; every pose faces along the path to the next point.
-nav_msgs::Path ToPath(const std::vector<Eigen::Vector2d>& points, const std::string& frame,
-                      const ros::Time& stamp);
-
 // One Sounds Good robot (thesis chapter 3) around the ROS-free sounds_good_explorer::Explorer.
 // Runs in the robot's namespace on standard robot topics (odom, scan, fiducials, cmd_vel) and
 // the robot's audio link (audio/tx, audio/rx), so it runs the same over world_sim and

@@ -1,4 +1,4 @@
-#include "sounds_good_conversions.h"
+#include "navigation_conversions.h"
 
 #include <cmath>
 #include <limits>
@@ -13,10 +13,10 @@ namespace multirobot_audio {
 namespace {
 
 TEST(SoundsGoodConversions, LocalMapAsOccupancyGridInTheOdomFrame) {
-  sounds_good_explorer::LocalMap map(sounds_good_explorer::LocalMapOptions{5, 0.5, 100.0});
+  local_navigation::LocalMap map(local_navigation::LocalMapOptions{5, 0.5, 100.0});
   map.Recentre({1.2, -0.3});  // the robot's cell is odom cell (2, -1): the map starts at (0, -3)
-  map.Set({0, 0}, sounds_good_explorer::CellState::kOccupied, 0.0);
-  map.Set({1, 0}, sounds_good_explorer::CellState::kFree, 0.0);
+  map.Set({0, 0}, local_navigation::CellState::kOccupied, 0.0);
+  map.Set({1, 0}, local_navigation::CellState::kFree, 0.0);
   const nav_msgs::OccupancyGrid msg = ToOccupancyGrid(map, "robot_0/odom", ros::Time(3.0));
   EXPECT_EQ(msg.header.frame_id, "robot_0/odom");
   EXPECT_EQ(msg.info.width, 5u);
@@ -53,7 +53,7 @@ TEST(SoundsGoodConversions, WorldSimsRingAsRangeReadings) {
   ring[0] = 0.5f;
   ring[2] = 1.0f;
   const sensor_msgs::LaserScan scan = ToLaserScan(ring, model, "robot_0/base_link", ros::Time(2.0));
-  const std::vector<sounds_good_explorer::RangeReading> r = ToRangeReadings(scan);
+  const std::vector<local_navigation::RangeReading> r = ToRangeReadings(scan);
   ASSERT_EQ(r.size(), 8u);
   for (std::size_t k = 0; k < r.size(); ++k) {
     EXPECT_NEAR(grid::NormalizeAngle(r[k].bearing - k * M_PI / 4), 0.0, 1e-6) << "ranger " << k;

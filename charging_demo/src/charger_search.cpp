@@ -6,16 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "grid/option_checks.h"
 #include "grid/pose2d.h"
-#include "sounds_good_explorer/option_checks.h"
 
 namespace charging_demo {
 
 void ValidateOptions(const SearchOptions& o) {
-  sounds_good_explorer::RequireAbove("search cell (m)", o.cell, 0.0);
-  sounds_good_explorer::RequireAbove("search goal_distance (m)", o.goal_distance, 0.0);
-  sounds_good_explorer::RequireAbove("search hold (s)", o.hold, 0.0);
-  sounds_good_explorer::RequireAtLeast("search unreachable_penalty (s)", o.unreachable_penalty, 0.0);
+  grid::RequireAbove("search cell (m)", o.cell, 0.0);
+  grid::RequireAbove("search goal_distance (m)", o.goal_distance, 0.0);
+  grid::RequireAbove("search hold (s)", o.hold, 0.0);
+  grid::RequireAtLeast("search unreachable_penalty (s)", o.unreachable_penalty, 0.0);
   if (o.directions < 1)
     throw std::invalid_argument("search directions must be at least 1, got " + std::to_string(o.directions));
 }
@@ -47,7 +47,7 @@ double ChargerSearch::Neighbourhood(const Eigen::Vector2d& position) const {
 }
 
 Eigen::Vector2d ChargerSearch::ChooseGoal(const Eigen::Vector2d& position,
-                                          const sounds_good_explorer::LocalMap& map, std::mt19937& rng,
+                                          const local_navigation::LocalMap& map, std::mt19937& rng,
                                           std::optional<double> excluded_direction) const {
   std::vector<Eigen::Vector2d> best;
   double best_score = std::numeric_limits<double>::infinity();
@@ -62,7 +62,7 @@ Eigen::Vector2d ChargerSearch::ChooseGoal(const Eigen::Vector2d& position,
     // Half-cell steps, so that no cell on the way is stepped over.
     for (double d = 0.5 * map.resolution(); d <= 0.5 * options_.goal_distance && !blocked; d += 0.5 * map.resolution()) {
       const Eigen::Vector2i cell = map.CellOf(position + d * u);
-      blocked = map.Inside(cell) && map.at(cell) == sounds_good_explorer::CellState::kOccupied;
+      blocked = map.Inside(cell) && map.at(cell) == local_navigation::CellState::kOccupied;
     }
     if (blocked) continue;
     const Eigen::Vector2d goal = position + options_.goal_distance * u;

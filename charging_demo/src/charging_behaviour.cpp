@@ -6,12 +6,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace charging_demo {
 
-using sounds_good_explorer::RequireAbove;
-using sounds_good_explorer::RequireAtLeast;
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 void ValidateOptions(const ChargingOptions& o) {
   if (o.chargers.empty())

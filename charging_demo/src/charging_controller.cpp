@@ -7,7 +7,7 @@
 #include <string>
 
 #include "charging_demo/keep_out.h"
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace charging_demo {
 
@@ -42,17 +42,17 @@ constexpr double kCrumbReached = 0.3;
 void ValidateOptions(const ControllerOptions& o) {
   ValidateOptions(o.charging);
   ValidateOptions(o.search);
-  sounds_good_explorer::ValidateOptions(o.navigation);
-  sounds_good_explorer::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
+  local_navigation::ValidateOptions(o.navigation);
+  grid::RequireAbove("charging keep_out (m)", o.keep_out, 0.0);
   ValidateOptions(o.trail);
   ValidateOptions(o.wall_follow);
-  sounds_good_explorer::RequireAtLeast("charging follow_after (s)", o.follow_after, 0.0);
-  sounds_good_explorer::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
+  grid::RequireAtLeast("charging follow_after (s)", o.follow_after, 0.0);
+  grid::RequireAbove("charging retrace_after (s)", o.retrace_after, 0.0);
   if (!(o.retrace_after < o.charging.approach_timeout))
     throw std::invalid_argument("charging retrace_after must be below approach_timeout (" +
                                 std::to_string(o.charging.approach_timeout) + " s), or an approach gives up first; got " +
                                 std::to_string(o.retrace_after));
-  sounds_good_explorer::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
+  grid::RequireAbove("charging retrace_reach (m)", o.retrace_reach, 0.0);
   if (!(o.keep_out < o.charging.wait_distance))
     throw std::invalid_argument("charging keep_out must be below wait_distance (" +
                                 std::to_string(o.charging.wait_distance) + " m), got " +
@@ -73,7 +73,7 @@ void ChargingController::OnOdometry(const grid::Pose2D& odom, double time) {
   nav_.OnOdometry(odom, time);
 }
 
-void ChargingController::OnRanges(const std::vector<sounds_good_explorer::RangeReading>& readings,
+void ChargingController::OnRanges(const std::vector<local_navigation::RangeReading>& readings,
                                   double reach, double time) {
   nav_.OnRanges(readings, reach, time);
   ranges_ = readings;
@@ -104,7 +104,7 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   // Going back along the trail counts as progress while it keeps getting further back.
   in.making_way = retrace_.active && time - retrace_.moved_back < options_.retrace_after;
   // In view: the local map shows open space up to the charger (or to a docked robot on it).
-  const sounds_good_explorer::LocalMap& map = nav_.map();
+  const local_navigation::LocalMap& map = nav_.map();
   const Eigen::Vector2d here = nav_.pose().position();
   in.in_view = [&map, here, this](const Eigen::Vector2d& p) {
     return map.ClearView(here, p, options_.navigation.planner.robot_radius + map.resolution());
@@ -121,7 +121,7 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   ControllerOutput out;
   out.want_lock = cmd.want_lock;
   if (!nav_.have_pose()) return out;
-  sounds_good_explorer::Velocity velocity;
+  local_navigation::Velocity velocity;
   switch (cmd.motion) {
     case ChargingCommand::Motion::kDuty:
       velocity = behaviour_.phase() == Phase::kSeek ? Search(time, dt) : Wander(dt);
@@ -142,7 +142,7 @@ ControllerOutput ChargingController::Update(local_mutex::State lock, double time
   return out;
 }
 
-sounds_good_explorer::Velocity ChargingController::Search(double time, double dt) {
+local_navigation::Velocity ChargingController::Search(double time, double dt) {
   const Eigen::Vector2d here = nav_.pose().position();
   if (search_phase_since_ != behaviour_.phase_since()) {
     // A new search (after duty, or after giving up on a charger): nothing carries over.
@@ -165,7 +165,7 @@ sounds_good_explorer::Velocity ChargingController::Search(double time, double dt
   }
   if (escaping_) {
     // Round an island (a pillar, a robot): one search goal away from it, then walls again.
-    const sounds_good_explorer::Velocity velocity = SearchGoal(time);
+    const local_navigation::Velocity velocity = SearchGoal(time);
     if (goals_chosen_ == escape_goal_) return velocity;
     escaping_ = false;
     follower_.Reset();
@@ -196,7 +196,7 @@ sounds_good_explorer::Velocity ChargingController::Search(double time, double dt
       ++loops_;
       follower_ = WallFollower(options_.wall_follow, follower_.hand() == Hand::kLeft ? Hand::kRight : Hand::kLeft);
       search_goal_.reset();
-      const sounds_good_explorer::Velocity velocity = SearchGoal(time);
+      const local_navigation::Velocity velocity = SearchGoal(time);
       escape_goal_ = goals_chosen_;
       return velocity;
     }
@@ -206,7 +206,7 @@ sounds_good_explorer::Velocity ChargingController::Search(double time, double dt
   return follower_.Update(KeepOutRanges(ranges_, nav_.pose(), behaviour_.known_chargers(), options_.keep_out), dt);
 }
 
-sounds_good_explorer::Velocity ChargingController::SearchGoal(double time) {
+local_navigation::Velocity ChargingController::SearchGoal(double time) {
   const Eigen::Vector2d here = nav_.pose().position();
   if (search_goal_ && (*search_goal_ - here).norm() < kSearchReached) search_goal_.reset();
   if (search_goal_ && time - search_since_ > search_.options().hold) {
@@ -221,7 +221,7 @@ sounds_good_explorer::Velocity ChargingController::SearchGoal(double time) {
     search_start_distance_ = (*search_goal_ - here).norm();
     search_failed_.reset();
   }
-  const sounds_good_explorer::Velocity velocity = GoTo(*search_goal_, time);
+  const local_navigation::Velocity velocity = GoTo(*search_goal_, time);
   if (!nav_.BackingOff(time) && nav_.plan().size() >= 2) return velocity;
   // Walled off, or stuck and backing off: another way next time.
   search_.MarkUnreachable(*search_goal_);
@@ -231,33 +231,33 @@ sounds_good_explorer::Velocity ChargingController::SearchGoal(double time) {
   return velocity;
 }
 
-sounds_good_explorer::Velocity ChargingController::Wander(double dt) {
+local_navigation::Velocity ChargingController::Wander(double dt) {
   search_goal_.reset();
   planned_for_.reset();
   nav_.ClearPlan();
-  const std::vector<sounds_good_explorer::RangeReading> seen =
+  const std::vector<local_navigation::RangeReading> seen =
       KeepOutRanges(ranges_, nav_.pose(), behaviour_.known_chargers(), options_.keep_out);
   std::vector<float> ring(seen.size());
   std::transform(seen.begin(), seen.end(), ring.begin(),
-                 [](const sounds_good_explorer::RangeReading& r) { return static_cast<float>(r.range); });
+                 [](const local_navigation::RangeReading& r) { return static_cast<float>(r.range); });
   const world_sim::VelocityCommand c = wanderer_.Update(ring, dt);
   return {c.v, c.w};
 }
 
-sounds_good_explorer::Velocity ChargingController::BackAway(const Eigen::Vector2d& charger,
+local_navigation::Velocity ChargingController::BackAway(const Eigen::Vector2d& charger,
                                                           double time) {
   planned_for_.reset();
   nav_.Hold(time);
-  const sounds_good_explorer::MotionOptions& m = options_.navigation.motion;
+  const local_navigation::MotionOptions& m = options_.navigation.motion;
   const grid::Pose2D& pose = nav_.pose();
   const Eigen::Vector2d to = charger - pose.position();
   // Face the charger (as when docked) and reverse, as a robot leaves a dock; stop when
   // something is close behind.
   const double error =
       to.norm() > 1e-6 ? grid::NormalizeAngle(std::atan2(to.y(), to.x()) - pose.yaw) : 0.0;
-  sounds_good_explorer::Velocity out;
+  local_navigation::Velocity out;
   out.w = std::clamp(m.turn_gain * error, -m.max_turn_rate, m.max_turn_rate);
-  const double behind = sounds_good_explorer::NearestRange(ranges_, M_PI, M_PI / 3.0);
+  const double behind = local_navigation::NearestRange(ranges_, M_PI, M_PI / 3.0);
   if (std::abs(error) < M_PI / 3.0 && behind > options_.navigation.planner.robot_radius + kRearGap)
     out.v = -kUndockSpeed * std::cos(error);
   return out;
@@ -271,7 +271,7 @@ std::vector<Eigen::Vector2d> ChargingController::OtherChargers() const {
   return others;
 }
 
-sounds_good_explorer::Velocity ChargingController::Approach(const Eigen::Vector2d& target, double time) {
+local_navigation::Velocity ChargingController::Approach(const Eigen::Vector2d& target, double time) {
   const Eigen::Vector2d here = nav_.pose().position();
   const Eigen::Vector2d charger = *behaviour_.charger();
   const bool same = approach_charger_ && approach_since_ == behaviour_.phase_since() &&
@@ -295,11 +295,11 @@ sounds_good_explorer::Velocity ChargingController::Approach(const Eigen::Vector2
   }
   if (nav_.ReplanDue(time) || !planned_for_) {
     // One pass over the local map says which crumbs the robot could plan to from here.
-    const sounds_good_explorer::Grid<std::uint32_t> costs = nav_.CostsFromRobot(OtherChargers(), options_.keep_out);
-    const sounds_good_explorer::LocalMap& map = nav_.map();
+    const local_navigation::Grid<std::uint32_t> costs = nav_.CostsFromRobot(OtherChargers(), options_.keep_out);
+    const local_navigation::LocalMap& map = nav_.map();
     const auto reachable = [&](const Eigen::Vector2d& p) {
       const Eigen::Vector2i cell = map.CellOf(p);
-      return map.Inside(cell) && costs.at(cell) != sounds_good_explorer::kUnreachable;
+      return map.Inside(cell) && costs.at(cell) != local_navigation::kUnreachable;
     };
     const std::optional<std::uint64_t> back =
         trail_.FurthestBack(retrace_.cursor, retrace_.mark, here, options_.retrace_reach, reachable);
@@ -332,14 +332,14 @@ bool ChargingController::StartRetrace(double time) {
   return true;
 }
 
-sounds_good_explorer::Velocity ChargingController::GoTo(const Eigen::Vector2d& target, double time) {
+local_navigation::Velocity ChargingController::GoTo(const Eigen::Vector2d& target, double time) {
   if (nav_.BackingOff(time)) return nav_.BackoffCommand();
   if (!planned_for_ || (*planned_for_ - target).norm() > kRetarget || nav_.ReplanDue(time)) {
     planned_for_ = target;
     // Round every charger but the one in use: never across a charger someone may be docked at.
     nav_.PlanTo(target, time, OtherChargers(), options_.keep_out);
   }
-  const sounds_good_explorer::LocalNavigator::Steering steering = nav_.Steer(time);
+  const local_navigation::LocalNavigator::Steering steering = nav_.Steer(time);
   if (steering.stuck) {
     planned_for_.reset();
     const double turn = (std::bernoulli_distribution(0.5)(rng_) ? 0.5 : -0.5) *

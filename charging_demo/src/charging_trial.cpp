@@ -11,7 +11,7 @@
 
 #include "charging_demo/charging_world.h"
 #include "local_mutex/local_mutex.h"
-#include "sounds_good_explorer/world_readings.h"
+#include "local_navigation/world_readings.h"
 
 namespace charging_demo {
 
@@ -109,7 +109,7 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
         }));
   }
 
-  sounds_good_explorer::WorldReadings readings(team.model, n);
+  local_navigation::WorldReadings readings(team.model, n);
   std::vector<Tracker> trackers(n);
   std::vector<int> docked_at(team.chargers.size(), 0);
   const std::uint64_t control_every = world_sim::StepsPerPeriod(options.control_period, options.world.step);
@@ -152,7 +152,7 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
       // the others take it once their grab timers run out).
       if (result.robots[k].flat) continue;
       ChargingController& robot = robots[k];
-      const sounds_good_explorer::WorldReadings::Fresh fresh = readings.Take(k, s);
+      const local_navigation::WorldReadings::Fresh fresh = readings.Take(k, s);
       if (fresh.odom) robot.OnOdometry(s.odom, now);
       if (fresh.ranges) robot.OnRanges(readings.ranges(), readings.reach(), now);
       if (fresh.fiducials) {

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "grid/input_error.h"
-#include "sounds_good_explorer/configurations.h"
+#include "grid/reachability.h"
 
 namespace charging_demo {
 
@@ -31,8 +31,8 @@ world_sim::WorldConfig RandomChargingWorld(const grid::OccupancyMap& map, const 
   if (!(o.min_battery > 0.0 && o.min_battery <= 1.0))
     throw std::invalid_argument("initial battery minimum must be within (0, 1], got " +
                                 std::to_string(o.min_battery));
-  const sounds_good_explorer::Reachability robot_room(map, model.radius + o.margin);
-  const sounds_good_explorer::Reachability charger_room(map, o.charger_clearance);
+  const grid::Reachability robot_room(map, model.radius + o.margin);
+  const grid::Reachability charger_room(map, o.charger_clearance);
   const int region = robot_room.largest();
   if (region == 0) throw std::invalid_argument("no room for a robot anywhere on " + map_file);
 

@@ -5,12 +5,12 @@
 
 namespace charging_demo {
 
-std::vector<sounds_good_explorer::RangeReading> KeepOutRanges(
-    const std::vector<sounds_good_explorer::RangeReading>& readings, const grid::Pose2D& pose,
+std::vector<local_navigation::RangeReading> KeepOutRanges(
+    const std::vector<local_navigation::RangeReading>& readings, const grid::Pose2D& pose,
     const std::vector<Eigen::Vector2d>& centres, double radius) {
-  std::vector<sounds_good_explorer::RangeReading> out = readings;
+  std::vector<local_navigation::RangeReading> out = readings;
   const Eigen::Vector2d p = pose.position();
-  for (sounds_good_explorer::RangeReading& r : out) {
+  for (local_navigation::RangeReading& r : out) {
     const double angle = pose.yaw + r.bearing;
     const Eigen::Vector2d u(std::cos(angle), std::sin(angle));
     for (const Eigen::Vector2d& c : centres) {

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace charging_demo {
 
 void ValidateOptions(const TrailOptions& o) {
-  sounds_good_explorer::RequireAbove("trail spacing (m)", o.spacing, 0.0);
+  grid::RequireAbove("trail spacing (m)", o.spacing, 0.0);
   if (o.capacity < 2) throw std::invalid_argument("trail capacity must be at least 2 crumbs");
 }
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace charging_demo {
 
@@ -20,7 +20,7 @@ constexpr double kArcLimit = 1.5 * M_PI;
 }  // namespace
 
 void ValidateOptions(const WallFollowOptions& o) {
-  using sounds_good_explorer::RequireAbove;
+  using grid::RequireAbove;
   RequireAbove("wall_follow distance (m)", o.distance, 0.0);
   RequireAbove("wall_follow speed (m/s)", o.speed, 0.0);
   RequireAbove("wall_follow gain", o.gain, 0.0);
@@ -37,16 +37,16 @@ void WallFollower::Reset() {
   arcing_ = 0.0;
 }
 
-sounds_good_explorer::Velocity WallFollower::Update(const std::vector<sounds_good_explorer::RangeReading>& ranges,
+local_navigation::Velocity WallFollower::Update(const std::vector<local_navigation::RangeReading>& ranges,
                                                     double dt) {
   const WallFollowOptions& o = options_;
   const double side = hand_ == Hand::kLeft ? 1.0 : -1.0;  // the wall's side, as a sign of bearings
-  const double front = sounds_good_explorer::NearestRange(ranges, 0.0, M_PI / 6.0);
+  const double front = local_navigation::NearestRange(ranges, 0.0, M_PI / 6.0);
   // The wall straight across, and half way between ahead and across (a wall along the way reads
   // 1/cos 45 further there; nearer, the wall closes in ahead).
-  const double across = sounds_good_explorer::NearestRange(ranges, side * M_PI / 2.0, M_PI / 8.0);
-  const double diagonal = sounds_good_explorer::NearestRange(ranges, side * M_PI / 4.0, M_PI / 8.0) * std::cos(M_PI / 4.0);
-  sounds_good_explorer::Velocity out;
+  const double across = local_navigation::NearestRange(ranges, side * M_PI / 2.0, M_PI / 8.0);
+  const double diagonal = local_navigation::NearestRange(ranges, side * M_PI / 4.0, M_PI / 8.0) * std::cos(M_PI / 4.0);
+  local_navigation::Velocity out;
   if (front < o.distance + kTurnRoom) {
     // Something ahead: turn away from the wall side on the spot; it becomes the wall.
     on_wall_ = true;

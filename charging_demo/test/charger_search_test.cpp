@@ -9,8 +9,8 @@
 namespace charging_demo {
 namespace {
 
-sounds_good_explorer::LocalMap EmptyMap() {
-  sounds_good_explorer::LocalMap map(sounds_good_explorer::LocalMapOptions{});
+local_navigation::LocalMap EmptyMap() {
+  local_navigation::LocalMap map(local_navigation::LocalMapOptions{});
   map.Recentre({0.0, 0.0});
   return map;
 }
@@ -45,9 +45,9 @@ TEST(ChargerSearch, SkipsWaysTheMapShowsBlocked) {
   SearchOptions o;
   o.directions = 4;
   ChargerSearch search(o);
-  sounds_good_explorer::LocalMap map = EmptyMap();
+  local_navigation::LocalMap map = EmptyMap();
   // A wall 1 m to the west, and every other way visited a little.
-  for (int dy = -3; dy <= 3; ++dy) map.Set(map.CellOf({-1.0, 0.15 * dy}), sounds_good_explorer::CellState::kOccupied, 0.0);
+  for (int dy = -3; dy <= 3; ++dy) map.Set(map.CellOf({-1.0, 0.15 * dy}), local_navigation::CellState::kOccupied, 0.0);
   search.Visit({4.0, 0.5}, 1.0);
   search.Visit({0.5, 4.0}, 1.0);
   search.Visit({0.5, -4.0}, 1.0);

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "charging_demo/charging_controller.h"
-#include "sounds_good_explorer/world_readings.h"
+#include "local_navigation/world_readings.h"
 #include "world_sim/world.h"
 
 namespace charging_demo {
@@ -62,7 +62,7 @@ struct Outcome {
 Outcome GoBackToTheCharger(const ControllerOptions& options, double limit) {
   world_sim::World world(CorridorAndRoom(), OneRobotOneCharger());
   ChargingController robot(options);
-  sounds_good_explorer::WorldReadings readings(world.config().model, 1);
+  local_navigation::WorldReadings readings(world.config().model, 1);
   // Seen from the corridor, then out of the door and along the room to the spot just above
   // the charger: 3 m away through the wall, the door 7.5 m behind.
   std::vector<Eigen::Vector2d> route = {{10.5, 1.0}, {10.5, 3.5}, {3.0, 3.5}};
@@ -76,7 +76,7 @@ Outcome GoBackToTheCharger(const ControllerOptions& options, double limit) {
     next += period;
     const double now = world.elapsed();
     const world_sim::RobotState& s = world.robots()[0];
-    const sounds_good_explorer::WorldReadings::Fresh fresh = readings.Take(0, s);
+    const local_navigation::WorldReadings::Fresh fresh = readings.Take(0, s);
     if (fresh.odom) robot.OnOdometry(s.odom, now);
     if (fresh.ranges) robot.OnRanges(readings.ranges(), readings.reach(), now);
     if (fresh.fiducials) {

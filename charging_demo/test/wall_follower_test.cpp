@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "grid/map_file.h"
-#include "sounds_good_explorer/world_readings.h"
+#include "local_navigation/world_readings.h"
 #include "world_sim/world.h"
 
 namespace charging_demo {
@@ -18,7 +18,7 @@ double FurthestEast(Hand hand, const grid::Pose2D& start, double seconds) {
   world_sim::WorldConfig config;
   config.robots.push_back({"robot_0", start, world_sim::Microphone::kNone, 1.0});
   world_sim::World world(grid::LoadMapFile(MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml"), config);
-  sounds_good_explorer::WorldReadings readings(world.config().model, 1);
+  local_navigation::WorldReadings readings(world.config().model, 1);
   WallFollower follower({}, hand);
   double east = start.x;
   double next = 0.0;
@@ -28,7 +28,7 @@ double FurthestEast(Hand hand, const grid::Pose2D& start, double seconds) {
     next += 0.1;
     const world_sim::RobotState& s = world.robots()[0];
     if (readings.Take(0, s).ranges) {
-      const sounds_good_explorer::Velocity v = follower.Update(readings.ranges(), 0.1);
+      const local_navigation::Velocity v = follower.Update(readings.ranges(), 0.1);
       world.SetCommand(0, v.v, v.w);
     }
     east = std::max(east, s.pose.x);

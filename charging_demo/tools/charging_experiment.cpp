@@ -32,7 +32,7 @@
 #include "charging_demo/charging_world.h"
 #include "grid/input_error.h"
 #include "grid/map_file.h"
-#include "sounds_good_explorer/parallel_for.h"
+#include "tool_args/parallel_for.h"
 #include "tool_args/progress_bar.h"
 #include "tool_args/record.h"
 #include "tool_args/shard.h"
@@ -270,7 +270,7 @@ int Run(const ToolArgs& args, const BatchRun& batch) {
   multirobot_audio::tools::ProgressBar bar("trials");
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> records(p.seeds);
-  sounds_good_explorer::ParallelFor(
+  multirobot_audio::tools::ParallelFor(
       which.size(), p.threads,
       [&](std::size_t k) {
         const std::size_t s = which[k];

@@ -4,9 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/imgproc.hpp>
-
 #include "grid/input_error.h"
+#include "grid/reachability.h"
 #include "world_sim/world_file.h"
 
 namespace sounds_good_explorer {
@@ -22,44 +21,6 @@ std::string Where(double x, double y) {
 
 }  // namespace
 
-Reachability::Reachability(const grid::OccupancyMap& map, double radius) : map_(map) {
-  const int w = map.width(), h = map.height();
-  cv::Mat free(h, w, CV_8UC1);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) free.at<std::uint8_t>(j, i) = map.Blocks(i, j) ? 0 : 255;
-  // Euclidean distance (cells) from each free cell to the nearest blocked one.
-  cv::Mat distance;
-  cv::distanceTransform(free, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  cv::Mat room = distance * map.resolution() > radius;
-  cv::Mat labels;
-  const int count = cv::connectedComponents(room, labels, 8, CV_32S);
-  labels_.assign(static_cast<std::size_t>(w) * h, 0);
-  cells_.resize(count);
-  for (int j = 0; j < h; ++j) {
-    for (int i = 0; i < w; ++i) {
-      const int label = labels.at<int>(j, i);
-      labels_[static_cast<std::size_t>(j) * w + i] = label;
-      if (label > 0) cells_[label].push_back(j * w + i);
-    }
-  }
-  for (int r = 1; r < count; ++r)
-    if (largest_ == 0 || cells_[r].size() > cells_[largest_].size()) largest_ = r;
-}
-
-int Reachability::Region(const Eigen::Vector2d& point) const {
-  const Eigen::Vector2i c = map_.WorldToCell(point);
-  if (!map_.InBounds(c.x(), c.y())) return 0;
-  return labels_[static_cast<std::size_t>(c.y()) * map_.width() + c.x()];
-}
-
-Eigen::Vector2d Reachability::Sample(int region, std::mt19937& rng) const {
-  const std::vector<int>& cells = cells_.at(region);
-  if (cells.empty()) throw std::invalid_argument("no room for a robot anywhere on the map");
-  const int index = cells[std::uniform_int_distribution<std::size_t>(0, cells.size() - 1)(rng)];
-  std::uniform_real_distribution<double> jitter(0.1, 0.9);
-  return map_.CellCoordsToWorld({index % map_.width() + jitter(rng), index / map_.width() + jitter(rng)});
-}
-
 world_sim::WorldConfig RandomConfiguration(const grid::OccupancyMap& map,
                                            const std::string& map_file,
                                            const world_sim::RobotModel& model,
@@ -69,7 +30,7 @@ world_sim::WorldConfig RandomConfiguration(const grid::OccupancyMap& map,
                                 std::to_string(options.robots));
   // A cell's centre stands for every point in it (and a draw is jittered within the cell), so
   // keep a cell's width more room: the world's own overlap test then never refuses a draw.
-  const Reachability room(map, model.radius + options.margin + map.resolution());
+  const grid::Reachability room(map, model.radius + options.margin + map.resolution());
   const int region = room.largest();
   world_sim::WorldConfig config;
   config.map_file = map_file;
@@ -107,7 +68,7 @@ void ValidateConfiguration(const std::string& file, const world_sim::WorldConfig
                            const grid::OccupancyMap& map, std::uint32_t source, std::uint32_t sink) {
   world_sim::ValidateWorld(file, config, map);
   if (config.robots.empty()) throw grid::InputError(file, "robots", "expected at least one robot");
-  const Reachability room(map, config.model.radius);
+  const grid::Reachability room(map, config.model.radius);
   const world_sim::RobotSpec& first = config.robots.front();
   const int region = room.Region(first.start.position());
   if (region == 0)

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/parallel_for.h"
+#include "tool_args/parallel_for.h"
 
 namespace sounds_good_explorer {
 
@@ -35,7 +35,7 @@ void RunRows(const grid::OccupancyMap& map, const std::vector<world_sim::WorldCo
              const std::vector<std::size_t>& which, std::vector<TrialRow>& rows,
              const std::function<void(int, int)>& progress) {
   ValidateOptions(options.trial);
-  ParallelFor(
+  multirobot_audio::tools::ParallelFor(
       which.size(), options.threads,
       [&](std::size_t k) {
         TrialRow& row = rows.at(which[k]);

@@ -8,8 +8,6 @@
 #include "sounds_good_explorer/frontiers.h"
 #include "sounds_good_explorer/marker_packet.h"
 
-#include "sounds_good_explorer/option_checks.h"
-
 namespace sounds_good_explorer {
 
 namespace {
@@ -20,7 +18,8 @@ constexpr double kUnreachableMemory = 30.0;
 }  // namespace
 
 void ValidateOptions(const ExplorerOptions& o) {
-  ValidateOptions(NavigatorOptions{o.map, o.clear_sectors, o.planner, o.motion});
+  local_navigation::ValidateOptions(
+      local_navigation::NavigatorOptions{o.map, o.clear_sectors, o.planner, o.motion});
   ValidateOptions(o.frontier);
   ValidateOptions(o.audio);
   ValidateOptions(o.task);
@@ -31,7 +30,8 @@ void ValidateOptions(const ExplorerOptions& o) {
 
 Explorer::Explorer(const ExplorerOptions& options)
     : options_((ValidateOptions(options), options)),
-      nav_(NavigatorOptions{options.map, options.clear_sectors, options.planner, options.motion}),
+      nav_(local_navigation::NavigatorOptions{options.map, options.clear_sectors, options.planner,
+                                              options.motion}),
       heard_(options.audio),
       task_(options.task),
       rng_(options.seed) {}
@@ -74,7 +74,7 @@ ExplorerOutput Explorer::Update(double time) {
     return out;
   }
   if (nav_.BackingOff(time)) {
-    const Velocity back = nav_.BackoffCommand();
+    const local_navigation::Velocity back = nav_.BackoffCommand();
     out.v = back.v;
     out.w = back.w;
     return out;
@@ -96,7 +96,7 @@ ExplorerOutput Explorer::Update(double time) {
 }
 
 void Explorer::ChooseGoal(double time) {
-  const LocalMap& map = nav_.map();
+  const local_navigation::LocalMap& map = nav_.map();
   goal_is_marker_ = false;
   goal_chosen_ = time;
   unreachable_.erase(std::remove_if(unreachable_.begin(), unreachable_.end(),
@@ -119,11 +119,11 @@ void Explorer::Replan(double time) {
 }
 
 ExplorerOutput Explorer::Steer(double time, ExplorerOutput out) {
-  const LocalNavigator::Steering steering = nav_.Steer(time);
+  const local_navigation::LocalNavigator::Steering steering = nav_.Steer(time);
   out.v = steering.command.v;
   out.w = steering.command.w;
   if (steering.stuck) {
-    const LocalMap& map = nav_.map();
+    const local_navigation::LocalMap& map = nav_.map();
     if (goal_ && !goal_is_marker_) unreachable_.emplace_back(map.CellOf(*goal_) + map.origin(), time);
     goal_.reset();
     const double max_turn = options_.motion.max_turn_rate;

@@ -6,9 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAtLeast;
 
 void ValidateOptions(const FrontierOptions& o) {
   RequireAtLeast("frontier noise_std (m)", o.noise_std, 0.0);
@@ -16,7 +18,7 @@ void ValidateOptions(const FrontierOptions& o) {
   RequireAtLeast("frontier min_distance (m)", o.min_distance, 0.0);
 }
 
-std::optional<Eigen::Vector2i> ChooseFrontier(const LocalMap& map,
+std::optional<Eigen::Vector2i> ChooseFrontier(const local_navigation::LocalMap& map,
                                               const std::vector<Eigen::Vector2i>& frontiers,
                                               const Eigen::Vector2d& robot,
                                               const HeardMessages& heard, std::uint32_t marker,

@@ -5,9 +5,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAbove;
 
 void ValidateOptions(const AudioTermOptions& o) {
   RequireAbove("audio lifetime (s)", o.lifetime, 0.0);

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/world_readings.h"
+#include "local_navigation/world_readings.h"
 
 namespace sounds_good_explorer {
 
@@ -67,7 +67,7 @@ TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldCo
     o.seed = (options.seed * 2654435761u) ^ (0x9E3779B9u * (static_cast<std::uint32_t>(k) + 1u));
     robots.emplace_back(o);
   }
-  WorldReadings readings(team.model, n);
+  local_navigation::WorldReadings readings(team.model, n);
   const std::uint64_t control_every =
       world_sim::StepsPerPeriod(options.control_period, options.world.step);
   TrialResult result;
@@ -88,7 +88,7 @@ TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldCo
     for (std::size_t k = 0; k < n; ++k) {
       const world_sim::RobotState& s = states[k];
       Explorer& robot = robots[k];
-      const WorldReadings::Fresh fresh = readings.Take(k, s);
+      const local_navigation::WorldReadings::Fresh fresh = readings.Take(k, s);
       if (fresh.odom) robot.OnOdometry(s.odom, now);
       if (fresh.ranges) robot.OnRanges(readings.ranges(), readings.reach(), now);
       if (fresh.fiducials) {

@@ -3,9 +3,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 namespace sounds_good_explorer {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 void ValidateOptions(const TaskOptions& o) {
   if (o.source == o.sink)

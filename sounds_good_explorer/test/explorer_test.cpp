@@ -10,6 +10,8 @@
 namespace sounds_good_explorer {
 namespace {
 
+using local_navigation::RangeReading;
+
 const double kNothing = std::numeric_limits<double>::infinity();
 
 // Eight rangers seeing nothing: open floor all round.

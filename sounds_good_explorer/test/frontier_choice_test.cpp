@@ -9,6 +9,10 @@
 namespace sounds_good_explorer {
 namespace {
 
+using local_navigation::CellState;
+using local_navigation::LocalMap;
+using local_navigation::LocalMapOptions;
+
 // A known-free disc of radius 3 m around the robot at the origin, unknown beyond: the
 // frontiers form a ring, every direction equally near.
 LocalMap Disc() {

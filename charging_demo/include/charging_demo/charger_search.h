@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "sounds_good_explorer/local_map.h"
+#include "local_navigation/local_map.h"
 
 namespace charging_demo {
 
@@ -45,7 +45,7 @@ class ChargerSearch {
   // been visited least, skipping directions the local map shows blocked within the first half
   // of the way; ties are broken at random. `excluded_direction` (rad, odom frame) is skipped too
   // (the way that just failed).
-  Eigen::Vector2d ChooseGoal(const Eigen::Vector2d& position, const sounds_good_explorer::LocalMap& map,
+  Eigen::Vector2d ChooseGoal(const Eigen::Vector2d& position, const local_navigation::LocalMap& map,
                              std::mt19937& rng,
                              std::optional<double> excluded_direction = std::nullopt) const;
 

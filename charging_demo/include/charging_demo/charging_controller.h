@@ -13,16 +13,16 @@
 #include "charging_demo/wall_follower.h"
 #include "grid/pose2d.h"
 #include "local_mutex/local_mutex.h"
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 #include "world_sim/wanderer.h"
 
 namespace charging_demo {
 
 struct ControllerOptions {
   ChargingOptions charging;
-  // Driving to the waiting point, onto the charger and away from it: the explorer's local-map
-  // navigation (thesis section 3.3).
-  sounds_good_explorer::NavigatorOptions navigation;
+  // Driving to the waiting point, onto the charger and away from it: the local-map navigation
+  // of thesis section 3.3 (local_navigation/, which the Sounds Good explorer drives with too).
+  local_navigation::NavigatorOptions navigation;
   // The normal duty: random wandering.
   world_sim::WanderOptions wander;
   // The search for a charger when none is known: towards the least visited surroundings.
@@ -66,7 +66,7 @@ class ChargingController {
   explicit ChargingController(const ControllerOptions& options);
 
   void OnOdometry(const grid::Pose2D& odom, double time);
-  void OnRanges(const std::vector<sounds_good_explorer::RangeReading>& readings, double reach,
+  void OnRanges(const std::vector<local_navigation::RangeReading>& readings, double reach,
                 double time);
   void OnSightings(const std::vector<ChargerSighting>& sightings);
   void OnBattery(double level, bool docked);
@@ -74,7 +74,7 @@ class ChargingController {
   ControllerOutput Update(local_mutex::State lock, double time);
 
   const ChargingBehaviour& behaviour() const { return behaviour_; }
-  const sounds_good_explorer::LocalNavigator& navigator() const { return nav_; }
+  const local_navigation::LocalNavigator& navigator() const { return nav_; }
   bool retracing() const { return retrace_.active; }
   std::uint64_t retraces() const { return retraces_; }  // approaches that went back along the trail
   // Loops (and stalls) broken while following walls.
@@ -83,26 +83,26 @@ class ChargingController {
 
  private:
   // The duty: wandering, kept off every known charger.
-  sounds_good_explorer::Velocity Wander(double dt);
+  local_navigation::Velocity Wander(double dt);
   // The search: goal after goal towards the least visited surroundings, then walls.
-  sounds_good_explorer::Velocity Search(double time, double dt);
-  sounds_good_explorer::Velocity SearchGoal(double time);
-  sounds_good_explorer::Velocity GoTo(const Eigen::Vector2d& target, double time);
+  local_navigation::Velocity Search(double time, double dt);
+  local_navigation::Velocity SearchGoal(double time);
+  local_navigation::Velocity GoTo(const Eigen::Vector2d& target, double time);
   // To the waiting point: directly, or back along the trail when that makes no progress.
-  sounds_good_explorer::Velocity Approach(const Eigen::Vector2d& target, double time);
+  local_navigation::Velocity Approach(const Eigen::Vector2d& target, double time);
   // Starts going back to the charger's latest sighting; false when the trail cannot help.
   bool StartRetrace(double time);
   // Every known charger but the one in use: planned round as walls.
   std::vector<Eigen::Vector2d> OtherChargers() const;
   // Reverses off the charger, facing it.
-  sounds_good_explorer::Velocity BackAway(const Eigen::Vector2d& charger, double time);
+  local_navigation::Velocity BackAway(const Eigen::Vector2d& charger, double time);
 
   ControllerOptions options_;
   ChargingBehaviour behaviour_;
-  sounds_good_explorer::LocalNavigator nav_;
+  local_navigation::LocalNavigator nav_;
   world_sim::Wanderer wanderer_;
   std::mt19937 rng_;
-  std::vector<sounds_good_explorer::RangeReading> ranges_;
+  std::vector<local_navigation::RangeReading> ranges_;
   std::vector<ChargerSighting> sightings_;  // since the last update
   double battery_ = 1.0;
   bool docked_ = false;

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 
 #include "grid/pose2d.h"
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 
 namespace charging_demo {
 
@@ -14,8 +14,8 @@ namespace charging_demo {
 // that point into it read 0 and the others see out as before, so a reactive behaviour turns
 // out of it. This keeps wandering robots off chargers they are not docking at, with no change
 // to the behaviour itself. Pure; `readings` bearings are in the robot frame.
-std::vector<sounds_good_explorer::RangeReading> KeepOutRanges(
-    const std::vector<sounds_good_explorer::RangeReading>& readings, const grid::Pose2D& pose,
+std::vector<local_navigation::RangeReading> KeepOutRanges(
+    const std::vector<local_navigation::RangeReading>& readings, const grid::Pose2D& pose,
     const std::vector<Eigen::Vector2d>& centres, double radius);
 
 }  // namespace charging_demo

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 
 namespace charging_demo {
 
@@ -28,7 +28,7 @@ class WallFollower {
  public:
   WallFollower(const WallFollowOptions& options, Hand hand);
 
-  sounds_good_explorer::Velocity Update(const std::vector<sounds_good_explorer::RangeReading>& ranges, double dt);
+  local_navigation::Velocity Update(const std::vector<local_navigation::RangeReading>& ranges, double dt);
 
   // Drops the wall: drive straight on until the next one.
   void Reset();

@@ -11,26 +11,26 @@
 #include <Eigen/Core>
 
 #include "grid/pose2d.h"
+#include "local_navigation/local_map.h"
+#include "local_navigation/local_navigator.h"
+#include "local_navigation/planner.h"
 #include "sounds_good_explorer/frontier_choice.h"
 #include "sounds_good_explorer/heard_messages.h"
 #include "sounds_good_explorer/listen_mode.h"
-#include "sounds_good_explorer/local_map.h"
-#include "sounds_good_explorer/local_navigator.h"
-#include "sounds_good_explorer/planner.h"
 #include "sounds_good_explorer/transport_task.h"
 
 namespace sounds_good_explorer {
 
 struct ExplorerOptions {
   ListenMode mode = ListenMode::kBidirectional;
-  // Navigation (see NavigatorOptions).
-  LocalMapOptions map;
+  // Navigation (see local_navigation::NavigatorOptions).
+  local_navigation::LocalMapOptions map;
   bool clear_sectors = true;
-  PlannerOptions planner;
+  local_navigation::PlannerOptions planner;
   FrontierOptions frontier;
   AudioTermOptions audio;
   TaskOptions task;
-  MotionOptions motion;
+  local_navigation::MotionOptions motion;
   std::uint32_t seed = 1;
 };
 
@@ -58,9 +58,10 @@ class Explorer {
  public:
   explicit Explorer(const ExplorerOptions& options);
 
-  // See LocalNavigator.
+  // See local_navigation::LocalNavigator.
   void OnOdometry(const grid::Pose2D& odom, double time) { nav_.OnOdometry(odom, time); }
-  void OnRanges(const std::vector<RangeReading>& readings, double reach, double time) {
+  void OnRanges(const std::vector<local_navigation::RangeReading>& readings, double reach,
+                double time) {
     nav_.OnRanges(readings, reach, time);
   }
   void OnSightings(const std::vector<MarkerSighting>& sightings, double time);
@@ -72,7 +73,7 @@ class Explorer {
   ExplorerOutput Update(double time);
 
   const grid::Pose2D& pose() const { return nav_.pose(); }
-  const LocalMap& local_map() const { return nav_.map(); }
+  const local_navigation::LocalMap& local_map() const { return nav_.map(); }
   const std::vector<Eigen::Vector2d>& plan() const { return nav_.plan(); }  // odom frame
   std::optional<Eigen::Vector2d> goal() const { return goal_; }       // odom frame
   bool goal_is_marker() const { return goal_is_marker_; }
@@ -90,7 +91,7 @@ class Explorer {
   ExplorerOutput Steer(double time, ExplorerOutput out);
 
   ExplorerOptions options_;
-  LocalNavigator nav_;
+  local_navigation::LocalNavigator nav_;
   HeardMessages heard_;
   TransportTask task_;
   std::mt19937 rng_;

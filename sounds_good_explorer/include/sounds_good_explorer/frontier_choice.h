@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "local_navigation/local_map.h"
 #include "sounds_good_explorer/heard_messages.h"
-#include "sounds_good_explorer/local_map.h"
 
 namespace sounds_good_explorer {
 
@@ -26,7 +26,7 @@ void ValidateOptions(const FrontierOptions& options);
 // distance from the robot in metres. Returns the frontier with the least cost among those at
 // least min_distance away (or, when there are none, among all), nullopt when there are no
 // frontiers. `excluded` cells are skipped (goals found unreachable).
-std::optional<Eigen::Vector2i> ChooseFrontier(const LocalMap& map,
+std::optional<Eigen::Vector2i> ChooseFrontier(const local_navigation::LocalMap& map,
                                               const std::vector<Eigen::Vector2i>& frontiers,
                                               const Eigen::Vector2d& robot,
                                               const HeardMessages& heard, std::uint32_t marker,

@@ -1,4 +1,4 @@
-#include "sounds_good_explorer/parallel_for.h"
+#include "tool_args/parallel_for.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-namespace sounds_good_explorer {
+namespace multirobot_audio::tools {
 
 void ParallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& work,
                  const std::function<void(int, int)>& progress) {
@@ -39,4 +39,4 @@ void ParallelFor(std::size_t count, int threads, const std::function<void(std::s
   if (failure) std::rethrow_exception(failure);
 }
 
-}  // namespace sounds_good_explorer
+}  // namespace multirobot_audio::tools

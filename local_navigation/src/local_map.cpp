@@ -1,13 +1,16 @@
-#include "sounds_good_explorer/local_map.h"
+#include "local_navigation/local_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 void ValidateOptions(const LocalMapOptions& o) {
   if (o.size < 3 || o.size % 2 == 0 || o.size > 4001)
@@ -159,4 +162,4 @@ void LocalMap::Expire(double time) {
     if (cells_[i] != CellState::kUnknown && seen_[i] < oldest) cells_[i] = CellState::kUnknown;
 }
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

@@ -7,9 +7,9 @@
 
 #include <Eigen/Core>
 
-#include "sounds_good_explorer/local_map.h"
+#include "local_navigation/local_map.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 struct PlannerOptions {
   double robot_radius = 0.075;  // m: obstacles are grown by this much
@@ -72,4 +72,4 @@ Grid<std::uint32_t> PlanningCosts(const LocalMap& map, const PlannerOptions& opt
 Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal,
               const PlannerOptions& options);
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

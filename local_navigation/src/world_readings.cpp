@@ -1,8 +1,8 @@
-#include "sounds_good_explorer/world_readings.h"
+#include "local_navigation/world_readings.h"
 
 #include "world_sim/ir_rangers.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 WorldReadings::WorldReadings(const world_sim::RobotModel& body, std::size_t robots)
     : reach_(body.radius + body.ir_range),
@@ -26,4 +26,4 @@ WorldReadings::Fresh WorldReadings::Take(std::size_t k, const world_sim::RobotSt
   return fresh;
 }
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

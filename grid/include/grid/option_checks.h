@@ -2,11 +2,11 @@
 
 #include <string>
 
-namespace sounds_good_explorer {
+namespace grid {
 
-// Option checks shared by the options structs: each throws std::invalid_argument
+// Bounds checks for the options structs of every component: each throws std::invalid_argument
 // "<name> must be > <bound>, got <value>" (or ">=") when the value is outside (NaN always is).
 void RequireAbove(const std::string& name, double value, double bound);
 void RequireAtLeast(const std::string& name, double value, double bound);
 
-}  // namespace sounds_good_explorer
+}  // namespace grid

@@ -1,11 +1,14 @@
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 namespace {
 
@@ -163,4 +166,4 @@ void LocalNavigator::StartBackoff(double time, double turn) {
 
 Velocity LocalNavigator::BackoffCommand() const { return {-kBackoffSpeed, backoff_turn_}; }
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

@@ -1,4 +1,4 @@
-#include "sounds_good_conversions.h"
+#include "navigation_conversions.h"
 
 #include <cmath>
 
@@ -6,8 +6,8 @@
 
 namespace multirobot_audio {
 
-std::vector<sounds_good_explorer::RangeReading> ToRangeReadings(const sensor_msgs::LaserScan& scan) {
-  std::vector<sounds_good_explorer::RangeReading> readings(scan.ranges.size());
+std::vector<local_navigation::RangeReading> ToRangeReadings(const sensor_msgs::LaserScan& scan) {
+  std::vector<local_navigation::RangeReading> readings(scan.ranges.size());
   for (std::size_t k = 0; k < readings.size(); ++k) {
     readings[k].bearing = scan.angle_min + static_cast<double>(k) * static_cast<double>(scan.angle_increment);
     readings[k].range = scan.ranges[k];
@@ -15,7 +15,7 @@ std::vector<sounds_good_explorer::RangeReading> ToRangeReadings(const sensor_msg
   return readings;
 }
 
-nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& map,
+nav_msgs::OccupancyGrid ToOccupancyGrid(const local_navigation::LocalMap& map,
                                         const std::string& frame, const ros::Time& stamp) {
   // Cell (0, 0) spans [origin, origin + 1) odom cells: its lower-left corner is the grid's
   // origin. Going through grid::OccupancyMap keeps one message layout for every map we publish.
@@ -24,9 +24,9 @@ nav_msgs::OccupancyGrid ToOccupancyGrid(const sounds_good_explorer::LocalMap& ma
                           {map.origin().x() * res, map.origin().y() * res, 0.0});
   for (int y = 0; y < map.size(); ++y) {
     for (int x = 0; x < map.size(); ++x) {
-      const sounds_good_explorer::CellState c = map.at({x, y});
-      grid.set(x, y, c == sounds_good_explorer::CellState::kOccupied ? grid::Cell::kOccupied
-                     : c == sounds_good_explorer::CellState::kFree   ? grid::Cell::kFree
+      const local_navigation::CellState c = map.at({x, y});
+      grid.set(x, y, c == local_navigation::CellState::kOccupied ? grid::Cell::kOccupied
+                     : c == local_navigation::CellState::kFree   ? grid::Cell::kFree
                                                                       : grid::Cell::kUnknown);
     }
   }

@@ -8,7 +8,7 @@
 
 #include "grid/pose2d.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 enum class CellState : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
 
@@ -92,4 +92,4 @@ class LocalMap {
   std::vector<Offset> offsets_;
 };
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

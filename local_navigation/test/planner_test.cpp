@@ -1,11 +1,11 @@
-#include "sounds_good_explorer/planner.h"
+#include "local_navigation/planner.h"
 
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 namespace {
 
 // A map of `size` x `size` cells of 1 m with cell (0, 0) at the lower left.
@@ -183,4 +183,4 @@ TEST(Planner, RejectsImpossibleOptions) {
 }
 
 }  // namespace
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

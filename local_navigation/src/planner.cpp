@@ -1,4 +1,4 @@
-#include "sounds_good_explorer/planner.h"
+#include "local_navigation/planner.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,12 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
+
+using grid::RequireAbove;
+using grid::RequireAtLeast;
 
 namespace {
 
@@ -178,4 +181,4 @@ Plan MakePlan(const LocalMap& map, const Eigen::Vector2i& start, const Eigen::Ve
   return plan;
 }
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

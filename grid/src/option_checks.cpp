@@ -1,9 +1,9 @@
-#include "sounds_good_explorer/option_checks.h"
+#include "grid/option_checks.h"
 
 #include <sstream>
 #include <stdexcept>
 
-namespace sounds_good_explorer {
+namespace grid {
 
 namespace {
 
@@ -23,4 +23,4 @@ void RequireAtLeast(const std::string& name, double value, double bound) {
   if (!(value >= bound)) Fail(name, ">=", bound, value);
 }
 
-}  // namespace sounds_good_explorer
+}  // namespace grid

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <functional>
 
-namespace sounds_good_explorer {
+namespace multirobot_audio::tools {
 
 // Calls work(i) for every i in [0, count) spread over `threads` worker threads (0: one per
 // core), for batches of independent, deterministic trials whose results must not depend on the
@@ -12,4 +12,4 @@ namespace sounds_good_explorer {
 void ParallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& work,
                  const std::function<void(int, int)>& progress = {});
 
-}  // namespace sounds_good_explorer
+}  // namespace multirobot_audio::tools

@@ -3,11 +3,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "sounds_good_explorer/local_navigator.h"
+#include "local_navigation/local_navigator.h"
 #include "world_sim/world.h"
 #include "world_sim/world_config.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 // Hands a team's in-process controllers what world_sim has measured, each kind of reading only
 // when it is new (world_sim keeps the last reading and the step it was taken at), and the IR
@@ -32,4 +32,4 @@ class WorldReadings {
   std::vector<std::uint64_t> odom_seen_, scan_seen_, camera_seen_;
 };
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation

@@ -8,18 +8,18 @@
 #include <Eigen/Core>
 
 #include "grid/pose2d.h"
-#include "sounds_good_explorer/local_map.h"
-#include "sounds_good_explorer/planner.h"
+#include "local_navigation/local_map.h"
+#include "local_navigation/planner.h"
 
-namespace sounds_good_explorer {
+namespace local_navigation {
 
 struct MotionOptions {
   double max_speed = 0.3;      // m/s
   double max_turn_rate = 2.0;  // rad/s
   double turn_gain = 2.5;      // rad/s per rad of heading error
   double lookahead = 0.45;     // m along the plan to steer at
-  double goal_tolerance = 0.3;  // m: a frontier goal this close is reached
-  double goal_hold = 4.0;      // s a frontier goal is kept before choosing again
+  double goal_tolerance = 0.3;  // m: a frontier goal this close is reached (explorer only)
+  double goal_hold = 4.0;      // s a frontier goal is kept before choosing again (explorer only)
   double replan_period = 0.8;  // s between plans
   double stuck_time = 4.0;     // s without moving 0.1 m while following a plan: stuck
   double backoff_time = 1.5;   // s of reversing and turning when stuck
@@ -128,4 +128,4 @@ class LocalNavigator {
   std::uint64_t stuck_count_ = 0, plans_ = 0, bad_scans_ = 0;
 };
 
-}  // namespace sounds_good_explorer
+}  // namespace local_navigation
