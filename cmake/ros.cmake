@@ -87,6 +87,9 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_rostest_gtest(lockstep_rostest test/lockstep.test test/lockstep_rostest.cpp)
   target_link_libraries(lockstep_rostest multirobot_audio_ros)
   add_dependencies(lockstep_rostest world_sim_node wanderer_node)
+  # Two lockstep runs of the same team and seed: the same summary and the same audio traffic.
+  add_test(NAME lockstep_reproducible COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 3 30)
+  add_dependencies(tests world_sim_node wanderer_node audio_propagation_node)
 
   add_rostest_gtest(record_rostest test/record.test test/record_rostest.cpp)
   target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})

@@ -130,20 +130,21 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
 ChargingDemoRos::ChargingDemoRos(ros::NodeHandle nh, ros::NodeHandle pnh, const ChargingDemoNodeOptions& options)
     : nh_(nh),
       pnh_(pnh),
+      lockstep_(nh),
       options_(options),
       controller_(options.controller),
       // No thread of its own: its callbacks run on the node's queue, beside the control loop.
       acquire_(nh, "local_mutex/acquire", false) {
   release_ = nh_.serviceClient<std_srvs::Trigger>("local_mutex/release");
-  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 10);
-  state_pub_ = pnh_.advertise<multirobot_audio::ChargingState>("state", 10);
+  cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
+  state_pub_ = lockstep_.Advertise<multirobot_audio::ChargingState>(pnh_, "state", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("charger", 1);
-  odom_sub_ = nh_.subscribe("odom", 10, &ChargingDemoRos::OnOdometry, this);
-  scan_sub_ = nh_.subscribe("scan", 10, &ChargingDemoRos::OnScan, this);
-  fiducials_sub_ = nh_.subscribe("fiducials", 10, &ChargingDemoRos::OnFiducials, this);
-  battery_sub_ = nh_.subscribe("battery", 10, &ChargingDemoRos::OnBattery, this);
-  lock_sub_ = nh_.subscribe("local_mutex/state", 10, &ChargingDemoRos::OnLockState, this);
-  control_timer_ = nh_.createTimer(ros::Duration(1.0 / options_.control_rate), &ChargingDemoRos::OnControl, this);
+  odom_sub_ = lockstep_.Subscribe(nh_, "odom", 10, &ChargingDemoRos::OnOdometry, this);
+  scan_sub_ = lockstep_.Subscribe(nh_, "scan", 10, &ChargingDemoRos::OnScan, this);
+  fiducials_sub_ = lockstep_.Subscribe(nh_, "fiducials", 10, &ChargingDemoRos::OnFiducials, this);
+  battery_sub_ = lockstep_.Subscribe(nh_, "battery", 10, &ChargingDemoRos::OnBattery, this);
+  lock_sub_ = lockstep_.Subscribe(nh_, "local_mutex/state", 10, &ChargingDemoRos::OnLockState, this);
+  control_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.control_rate), &ChargingDemoRos::OnControl, this);
   std::string ids;
   for (const std::uint32_t id : options_.controller.charging.chargers) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
   const charging_demo::ChargingOptions& ch = options_.controller.charging;

@@ -13,6 +13,7 @@
 #include <sensor_msgs/LaserScan.h>
 
 #include "charging_conversions.h"
+#include "lockstep_participant.h"
 #include "charging_demo/charging_controller.h"
 
 namespace multirobot_audio {
@@ -67,12 +68,14 @@ class ChargingDemoRos {
   void PublishState(const ros::Time& now);
 
   ros::NodeHandle nh_, pnh_;
+  LockstepParticipant lockstep_;  // before what it hands messages and timers to
   ChargingDemoNodeOptions options_;
   charging_demo::ChargingController controller_;
   AcquireClient acquire_;
   ros::ServiceClient release_;
   ros::Subscriber odom_sub_, scan_sub_, fiducials_sub_, battery_sub_, lock_sub_;
-  ros::Publisher cmd_pub_, state_pub_, markers_pub_;
+  CountedPublisher cmd_pub_, state_pub_;
+  ros::Publisher markers_pub_;  // for rviz only
   ros::Timer control_timer_;
 
   std::string odom_frame_;  // from the odometry

@@ -64,21 +64,21 @@ SoundsGoodExplorerNodeOptions ReadSoundsGoodExplorerNodeOptions(const ros::NodeH
 
 SoundsGoodExplorerRos::SoundsGoodExplorerRos(ros::NodeHandle nh, ros::NodeHandle pnh,
                                              const SoundsGoodExplorerNodeOptions& options)
-    : nh_(nh), pnh_(pnh), options_(options), explorer_(options.explorer) {
-  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 10);
-  tx_pub_ = nh_.advertise<multirobot_audio::AudioPacket>("audio/tx", 10);
-  jobs_pub_ = nh_.advertise<multirobot_audio::Job>("jobs", 10);
+    : nh_(nh), pnh_(pnh), lockstep_(nh), options_(options), explorer_(options.explorer) {
+  cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
+  tx_pub_ = lockstep_.Advertise<multirobot_audio::AudioPacket>(nh_, "audio/tx", 10);
+  jobs_pub_ = lockstep_.Advertise<multirobot_audio::Job>(nh_, "jobs", 10);
   map_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("local_map", 1);
   plan_pub_ = pnh_.advertise<nav_msgs::Path>("plan", 1);
   frontier_pub_ = pnh_.advertise<visualization_msgs::Marker>("frontier", 1);
-  odom_sub_ = nh_.subscribe("odom", 10, &SoundsGoodExplorerRos::OnOdometry, this);
-  scan_sub_ = nh_.subscribe("scan", 10, &SoundsGoodExplorerRos::OnScan, this);
-  fiducials_sub_ = nh_.subscribe("fiducials", 10, &SoundsGoodExplorerRos::OnFiducials, this);
+  odom_sub_ = lockstep_.Subscribe(nh_, "odom", 10, &SoundsGoodExplorerRos::OnOdometry, this);
+  scan_sub_ = lockstep_.Subscribe(nh_, "scan", 10, &SoundsGoodExplorerRos::OnScan, this);
+  fiducials_sub_ = lockstep_.Subscribe(nh_, "fiducials", 10, &SoundsGoodExplorerRos::OnFiducials, this);
   // Announcements come in bursts from several robots; none may be lost to a short queue.
-  rx_sub_ = nh_.subscribe("audio/rx", 50, &SoundsGoodExplorerRos::OnRx, this);
-  control_timer_ = nh_.createTimer(ros::Duration(1.0 / options_.control_rate), &SoundsGoodExplorerRos::OnControl, this);
+  rx_sub_ = lockstep_.Subscribe(nh_, "audio/rx", 50, &SoundsGoodExplorerRos::OnRx, this);
+  control_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.control_rate), &SoundsGoodExplorerRos::OnControl, this);
   if (options_.map_rate > 0.0) {
-    map_timer_ = nh_.createTimer(ros::Duration(1.0 / options_.map_rate), &SoundsGoodExplorerRos::PublishLocalMap, this);
+    map_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.map_rate), &SoundsGoodExplorerRos::PublishLocalMap, this);
   }
   const sg::TaskOptions& t = options_.explorer.task;
   ROS_INFO("sounds_good_explorer %s: %s audio, source %u, sink %u, %.0f s of work at each, control at %.1f Hz",

@@ -13,6 +13,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 
+#include "lockstep_participant.h"
 #include "sounds_good_explorer/explorer.h"
 
 namespace multirobot_audio {
@@ -53,10 +54,12 @@ class SoundsGoodExplorerRos {
   void PublishFrontier(const ros::Time& now);
 
   ros::NodeHandle nh_, pnh_;
+  LockstepParticipant lockstep_;  // before what it hands messages and timers to
   SoundsGoodExplorerNodeOptions options_;
   sounds_good_explorer::Explorer explorer_;
   ros::Subscriber odom_sub_, scan_sub_, fiducials_sub_, rx_sub_;
-  ros::Publisher cmd_pub_, tx_pub_, jobs_pub_, map_pub_, plan_pub_, frontier_pub_;
+  CountedPublisher cmd_pub_, tx_pub_, jobs_pub_;
+  ros::Publisher map_pub_, plan_pub_, frontier_pub_;  // for rviz only
   ros::Timer control_timer_, map_timer_;
   std::string odom_frame_, base_frame_;  // empty until the first odometry
   std::uint64_t jobs_ = 0, sent_ = 0, heard_ = 0;

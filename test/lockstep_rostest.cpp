@@ -30,7 +30,7 @@ TEST(Lockstep, TheWorldWaitsForASlowParticipantAndDropsOneThatStopsAnswering) {
   std::vector<std::string> warnings;
   auto clock_sub = wnh.subscribe<rosgraph_msgs::Clock>(
       "/clock", 1000, [&](const rosgraph_msgs::Clock::ConstPtr& c) { clock = c->clock.toSec(); });
-  auto log_sub = wnh.subscribe<rosgraph_msgs::Log>("/rosout_agg", 1000, [&](const rosgraph_msgs::Log::ConstPtr& m) {
+  auto log_sub = wnh.subscribe<rosgraph_msgs::Log>("/rosout", 1000, [&](const rosgraph_msgs::Log::ConstPtr& m) {
     std::lock_guard<std::mutex> lock(mutex);
     if (m->level >= rosgraph_msgs::Log::WARN) warnings.push_back(m->name + ": " + m->msg);
   });

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Lockstep runs are reproducible: runs a simulated team twice with the same seed at speed 0
+# (lockstep on), recording every robot's audio traffic, and checks that the two runs give the
+# same `world_sim summary` line and the same bag, topic by topic and message for message.
+#
+#   test/lockstep_repro.sh [ROBOTS=3] [DURATION=30] [LAUNCH ARGS...]
+#
+# (lockstep:=false as a launch argument shows what the lockstep prevents: the runs differ.)
+# Starts a roscore of its own on a free port and stops it (and the recorders) by PID.
+set -euo pipefail
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+robots=${1:-3}
+duration=${2:-30}
+shift $(($# < 2 ? $# : 2))
+
+dir=$(mktemp -d /tmp/lockstep_repro.XXXXXX)
+core=""
+recorder=""
+cleanup() {
+  for pid in $recorder $core; do kill "$pid" 2>/dev/null || true; wait "$pid" 2>/dev/null || true; done
+  [ -n "${KEEP:-}" ] || rm -rf "$dir"
+}
+trap cleanup EXIT
+
+port=$(/usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI="http://127.0.0.1:${port}"
+roscore -p "$port" >"$dir/roscore.log" 2>&1 &
+core=$!
+for _ in $(seq 100); do rosparam get /run_id >/dev/null 2>&1 && break; sleep 0.2; done
+
+topics=()
+for ((k = 0; k < robots; ++k)); do
+  topics+=("/robot_$k/audio/tx" "/robot_$k/audio/rx" "/robot_$k/audio/carrier")
+done
+
+for run in 1 2; do
+  # The recorder subscribes before the team starts, so it is connected before the first step.
+  # rosrun starts rosbag's recorder itself (not the `rosbag record` wrapper), so that waiting
+  # for its PID after SIGINT waits until the bag is closed.
+  rosrun rosbag record -O "$dir/run$run.bag" "${topics[@]}" __name:=lockstep_recorder >"$dir/record$run.log" 2>&1 &
+  recorder=$!
+  sleep 2
+  roslaunch multirobot_audio sim_team.launch robots:="$robots" duration:="$duration" speed:=0 seed:=1 \
+    announce_period:=2 "$@" >"$dir/run$run.log" 2>&1
+  kill -INT "$recorder"
+  wait "$recorder" || true
+  recorder=""
+  [ -f "$dir/run$run.bag" ] || { echo "lockstep_repro: run $run: the recorder left no bag" >&2; tail -5 "$dir/record$run.log" >&2; exit 1; }
+  grep '^world_sim summary:' "$dir/run$run.log" >"$dir/summary$run" || {
+    echo "lockstep_repro: run $run printed no world_sim summary:" >&2
+    tail -20 "$dir/run$run.log" >&2
+    exit 1
+  }
+done
+
+echo "run 1: $(cat "$dir/summary1")"
+echo "run 2: $(cat "$dir/summary2")"
+if ! cmp -s "$dir/summary1" "$dir/summary2"; then
+  echo "lockstep_repro: the two runs' world_sim summaries differ" >&2
+  exit 1
+fi
+
+/usr/bin/python3 - "$dir/run1.bag" "$dir/run2.bag" <<'PY'
+import sys
+import rosbag
+
+def per_topic(path):
+    out = {}
+    with rosbag.Bag(path) as bag:
+        for topic, raw, _ in bag.read_messages(raw=True):
+            out.setdefault(topic, []).append(raw[1])
+    return out
+
+a, b = per_topic(sys.argv[1]), per_topic(sys.argv[2])
+packets = sum(len(v) for t, v in a.items() if t.endswith('/audio/rx'))
+if packets == 0:
+    sys.exit('lockstep_repro: no audio traffic recorded: nothing compared')
+for topic in sorted(set(a) | set(b)):
+    x, y = a.get(topic, []), b.get(topic, [])
+    if x != y:
+        first = next((i for i, (p, q) in enumerate(zip(x, y)) if p != q), min(len(x), len(y)))
+        sys.exit('lockstep_repro: %s differs: %d and %d messages, first difference at message %d'
+                 % (topic, len(x), len(y), first))
+print('lockstep_repro: same audio traffic in both runs: %d topics, %d messages (%d receptions)'
+      % (len(a), sum(len(v) for v in a.values()), packets))
+PY
