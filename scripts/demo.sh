@@ -53,4 +53,4 @@ if [ -z "$result" ]; then
   exit 1
 fi
 echo "$result"
-grep -m1 '^world_sim summary:' "$log" || true
+grep -E '^world_sim (summary|timing):' "$log" || true

@@ -80,7 +80,7 @@ void LockstepParticipant::TryRun() {
   const ros::Time due(inbox_.time());
   const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(2.0);
   while (ros::Time::now() < due && ros::ok() && ros::WallTime::now() < give_up) {
-    ros::WallDuration(0.0001).sleep();
+    ros::WallDuration(0.00005).sleep();
   }
   if (ros::Time::now() < due) {
     ROS_WARN_THROTTLE(5.0, "%s: lockstep: /clock is behind the step order (%.3f s < %.3f s)", node_.c_str(),

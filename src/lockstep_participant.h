@@ -86,7 +86,6 @@ class LockstepParticipant {
   std::vector<std::pair<std::string, ros::Subscriber>> subscriptions_;
   std::map<std::string, std::shared_ptr<std::uint64_t>> published_;
   std::map<std::string, std::uint64_t> reported_;
-  std::uint64_t late_clock_warnings_ = 0;
 };
 
 template <class M>
