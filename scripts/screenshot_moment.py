@@ -24,6 +24,7 @@ import math
 import os
 import signal
 import sys
+import threading
 import time
 
 import rospy
@@ -40,6 +41,7 @@ class Paths:
     def __init__(self, robots, within):
         self.within = within
         self.drawn = []  # (expiry in simulated s, sender, corner points, inside the box)
+        self.lock = threading.Lock()  # the subscriber's thread adds, the main thread prunes
         rospy.Subscriber("/audio_propagation/paths", MarkerArray, self.on_paths, queue_size=10)
 
     def inside(self, p):
@@ -50,16 +52,19 @@ class Paths:
         for m in msg.markers:
             corners = ["(%.1f, %.1f)" % (p.x, p.y) for p in m.points[1:-1]]
             inside = all(self.inside(p) for p in m.points)
-            self.drawn.append((m.header.stamp.to_sec() + m.lifetime.to_sec(), m.ns, corners, inside))
+            with self.lock:
+                self.drawn.append((m.header.stamp.to_sec() + m.lifetime.to_sec(), m.ns, corners, inside))
 
     def count(self, now):
-        self.drawn = [d for d in self.drawn if d[0] > now]
-        if not all(d[3] for d in self.drawn):
-            return 0
-        return sum(1 for d in self.drawn if d[2])
+        with self.lock:
+            self.drawn = [d for d in self.drawn if d[0] > now]
+            if not all(d[3] for d in self.drawn):
+                return 0
+            return sum(1 for d in self.drawn if d[2])
 
     def describe(self):
-        return "; ".join("%s's path bends at %s" % (ns, " ".join(c)) for _, ns, c, _ in self.drawn if c)
+        with self.lock:
+            return "; ".join("%s's path bends at %s" % (ns, " ".join(c)) for _, ns, c, _ in self.drawn if c)
 
 
 class Plans:
