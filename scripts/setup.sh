@@ -42,6 +42,9 @@ packages=(
   # the room profile and the room channel: FEC (libfec: Viterbi, Reed-Solomon), FFTs (FFTW),
   # resampling for clock offsets (libsamplerate); espeak-ng and sox make test speech at run time
   libfec-dev libfftw3-dev libsamplerate0-dev espeak-ng sox
+  # scripts/screenshots.sh: xwininfo finds rviz's 3D view on the screen; its Python helpers use
+  # PyYAML and rospy
+  x11-utils python3-yaml python3-rospy
   # headless rviz and screenshots
   xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
   # scripts/get_thesis_map.sh downloads the thesis's map from Stage's repository
