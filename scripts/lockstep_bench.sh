@@ -27,11 +27,9 @@ cleanup() {
   rm -rf "$dir"
 }
 trap cleanup EXIT
-port=$(/usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI="http://127.0.0.1:${port}"
-roscore -p "$port" >"$dir/roscore.log" 2>&1 &
-core=$!
-for _ in $(seq 100); do rosparam get /run_id >/dev/null 2>&1 && break; sleep 0.2; done
+# shellcheck disable=SC1091
+source "$here/scripts/private_master.sh"
+start_private_master "$dir/roscore.log"
 
 run() {  # name speed duration
   roslaunch multirobot_audio sim_team.launch world:="$world" robots:="$robots" speed:="$2" duration:="$3" \
