@@ -3,9 +3,24 @@
 # conversions' gtests, the rostests and the launch-file checks, all through ctest.
 #
 #   scripts/test.sh [CTEST_ARGS...]     e.g. scripts/test.sh -R grid
+#   scripts/test.sh --sanitize [CTEST_ARGS...]
+#       the ROS-free components and their tests built with AddressSanitizer and
+#       UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test)
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+if [ "${1:-}" = "--sanitize" ]; then
+  shift
+  "$here/scripts/setup.sh" --no-build
+  build="$here/build-sanitize"
+  cmake -S "$here" -B "$build" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSANITIZE=address,undefined >/dev/null
+  cmake --build "$build" --target tests -j "$(nproc)"
+  cd "$build"
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  exec ctest --output-on-failure "$@"
+fi
 
 "$here/scripts/setup.sh"
 cmake --build "$here/build" --target tests -j "$(nproc)"
