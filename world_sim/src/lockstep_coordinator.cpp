@@ -114,18 +114,18 @@ std::vector<StepOrder> LockstepCoordinator::BeginStep(std::uint64_t step, double
   step_wall_ = wall_now;
   // Only the streams that grew since the last orders can add to an order: a step costs what
   // happened in it, not the size of the team.
-  std::map<std::string, StepOrder> grown_for;
+  std::map<std::string, std::vector<StreamCount>> grown_for;
   for (const StreamId& stream : grown_) {
     const std::uint64_t total = totals_[stream];
     const auto listeners = listeners_.find(stream.topic);
     if (listeners == listeners_.end()) continue;
     for (const std::string& name : listeners->second) {
       Participant& p = participants_.at(name);
-      if (p.dropped || stream.publisher == name || p.subscribed.count(stream.topic) == 0) continue;
+      if (p.dropped || stream.publisher == name) continue;  // listeners_ holds only subscribers
       std::uint64_t& told = p.told[stream];
       if (total <= told) continue;
       told = total;
-      grown_for[name].totals.push_back(StreamCount{stream, total});
+      grown_for[name].push_back(StreamCount{stream, total});
     }
   }
   grown_.clear();
@@ -135,7 +135,7 @@ std::vector<StepOrder> LockstepCoordinator::BeginStep(std::uint64_t step, double
     auto g = grown_for.find(name);
     if (g == grown_for.end() && p.next_due > time + 1e-9) continue;
     StepOrder order{name, step, time, {}};
-    if (g != grown_for.end()) order.totals = std::move(g->second.totals);
+    if (g != grown_for.end()) order.totals = std::move(g->second);
     p.waiting = true;
     orders.push_back(std::move(order));
   }
