@@ -1,41 +1,64 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test: the components' gtests, the ROS
-# conversions' gtests, the rostests and the launch-file checks, all through ctest.
+# Installs what is missing, builds, and runs every test. With no arguments it runs all of what CI
+# runs, in turn, and stops at the first part that fails:
+#   1. the main suite: the components' gtests, the ROS conversions' gtests, the rostests and the
+#      launch-file checks, all through ctest, in build/;
+#   2. the sanitized suite: the ROS-free components and their tests built with AddressSanitizer
+#      and UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test).
 #
-#   scripts/test.sh [CTEST_ARGS...]     e.g. scripts/test.sh -R grid
+#   scripts/test.sh                     everything above
+#   scripts/test.sh CTEST_ARGS...       the main suite only, e.g. scripts/test.sh -R grid
 #   scripts/test.sh --sanitize [CTEST_ARGS...]
-#       the ROS-free components and their tests built with AddressSanitizer and
-#       UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test)
+#                                       the sanitized suite only
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-if [ "${1:-}" = "--sanitize" ]; then
-  shift
+main_suite() {
+  "$here/scripts/setup.sh"
+  cmake --build "$here/build" --target tests -j "$(nproc)"
+  # catkin's setup script reads unset variables.
+  set +u
+  # shellcheck disable=SC1091
+  source "$here/build/devel/setup.bash"
+  set -u
+  local count
+  count=$(cd "$here/build" && ctest -N "$@" | sed -n 's/^Total Tests: *//p')
+  if [ -z "$count" ] || [ "$count" -eq 0 ]; then
+    echo "test.sh: no tests found; that is a failure" >&2
+    return 1
+  fi
+  # Sequential: each rostest starts its own master, and the machine has two cores.
+  (cd "$here/build" && ctest --output-on-failure "$@")
+}
+
+sanitized_suite() {
   "$here/scripts/setup.sh" --no-build
-  build="$here/build-sanitize"
+  local build="$here/build-sanitize"
   cmake -S "$here" -B "$build" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSANITIZE=address,undefined >/dev/null
   cmake --build "$build" --target tests -j "$(nproc)"
-  cd "$build"
-  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-  exec ctest --output-on-failure "$@"
-fi
+  (cd "$build" &&
+    ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+      ctest --output-on-failure "$@")
+}
 
-"$here/scripts/setup.sh"
-cmake --build "$here/build" --target tests -j "$(nproc)"
+part() {
+  echo "== test.sh: $1 =="
+}
 
-# catkin's setup script reads unset variables.
-set +u
-# shellcheck disable=SC1091
-source "$here/build/devel/setup.bash"
-set -u
-
-cd "$here/build"
-count=$(ctest -N "$@" | sed -n 's/^Total Tests: *//p')
-if [ -z "$count" ] || [ "$count" -eq 0 ]; then
-  echo "test.sh: no tests found; that is a failure" >&2
-  exit 1
-fi
-# Sequential: each rostest starts its own master, and the machine has two cores.
-ctest --output-on-failure "$@"
+case "${1:-}" in
+  --sanitize)
+    shift
+    sanitized_suite "$@"
+    ;;
+  "")
+    start=$SECONDS
+    part "main suite"; main_suite
+    part "sanitized suite"; sanitized_suite
+    echo "test.sh: every part passed in $((SECONDS - start)) s"
+    ;;
+  *)
+    main_suite "$@"
+    ;;
+esac
