@@ -1,6 +1,7 @@
 #include "nava_modem/csma_mac.h"
 
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -70,6 +71,15 @@ bool CsmaMac::Enqueue(Packet packet) {
   }
   queue_.push_back(std::move(packet));
   return true;
+}
+
+void CsmaMac::Interrupt(std::vector<Packet> unsent, double hold_seconds) {
+  requeued_ += unsent.size();
+  queue_.insert(queue_.begin(), std::make_move_iterator(unsent.begin()), std::make_move_iterator(unsent.end()));
+  carrier_ = false;
+  if (state_ == MacState::kCalibrating) return;
+  EnterWaiting();
+  remaining_ += Ticks(hold_seconds);
 }
 
 void CsmaMac::EnterWaiting() {

@@ -17,6 +17,8 @@ constexpr double kBlockSeconds = 0.005;
 // How long after a packet ends its receiver may report it (the room profile's matched filter
 // works in blocks of up to a third of a second), and a little more.
 constexpr double kDirectionMarginSeconds = 1.5;
+// The longest a tick waits for the next try at reopening a failed device.
+constexpr double kDownWaitSeconds = 0.05;
 
 LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
   if (std::abs(device.sample_rate() - o.modem.sample_rate) > 0.5) {
@@ -29,12 +31,13 @@ LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
                                 std::to_string(o.microphones.size()) + " microphone positions were given (one per channel)");
   }
   UseProfileTiming(o.profile, o.modem, o.mac);
+  ValidateReopenOptions(o.reopen);
   return o;
 }
 
 }  // namespace
 
-NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
+NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock)
     : options_(Checked(options, device)),
       device_(device),
       profile_(MakeProfile(options_.profile, options_.modem)),
@@ -42,7 +45,9 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
       mac_(options_.mac, options_.seed),
       samples_per_tick_(mac_.tick_seconds() * options_.modem.sample_rate),
       block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))),
-      channels_(static_cast<std::size_t>(device.capture_channels())) {
+      channels_(static_cast<std::size_t>(device.capture_channels())),
+      clock_(clock),
+      reopen_(options_.reopen) {
   if (options_.microphones.size() >= 2) {
     estimator_ = std::make_unique<DirectionEstimator>(DirectionOptionsFor(options_.profile, options_.modem, options_.microphones));
     // A packet and what it takes the receiver to report it.
@@ -61,6 +66,19 @@ bool NavaLink::Send(std::vector<std::uint8_t> data) {
 }
 
 bool NavaLink::Tick(std::vector<RxEvent>& events) {
+  if (device_down_) {
+    TryReopen();
+    return true;
+  }
+  try {
+    return Run(events);
+  } catch (const DeviceFault& e) {
+    Fail(e.what(), events);
+    return true;
+  }
+}
+
+bool NavaLink::Run(std::vector<RxEvent>& events) {
   // Ticks are a whole number of samples on average: tick k ends at sample round((k+1) * s).
   const std::int64_t end = std::llround((ticks_ + 1) * samples_per_tick_);
   const std::size_t count = static_cast<std::size_t>(end - samples_done_);
@@ -83,6 +101,8 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
 
   if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db())) {
     burst_ = profile_->ModulatePacket(*packet);
+    // It starts with this tick's playback.
+    in_flight_.push_back({std::move(*packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
     burst_at_ = 0;
     burst_cut_ = false;
     burst_written_ = 0;
@@ -144,10 +164,14 @@ void NavaLink::EstimateDirections(std::vector<RxEvent>& events, std::size_t firs
 }
 
 void NavaLink::Put(const float* in, std::size_t count) {
+  queued_out_ += static_cast<std::int64_t>(count);
   playing_.insert(playing_.end(), in, in + count);
   if (playing_.size() < block_) return;
   device_.Write(playing_.data(), playing_.size());
+  written_ += static_cast<std::int64_t>(playing_.size());
   playing_.clear();
+  played_ = std::max(played_, written_ - static_cast<std::int64_t>(device_.PlaybackDelay()));
+  while (!in_flight_.empty() && in_flight_.front().end <= played_) in_flight_.pop_front();
   // An underrun met by this write left a gap before its samples: inside the packet when some
   // of it went out before and some goes out now.
   if (device_.underruns() != underruns_seen_) {
@@ -159,6 +183,75 @@ void NavaLink::Put(const float* in, std::size_t count) {
   }
   burst_written_ += burst_pending_;
   burst_pending_ = 0;
+}
+
+}  // namespace nava_modem
+
+namespace nava_modem {
+
+// The device failed: what it had not played of the packets sent goes again, and what was heard
+// is decoded to its end.
+void NavaLink::Fail(const std::string& error, std::vector<RxEvent>& events) {
+  ++device_faults_;
+  device_error_ = error;
+  device_down_ = true;
+  // The position is only known up to the last write: a packet that finished playing since is
+  // sent again, as the listeners, who lost the same sound server or hear this robot's speaker
+  // late, most likely missed its end too.
+  std::vector<CsmaMac::Packet> unsent;
+  for (InFlight& f : in_flight_) unsent.push_back(std::move(f.data));
+  in_flight_.clear();
+  mac_.Interrupt(std::move(unsent), options_.reopen.settle_time);
+  burst_.clear();
+  burst_at_ = 0;
+  burst_cut_ = false;
+  burst_written_ = burst_pending_ = 0;
+  playing_.clear();
+  queued_out_ = written_ = played_ = 0;
+  EndHearing(events);
+  reopen_.Start(clock_.Now());
+}
+
+// The audio heard before a failure is decoded as if silence followed: a packet that had just
+// ended is reported now, one cut short ends as noise or nothing, and the audio after the
+// reopen begins nothing half-heard. The receiver's clock (and the microphones' history, which
+// follows it) moves past that silence.
+void NavaLink::EndHearing(std::vector<RxEvent>& events) {
+  const std::size_t first = events.size();
+  const double rate = options_.modem.sample_rate;
+  const std::size_t unheard = captured_.size() - captured_at_;
+  receiver_->Process(captured_.data() + captured_at_, unheard, events);
+  captured_.clear();
+  captured_at_ = 0;
+  const double before = receiver_->time();
+  receiver_->Flush(events);
+  const std::int64_t silence = std::llround((receiver_->time() - before) * rate);
+  if (!history_.empty()) {
+    for (std::int64_t n = frames_read_; n < frames_read_ + silence; ++n) {
+      for (std::vector<float>& channel : history_) channel[static_cast<std::size_t>(n) & history_mask_] = 0.0f;
+    }
+  }
+  frames_read_ += silence;
+  samples_flushed_ += static_cast<std::int64_t>(unheard) + silence;
+  if (estimator_) EstimateDirections(events, first);
+}
+
+void NavaLink::TryReopen() {
+  const double now = clock_.Now();
+  if (now < reopen_.next_try()) {
+    clock_.Sleep(std::min(reopen_.next_try() - now, kDownWaitSeconds));
+    return;
+  }
+  try {
+    device_.Reopen();
+  } catch (const DeviceFault& e) {
+    device_error_ = e.what();
+    reopen_.Failed(clock_.Now());
+    return;
+  }
+  device_down_ = false;
+  ++reopens_;
+  underruns_seen_ = device_.underruns();
 }
 
 }  // namespace nava_modem
