@@ -41,10 +41,6 @@ AlsaDevice::AlsaDevice(const AlsaOptions& options) : options_(options) {
   if (!(options_.latency > 0.0 && options_.latency <= 2.0)) {
     throw std::invalid_argument("ALSA latency " + std::to_string(options_.latency) + " s: expected above 0 and at most 2");
   }
-  if (!(options_.max_capture_lag > 0.0 && options_.max_capture_lag <= 10.0)) {
-    throw std::invalid_argument("ALSA max capture lag " + std::to_string(options_.max_capture_lag) +
-                                " s: expected above 0 and at most 10");
-  }
   Open();
 }
 
@@ -116,28 +112,14 @@ void AlsaDevice::Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, std::
 bool AlsaDevice::Read(float* out, std::size_t count) {
   Transfer(capture_, out, count, static_cast<std::size_t>(options_.capture_channels),
            [](snd_pcm_t* p, float* d, std::size_t n) { return snd_pcm_readi(p, d, n); }, "capture", overruns_);
-  DropCaptureBacklog();
   return true;
 }
 
-// A process stalled for longer than the capture buffer: a sound card overruns (Transfer counts
-// it), but a sound server keeps what was captured and hands it over late, and capture and
-// playback, running in step, would then stay that far behind for good.
-void AlsaDevice::DropCaptureBacklog() {
-  snd_pcm_sframes_t behind = 0;
-  if (snd_pcm_delay(capture_, &behind) < 0) return;  // an xrun, which the next read recovers from
-  if (behind <= std::lround((options_.latency + options_.max_capture_lag) * options_.sample_rate)) return;
-  const std::size_t width = static_cast<std::size_t>(options_.capture_channels);
-  const std::size_t chunk = 1024;
-  discarded_.resize(chunk * width);
-  std::uint64_t uncounted = 0;  // the backlog is one overrun, however many reads drop it
-  for (auto left = static_cast<std::size_t>(behind); left > 0;) {
-    const std::size_t n = std::min(left, chunk);
-    Transfer(capture_, discarded_.data(), n, width,
-             [](snd_pcm_t* p, float* d, std::size_t k) { return snd_pcm_readi(p, d, k); }, "capture", uncounted);
-    left -= n;
-  }
-  overruns_ += 1 + uncounted;
+std::size_t AlsaDevice::CaptureLag() {
+  snd_pcm_sframes_t waiting = 0;
+  if (!capture_ || snd_pcm_delay(capture_, &waiting) < 0) return 0;  // an xrun: the next read recovers from it
+  const snd_pcm_sframes_t buffered = std::lround(options_.latency * options_.sample_rate);
+  return static_cast<std::size_t>(std::max<snd_pcm_sframes_t>(0, waiting - buffered));
 }
 
 void AlsaDevice::Write(const float* in, std::size_t count) {

@@ -91,7 +91,7 @@ void CsmaMac::EnterWaiting() {
   remaining_ = backoff(rng_);
 }
 
-std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db) {
+std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db, bool may_send) {
   ++ticks_;
   switch (state_) {
     case MacState::kCalibrating:
@@ -110,7 +110,7 @@ std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db) {
         ++receptions_;
         return std::nullopt;
       }
-      if (queue_.empty()) return std::nullopt;
+      if (queue_.empty() || !may_send) return std::nullopt;
       if (--remaining_ > 0) return std::nullopt;
       {
         Packet p = std::move(queue_.front());

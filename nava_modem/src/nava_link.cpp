@@ -32,6 +32,9 @@ LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
   }
   UseProfileTiming(o.profile, o.modem, o.mac);
   ValidateReopenOptions(o.reopen);
+  if (!(o.max_capture_lag > 0.0 && o.max_capture_lag <= 10.0)) {
+    throw std::invalid_argument("max capture lag " + std::to_string(o.max_capture_lag) + " s: expected above 0 and at most 10");
+  }
   return o;
 }
 
@@ -99,7 +102,8 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
     threshold_shared_ = true;
   }
 
-  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db())) {
+  // Behind real time, carrier sense is stale: no send starts.
+  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db(), !behind_)) {
     burst_ = profile_->ModulatePacket(*packet);
     // It starts with this tick's playback.
     in_flight_.push_back({std::move(*packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
@@ -115,6 +119,12 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
     std::copy(burst_.begin() + burst_at_, burst_.begin() + burst_at_ + n, out.begin());
     burst_at_ += n;
     burst_pending_ += n;
+  } else if (behind_) {
+    // The process stalled and the device kept what it captured meanwhile: this tick's silence
+    // is not played (what waits to play goes now), so that the link runs faster than real time
+    // until it has heard the backlog. No captured sound is lost.
+    if (!playing_.empty()) Write();
+    return true;
   }
   Put(out.data(), count);
   return true;
@@ -137,6 +147,13 @@ bool NavaLink::Take(float* out, std::size_t count) {
       }
     }
     frames_read_ += static_cast<std::int64_t>(block_);
+    const std::size_t lag = device_.CaptureLag();
+    if (!behind_ && static_cast<double>(lag) > options_.max_capture_lag * options_.modem.sample_rate) {
+      behind_ = true;
+      ++catch_ups_;
+    } else if (behind_ && lag <= block_) {
+      behind_ = false;
+    }
   }
   std::copy(captured_.begin() + captured_at_, captured_.begin() + captured_at_ + count, out);
   captured_at_ += count;
@@ -166,7 +183,10 @@ void NavaLink::EstimateDirections(std::vector<RxEvent>& events, std::size_t firs
 void NavaLink::Put(const float* in, std::size_t count) {
   queued_out_ += static_cast<std::int64_t>(count);
   playing_.insert(playing_.end(), in, in + count);
-  if (playing_.size() < block_) return;
+  if (playing_.size() >= block_) Write();
+}
+
+void NavaLink::Write() {
   device_.Write(playing_.data(), playing_.size());
   written_ += static_cast<std::int64_t>(playing_.size());
   playing_.clear();
@@ -208,6 +228,7 @@ void NavaLink::Fail(const std::string& error, std::vector<RxEvent>& events) {
   burst_written_ = burst_pending_ = 0;
   playing_.clear();
   queued_out_ = written_ = played_ = 0;
+  behind_ = false;
   EndHearing(events);
   reopen_.Start(clock_.Now());
 }

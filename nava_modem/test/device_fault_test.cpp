@@ -205,6 +205,46 @@ TEST(DeviceFault, WhatWasHeardBeforeAFailureIsStillReported) {
   }
 }
 
+// The link's process stalls for 0.5 s while it is deaf after its first packet; its device
+// keeps the capture, and the link falls 0.5 s behind. It catches up by not playing silence,
+// hearing everything it captured meanwhile, including another robot's packet X near the end of
+// the backlog; and it starts no send while behind, whose carrier sense would be stale: its
+// second packet goes out after X (the air free again), not into it.
+TEST(DeviceFault, ALinkBehindItsCaptureCatchesUpAndSendsNothingMeanwhile) {
+  LinkOptions o = Sender();
+  // A back-off longer than the receiver takes to decode X after its end (a send mutes the
+  // receiver, which drops a packet it has not finished decoding).
+  o.mac.backoff_min_bits = o.mac.backoff_max_bits = 10.0;
+  const auto modem = MakeProfile(o.profile, o.modem);
+  ManualClock clock;
+  FailingDevice::Options d;
+  d.rate = kRate;
+  d.delay = Samples(0.1);
+  d.input.assign(Samples(5.0), 0.0f);
+  const std::vector<float> x = modem->ModulatePacket({0x77, 0x77, 0x77, 0x77});
+  const std::size_t x_at = Samples(0.9);
+  std::copy(x.begin(), x.end(), d.input.begin() + static_cast<std::ptrdiff_t>(x_at));
+  d.stall_at = Samples(0.45);
+  d.stall = Samples(0.5);
+  FailingDevice device(d, clock);
+  NavaLink link(o, device, clock);
+  for (int k = 1; k <= 3; ++k) ASSERT_TRUE(link.Send(Numbered(k)));
+  std::vector<RxEvent> events;
+  while (link.Tick(events)) {
+  }
+  EXPECT_EQ(link.catch_ups(), 1u);
+  int heard_x = 0;
+  for (const RxEvent& e : events) heard_x += e.kind == RxEvent::Kind::kPacket && e.data[0] == 0x77;
+  EXPECT_EQ(heard_x, 1) << "the backlog was not heard whole";
+  // After the stall the air runs in step with capture again: X ended at capture (and air)
+  // time (x_at + |x|) / rate.
+  for (int k = 1; k <= 3; ++k) {
+    const std::vector<std::size_t> at = WholeCopies(device.air(), modem->ModulatePacket(Numbered(k)));
+    ASSERT_EQ(at.size(), 1u) << "packet " << k;
+    if (k == 2) EXPECT_GT(at[0], x_at + x.size()) << "packet 2 went out into X";
+  }
+}
+
 TEST(DeviceFault, ImpossibleReopenOptionsAreRejected) {
   for (const auto& [first, max, settle] : std::vector<std::tuple<double, double, double>>{
            {0.0, 2.0, 0.5}, {-1.0, 2.0, 0.5}, {0.5, 0.2, 0.5}, {0.1, 1e9, 0.5}, {0.1, 2.0, -1.0}, {NAN, 2.0, 0.5}}) {

@@ -3,6 +3,7 @@
 // Test doubles for a link's device failures: a clock that only moves when slept on, and a
 // sound card that fails where it is told to and comes back after refusing some reopens.
 #include <algorithm>
+#include <cstdint>
 #include <deque>
 #include <vector>
 
@@ -27,7 +28,10 @@ class ManualClock : public Clock {
 // Capture hears `input` (then ends). Playback goes through a buffer that holds `delay` samples
 // (the latency of a card or a sound server) onto the air, one sample played per sample
 // captured; the air is what listeners would hear. At each capture position in `fail_at` the
-// device fails once, losing what its buffer held, and then refuses `refusals` reopens.
+// device fails once, losing what its buffer held, and then refuses `refusals` reopens. At
+// capture position `stall_at` the link's process stalls for `stall` samples, as a sound server
+// sees it: that much plays on (the buffer runs dry), and the capture keeps that much waiting,
+// which the link reads without time passing.
 class FailingDevice : public AudioDevice {
  public:
   struct Options {
@@ -36,6 +40,7 @@ class FailingDevice : public AudioDevice {
     std::vector<float> input;
     std::vector<std::size_t> fail_at;  // ascending
     int refusals = 0;
+    std::size_t stall_at = SIZE_MAX, stall = 0;
   };
   FailingDevice(const Options& options, Clock& clock) : o_(options), clock_(clock) { Prime(); }
 
@@ -51,12 +56,14 @@ class FailingDevice : public AudioDevice {
     if (read_ + count > o_.input.size()) return false;
     std::copy(o_.input.begin() + static_cast<std::ptrdiff_t>(read_), o_.input.begin() + static_cast<std::ptrdiff_t>(read_ + count), out);
     read_ += count;
-    for (std::size_t k = 0; k < count; ++k) {  // the same time passes for playback
-      air_.push_back(buffer_.empty() ? 0.0f : buffer_.front());
-      if (buffer_.empty()) continue;
-      buffer_.pop_front();
-      if (primed_ > 0) --primed_;
+    if (read_ >= o_.stall_at && !stalled_) {
+      stalled_ = true;
+      Play(o_.stall);
+      backlog_ = o_.stall;
     }
+    const std::size_t waiting = std::min(backlog_, count);  // read without time passing
+    backlog_ -= waiting;
+    Play(count - waiting);
     return true;
   }
   void Write(const float* in, std::size_t count) override {
@@ -65,6 +72,7 @@ class FailingDevice : public AudioDevice {
   }
   // What of the link's own writes is still in the buffer.
   std::size_t PlaybackDelay() override { return buffer_.size() - primed_; }
+  std::size_t CaptureLag() override { return backlog_; }
   void Reopen() override {
     tries_.push_back(clock_.Now());
     if (refused_ < o_.refusals) {
@@ -82,6 +90,15 @@ class FailingDevice : public AudioDevice {
   const std::vector<double>& tries() const { return tries_; }  // clock times of the reopen tries
 
  private:
+  // `count` samples of time pass for playback.
+  void Play(std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      air_.push_back(buffer_.empty() ? 0.0f : buffer_.front());
+      if (buffer_.empty()) continue;
+      buffer_.pop_front();
+      if (primed_ > 0) --primed_;
+    }
+  }
   // A stream starts with its buffer full of silence: what the link writes plays `delay` later.
   void Prime() {
     buffer_.assign(o_.delay, 0.0f);
@@ -93,9 +110,9 @@ class FailingDevice : public AudioDevice {
   std::deque<float> buffer_;
   std::vector<float> air_;
   std::vector<double> tries_;
-  std::size_t read_ = 0, primed_ = 0, next_fail_ = 0;
+  std::size_t read_ = 0, primed_ = 0, next_fail_ = 0, backlog_ = 0;
   int refused_ = 0;
-  bool down_ = false;
+  bool down_ = false, stalled_ = false;
 };
 
 }  // namespace nava_modem::test_doubles

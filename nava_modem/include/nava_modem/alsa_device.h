@@ -1,7 +1,6 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 #include "nava_modem/audio_device.h"
 
@@ -14,11 +13,6 @@ struct AlsaOptions {
   double sample_rate = 48000.0;
   double latency = 0.05;  // s of buffering asked of each stream; the own echo comes this late
   int capture_channels = 1;  // microphones captured (interleaved); playback stays mono
-  // s the capture may fall behind beyond `latency` before what is waiting is dropped and
-  // counted as an overrun. A sound card overruns by itself when a stalled process leaves its
-  // buffer full, but a sound server keeps seconds of what was not read, and audio heard that
-  // late makes carrier sense stale and lets the link's own echo outlast its deaf time.
-  double max_capture_lag = 0.1;
 };
 
 // One capture and one playback stream on an ALSA device. Under- and overruns are recovered
@@ -38,6 +32,7 @@ class AlsaDevice : public AudioDevice {
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
   std::size_t PlaybackDelay() override;
+  std::size_t CaptureLag() override;
   void Reopen() override;
   std::uint64_t overruns() const override { return overruns_; }
   std::uint64_t underruns() const override { return underruns_; }
@@ -45,7 +40,6 @@ class AlsaDevice : public AudioDevice {
  private:
   void Open();
   void Close();
-  void DropCaptureBacklog();
   template <typename Buffer, typename Io>
   void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, std::size_t width, Io io, const char* what,
                 std::uint64_t& xruns);
@@ -54,7 +48,6 @@ class AlsaDevice : public AudioDevice {
   snd_pcm_t* capture_ = nullptr;
   snd_pcm_t* playback_ = nullptr;
   std::size_t written_since_start_ = 0;  // playback frames since the stream was last prepared
-  std::vector<float> discarded_;         // scratch for a dropped capture backlog
   std::uint64_t overruns_ = 0, underruns_ = 0;
 };
 

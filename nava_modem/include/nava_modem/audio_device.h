@@ -33,6 +33,10 @@ class AudioDevice {
   // Samples written but not yet played, now: what a failure would lose of the playback. Never
   // more than was written since the stream last (re)started. Throws DeviceFault.
   virtual std::size_t PlaybackDelay() = 0;
+  // Captured frames waiting to be read beyond the device's own buffering, now. A sound card
+  // overruns when a stalled process leaves its buffer full, but a sound server keeps what was
+  // not read and hands it over late: the link then falls behind real time (see NavaLink).
+  virtual std::size_t CaptureLag() = 0;
   // Closes what is left of a failed device and opens it again, with empty buffers. Throws
   // DeviceFault when it cannot be opened (yet).
   virtual void Reopen() = 0;

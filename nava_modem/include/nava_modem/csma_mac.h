@@ -44,7 +44,9 @@ class CsmaMac {
   bool Enqueue(Packet packet);
 
   // Advances one tick having heard `level_db`; returns the packet to start sending now, if any.
-  std::optional<Packet> Tick(double level_db);
+  // With `may_send` false (the caller's carrier sense is stale) a send waits, its back-off
+  // held where it is.
+  std::optional<Packet> Tick(double level_db, bool may_send = true);
 
   // The audio stopped (the device failed): a send, deaf time or reception under way is over.
   // `unsent` (packets whose sound did not all play, oldest first) go back to the front of the

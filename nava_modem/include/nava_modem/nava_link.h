@@ -24,6 +24,11 @@ struct LinkOptions {
   MacOptions mac;  // its bit rate and packet length are the profile's (MacTiming)
   ReceiverOptions receiver;
   ReopenOptions reopen;  // after a device failure
+  // s the capture may fall behind real time (a stalled process, on a sound server that keeps
+  // what was not read) before the link catches up: it then skips playing silence and starts no
+  // send until it has heard the backlog. Audio heard late makes carrier sense stale and lets
+  // the link's own echo outlast its deaf time.
+  double max_capture_lag = 0.1;
   std::uint32_t seed = 1;
 };
 
@@ -63,6 +68,8 @@ class NavaLink {
   // Packets during whose sending the device reported a playback underrun: they went out with
   // a gap, so listeners most likely heard noise.
   std::uint64_t packets_cut() const { return packets_cut_; }
+  // Times the capture fell more than max_capture_lag behind and the link caught up.
+  std::uint64_t catch_ups() const { return catch_ups_; }
   // Device failures: whether it is down now, why it last failed (or a try to reopen it did),
   // failures so far, reopens that worked, tries that failed since the last failure, and
   // packets put back to be sent again because their sound had not all played.
@@ -91,6 +98,7 @@ class NavaLink {
   // Each event's direction from its own samples on every microphone.
   void EstimateDirections(std::vector<RxEvent>& events, std::size_t first);
   void Put(const float* in, std::size_t count);  // samples to play, written by blocks
+  void Write();                                  // what waits in playing_
 
   std::size_t block_;
   std::size_t channels_;          // captured per frame; the receiver hears the first
@@ -108,6 +116,8 @@ class NavaLink {
   bool threshold_shared_ = false;  // the receiver has the MAC's carrier threshold
   std::uint64_t underruns_seen_ = 0;
   std::uint64_t packets_cut_ = 0;
+  bool behind_ = false;  // catching up on a capture backlog
+  std::uint64_t catch_ups_ = 0;
   bool burst_cut_ = false;  // the packet being sent has been counted in packets_cut_
   std::size_t burst_written_ = 0, burst_pending_ = 0;  // its samples written, and waiting in playing_
 
