@@ -132,6 +132,9 @@ if(MULTIROBOT_AUDIO_TESTS)
   endfunction()
   multirobot_audio_air_test(nava_air_rostest nava_air.test test/nava_air_rostest.cpp)
   add_test(NAME nava_air_room_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh nava_air.test profile:=room)
+  # A stalled process and a sound server killed in the middle of a packet and restarted: every
+  # packet is still heard exactly once.
+  multirobot_audio_air_test(nava_air_faults_rostest nava_air_faults.test test/nava_air_faults_rostest.cpp)
   multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
                             test/rostest_main.cpp)
   add_dependencies(tests local_mutex_node)
