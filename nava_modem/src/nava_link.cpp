@@ -19,6 +19,11 @@ constexpr double kBlockSeconds = 0.005;
 constexpr double kDirectionMarginSeconds = 1.5;
 // The longest a tick waits for the next try at reopening a failed device.
 constexpr double kDownWaitSeconds = 0.05;
+// A link behind its capture has caught up once it is within this share of max_capture_lag.
+constexpr double kCaughtUpShare = 0.5;
+// The longest (s of audio) a link behind its capture holds its sends: one that cannot catch up
+// (a machine too slow for real time) sends on stale carrier sense rather than not at all.
+constexpr double kLongestHoldSeconds = 2.0;
 
 LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
   if (std::abs(device.sample_rate() - o.modem.sample_rate) > 0.5) {
@@ -102,8 +107,9 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
     threshold_shared_ = true;
   }
 
-  // Behind real time, carrier sense is stale: no send starts.
-  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db(), !behind_)) {
+  // Behind real time, carrier sense is stale: no send starts (for a while).
+  const bool may_send = !behind_ || samples_done_ - behind_since_ > std::llround(kLongestHoldSeconds * options_.modem.sample_rate);
+  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db(), may_send)) {
     burst_ = profile_->ModulatePacket(*packet);
     // It starts with this tick's playback.
     in_flight_.push_back({std::move(*packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
@@ -147,11 +153,12 @@ bool NavaLink::Take(float* out, std::size_t count) {
       }
     }
     frames_read_ += static_cast<std::int64_t>(block_);
-    const std::size_t lag = device_.CaptureLag();
-    if (!behind_ && static_cast<double>(lag) > options_.max_capture_lag * options_.modem.sample_rate) {
+    const double lag = static_cast<double>(device_.CaptureLag()) / options_.modem.sample_rate;
+    if (!behind_ && lag > options_.max_capture_lag) {
       behind_ = true;
+      behind_since_ = samples_done_;
       ++catch_ups_;
-    } else if (behind_ && lag <= block_) {
+    } else if (behind_ && lag <= kCaughtUpShare * options_.max_capture_lag) {
       behind_ = false;
     }
   }
@@ -205,19 +212,14 @@ void NavaLink::Write() {
   burst_pending_ = 0;
 }
 
-}  // namespace nava_modem
-
-namespace nava_modem {
-
 // The device failed: what it had not played of the packets sent goes again, and what was heard
 // is decoded to its end.
 void NavaLink::Fail(const std::string& error, std::vector<RxEvent>& events) {
   ++device_faults_;
   device_error_ = error;
   device_down_ = true;
-  // The position is only known up to the last write: a packet that finished playing since is
-  // sent again, as the listeners, who lost the same sound server or hear this robot's speaker
-  // late, most likely missed its end too.
+  // The playback position is known as of the last write: a packet whose end played after it
+  // goes again (listeners that lost the same sound server most likely missed that end too).
   std::vector<CsmaMac::Packet> unsent;
   for (InFlight& f : in_flight_) unsent.push_back(std::move(f.data));
   in_flight_.clear();

@@ -241,8 +241,32 @@ TEST(DeviceFault, ALinkBehindItsCaptureCatchesUpAndSendsNothingMeanwhile) {
   for (int k = 1; k <= 3; ++k) {
     const std::vector<std::size_t> at = WholeCopies(device.air(), modem->ModulatePacket(Numbered(k)));
     ASSERT_EQ(at.size(), 1u) << "packet " << k;
-    if (k == 2) EXPECT_GT(at[0], x_at + x.size()) << "packet 2 went out into X";
+    if (k == 2) {
+      EXPECT_GT(at[0], x_at + x.size()) << "packet 2 went out into X";
+    }
   }
+}
+
+// A link that cannot catch up (its backlog never shrinks: a machine too slow for real time)
+// holds its sends for 2 s of audio only, then sends on stale carrier sense rather than never.
+TEST(DeviceFault, ALinkThatCannotCatchUpStillSends) {
+  const LinkOptions o = Sender();
+  ManualClock clock;
+  FailingDevice::Options d;
+  d.rate = kRate;
+  d.input.assign(Samples(4.0), 0.0f);
+  d.stall_at = 0;
+  d.stall = Samples(10.0);
+  FailingDevice device(d, clock);
+  NavaLink link(o, device, clock);
+  ASSERT_TRUE(link.Send(Numbered(1)));
+  std::vector<RxEvent> events;
+  double sent_at = -1.0;
+  while (link.Tick(events)) {
+    if (sent_at < 0.0 && link.packets_sent() > 0) sent_at = link.time();
+  }
+  EXPECT_EQ(link.catch_ups(), 1u);
+  EXPECT_NEAR(sent_at, 2.0, 0.05);
 }
 
 TEST(DeviceFault, ImpossibleReopenOptionsAreRejected) {

@@ -26,8 +26,8 @@ struct LinkOptions {
   ReopenOptions reopen;  // after a device failure
   // s the capture may fall behind real time (a stalled process, on a sound server that keeps
   // what was not read) before the link catches up: it then skips playing silence and starts no
-  // send until it has heard the backlog. Audio heard late makes carrier sense stale and lets
-  // the link's own echo outlast its deaf time.
+  // send (for up to 2 s) until it is within half of this again. Audio heard late makes carrier
+  // sense stale and lets the link's own echo outlast its deaf time.
   double max_capture_lag = 0.1;
   std::uint32_t seed = 1;
 };
@@ -117,6 +117,7 @@ class NavaLink {
   std::uint64_t underruns_seen_ = 0;
   std::uint64_t packets_cut_ = 0;
   bool behind_ = false;  // catching up on a capture backlog
+  std::int64_t behind_since_ = 0;  // samples_done_ when it fell behind
   std::uint64_t catch_ups_ = 0;
   bool burst_cut_ = false;  // the packet being sent has been counted in packets_cut_
   std::size_t burst_written_ = 0, burst_pending_ = 0;  // its samples written, and waiting in playing_
