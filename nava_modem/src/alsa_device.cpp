@@ -115,6 +115,11 @@ bool AlsaDevice::Read(float* out, std::size_t count) {
   return true;
 }
 
+std::size_t AlsaDevice::PlaybackRoom() {
+  const snd_pcm_sframes_t room = playback_ ? snd_pcm_avail_update(playback_) : 0;
+  return room > 0 ? static_cast<std::size_t>(room) : 0;  // an xrun: the next write recovers from it
+}
+
 std::size_t AlsaDevice::CaptureLag() {
   snd_pcm_sframes_t waiting = 0;
   if (!capture_ || snd_pcm_delay(capture_, &waiting) < 0) return 0;  // an xrun: the next read recovers from it

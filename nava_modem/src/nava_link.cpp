@@ -125,11 +125,11 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
     std::copy(burst_.begin() + burst_at_, burst_.begin() + burst_at_ + n, out.begin());
     burst_at_ += n;
     burst_pending_ += n;
-  } else if (behind_) {
-    // The process stalled and the device kept what it captured meanwhile: this tick's silence
-    // is not played (what waits to play goes now), so that the link runs faster than real time
-    // until it has heard the backlog. No captured sound is lost.
-    if (!playing_.empty()) Write();
+  } else if (behind_ && playing_.size() + count > device_.PlaybackRoom()) {
+    // The process stalled and the device kept what it captured meanwhile: silence is played
+    // only where it needs no wait (what waits to play goes now), so that the link runs faster
+    // than real time until it has heard the backlog. No captured sound is lost.
+    if (!playing_.empty() && playing_.size() <= device_.PlaybackRoom()) Write();
     return true;
   }
   Put(out.data(), count);

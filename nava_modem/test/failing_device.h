@@ -72,6 +72,7 @@ class FailingDevice : public AudioDevice {
   }
   // What of the link's own writes is still in the buffer.
   std::size_t PlaybackDelay() override { return buffer_.size() - primed_; }
+  std::size_t PlaybackRoom() override { return o_.delay > buffer_.size() ? o_.delay - buffer_.size() : 0; }
   std::size_t CaptureLag() override { return backlog_; }
   void Reopen() override {
     tries_.push_back(clock_.Now());

@@ -185,6 +185,7 @@ class UnderrunningDevice : public AudioDevice {
     played_ += count;
   }
   std::size_t PlaybackDelay() override { return 0; }
+  std::size_t PlaybackRoom() override { return SIZE_MAX; }
   std::size_t CaptureLag() override { return 0; }
   void Reopen() override {}
   std::uint64_t overruns() const override { return 0; }

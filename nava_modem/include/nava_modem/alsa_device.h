@@ -32,6 +32,7 @@ class AlsaDevice : public AudioDevice {
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
   std::size_t PlaybackDelay() override;
+  std::size_t PlaybackRoom() override;
   std::size_t CaptureLag() override;
   void Reopen() override;
   std::uint64_t overruns() const override { return overruns_; }

@@ -33,6 +33,8 @@ class AudioDevice {
   // Samples written but not yet played, now: what a failure would lose of the playback. Never
   // more than was written since the stream last (re)started. Throws DeviceFault.
   virtual std::size_t PlaybackDelay() = 0;
+  // Samples Write() would take now without waiting.
+  virtual std::size_t PlaybackRoom() = 0;
   // Captured frames waiting to be read beyond the device's own buffering, now. A sound card
   // overruns when a stalled process leaves its buffer full, but a sound server keeps what was
   // not read and hands it over late: the link then falls behind real time (see NavaLink).

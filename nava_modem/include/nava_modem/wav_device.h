@@ -23,6 +23,7 @@ class WavDevice : public AudioDevice {
   void Write(const float* in, std::size_t count) override;
   // A file takes what is written at once, and never fails.
   std::size_t PlaybackDelay() override { return 0; }
+  std::size_t PlaybackRoom() override { return SIZE_MAX; }
   std::size_t CaptureLag() override { return 0; }
   void Reopen() override {}
   std::uint64_t overruns() const override { return 0; }
