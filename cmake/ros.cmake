@@ -91,6 +91,13 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_test(NAME lockstep_reproducible COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 3 30)
   add_dependencies(tests world_sim_node wanderer_node audio_propagation_node)
 
+  # scripts/soak.sh's short forms: its arguments, a soak of 3 simulated minutes of the charging
+  # demo in lockstep that passes, and one with a controller killed half way that must fail.
+  add_test(NAME soak_args COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh args)
+  add_test(NAME soak_short COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh pass)
+  add_test(NAME soak_node_died COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh died)
+  add_dependencies(tests world_sim_node audio_propagation_node local_mutex_node charging_demo_node)
+
   add_rostest_gtest(record_rostest test/record.test test/record_rostest.cpp)
   target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})
   add_dependencies(record_rostest world_sim_node)
