@@ -229,6 +229,13 @@ TEST_F(WorldFileTest, UnknownKeys) {
               "robot_model.legs: unknown key");
 }
 
+// Found by fuzz/world_file.cpp: a list as a key in a nested section escaped as yaml-cpp's bad
+// conversion instead of an InputError naming the section.
+TEST_F(WorldFileTest, KeyThatIsNotTextIsRefused) {
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nacoustics: {volume: 50, regions: [{name: r, [x]: 1}]}\n",
+              "acoustics.regions[0]: expected text keys");
+}
+
 TEST_F(WorldFileTest, MissingMapAndBadMap) {
   ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\n", "map: missing", false);
   ExpectError("map: nowhere.yaml\nrobots: [{name: a, pose: [1, 1, 0]}]\n", "map: cannot load the map",
