@@ -114,7 +114,9 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   const auto space = predict.find(' ');
   if (space != std::string::npos) {
     a = predict.substr(0, space);
-    b = predict.substr(predict.find_first_not_of(' ', space));
+    const auto second = predict.find_first_not_of(' ', space);
+    if (second == std::string::npos) args.Fail("--predict: expected two points X1,Y1 X2,Y2");
+    b = predict.substr(second);
     if (!args.positional().empty()) args.Fail("unexpected argument " + args.positional().front());
   } else {
     if (args.positional().size() != 1) args.Fail("--predict: expected two points X1,Y1 X2,Y2");
