@@ -1,6 +1,10 @@
 #include "nava_modem/wav_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -84,15 +88,12 @@ void WriteWavChannels(const std::string& path, const std::vector<std::vector<flo
   }
 }
 
-MultiAudio ReadAudioChannels(const std::string& path) {
-  SF_INFO info{};
-  SndFile file;
-  file.handle = sf_open(path.c_str(), SFM_READ, &info);
-  if (!file.handle) {
-    throw std::runtime_error(path + ": not a readable audio file (" + sf_strerror(nullptr) + ")");
-  }
+namespace {
+
+// Every channel of an opened file, `name` naming it in errors.
+MultiAudio ReadOpened(SndFile& file, const SF_INFO& info, const std::string& name) {
   if (info.channels < 1 || info.samplerate <= 0) {
-    throw std::runtime_error(path + ": no audio channels or no sample rate");
+    throw std::runtime_error(name + ": no audio channels or no sample rate");
   }
   const std::size_t channels = static_cast<std::size_t>(info.channels);
   std::vector<float> interleaved(static_cast<std::size_t>(info.frames) * channels);
@@ -104,6 +105,57 @@ MultiAudio ReadAudioChannels(const std::string& path) {
     for (std::size_t c = 0; c < channels; ++c) audio.channels[c][f] = interleaved[f * channels + c];
   }
   return audio;
+}
+
+// A file's bytes in memory, read through libsndfile's virtual I/O.
+struct MemoryFile {
+  const unsigned char* data;
+  sf_count_t size;
+  sf_count_t at = 0;
+
+  static MemoryFile& Of(void* user) { return *static_cast<MemoryFile*>(user); }
+  static sf_count_t Length(void* user) { return Of(user).size; }
+  static sf_count_t Seek(sf_count_t offset, int whence, void* user) {
+    MemoryFile& m = Of(user);
+    const sf_count_t base = whence == SEEK_CUR ? m.at : whence == SEEK_END ? m.size : 0;
+    // Past the end reads nothing; before the start is refused, as by a file.
+    if (offset < -base || offset > std::numeric_limits<sf_count_t>::max() - base) return -1;
+    m.at = base + offset;
+    return m.at;
+  }
+  static sf_count_t Read(void* out, sf_count_t count, void* user) {
+    MemoryFile& m = Of(user);
+    const sf_count_t n = std::max<sf_count_t>(0, std::min(count, m.size - m.at));
+    if (n > 0) std::memcpy(out, m.data + m.at, static_cast<std::size_t>(n));
+    m.at += n;
+    return n;
+  }
+  static sf_count_t Write(const void*, sf_count_t, void*) { return 0; }
+  static sf_count_t Tell(void* user) { return Of(user).at; }
+};
+
+}  // namespace
+
+MultiAudio ReadAudioChannelsFromMemory(const void* data, std::size_t size, const std::string& name) {
+  MemoryFile memory{static_cast<const unsigned char*>(data), static_cast<sf_count_t>(size)};
+  SF_VIRTUAL_IO io{&MemoryFile::Length, &MemoryFile::Seek, &MemoryFile::Read, &MemoryFile::Write, &MemoryFile::Tell};
+  SF_INFO info{};
+  SndFile file;
+  file.handle = sf_open_virtual(&io, SFM_READ, &info, &memory);
+  if (!file.handle) {
+    throw std::runtime_error(name + ": not readable audio (" + sf_strerror(nullptr) + ")");
+  }
+  return ReadOpened(file, info, name);
+}
+
+MultiAudio ReadAudioChannels(const std::string& path) {
+  SF_INFO info{};
+  SndFile file;
+  file.handle = sf_open(path.c_str(), SFM_READ, &info);
+  if (!file.handle) {
+    throw std::runtime_error(path + ": not a readable audio file (" + sf_strerror(nullptr) + ")");
+  }
+  return ReadOpened(file, info, path);
 }
 
 }  // namespace nava_modem
