@@ -4,12 +4,14 @@
 #   1. the main suite: the components' gtests, the ROS conversions' gtests, the rostests and the
 #      launch-file checks, all through ctest, in build/;
 #   2. the sanitized suite: the ROS-free components and their tests built with AddressSanitizer
-#      and UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test).
+#      and UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test);
+#   3. the fuzz targets, 20 s each (scripts/fuzz.sh all 20, in build-fuzz/).
 #
 #   scripts/test.sh                     everything above
 #   scripts/test.sh CTEST_ARGS...       the main suite only, e.g. scripts/test.sh -R grid
 #   scripts/test.sh --sanitize [CTEST_ARGS...]
 #                                       the sanitized suite only
+#   scripts/test.sh --fuzz [SECONDS]    the fuzz targets only, SECONDS each (default 20)
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -52,10 +54,14 @@ case "${1:-}" in
     shift
     sanitized_suite "$@"
     ;;
+  --fuzz)
+    "$here/scripts/fuzz.sh" all "${2:-20}"
+    ;;
   "")
     start=$SECONDS
     part "main suite"; main_suite
     part "sanitized suite"; sanitized_suite
+    part "fuzz targets, 20 s each"; "$here/scripts/fuzz.sh" all 20
     echo "test.sh: every part passed in $((SECONDS - start)) s"
     ;;
   *)
