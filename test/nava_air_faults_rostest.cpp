@@ -188,16 +188,30 @@ TEST(NavaAirFaults, AStalledLinkCountsItsXrunsAndCatchesUp) {
                                    links->Number("robot_0", "playback underruns") > underruns; }, 5.0))
       << "capture catch-ups " << catch_ups << " -> " << links->Value("robot_0", "capture catch-ups") << ", playback underruns "
       << underruns << " -> " << links->Value("robot_0", "playback underruns");
-  ros::WallDuration(1.0).sleep();
-  links->Forget();
-  const std::vector<std::uint8_t> data = {0x50, 0x01, 0x02, 0x03};
-  links->Send(data);
-  for (const std::string& listener : kListeners) {
-    EXPECT_TRUE(WaitFor([&] { return links->Packets(listener, data) > 0; }, 5.0)) << listener << " did not hear robot_0";
+  // The air is real time on a shared machine: a packet garbled by some other stall may be
+  // tried again, up to three tries; robot_0 hearing itself fails at once.
+  std::string failures;
+  for (std::uint8_t attempt = 1; attempt <= 3; ++attempt) {
+    ros::WallDuration(1.0).sleep();
+    links->Forget();
+    const std::vector<std::uint8_t> data = {0x50, attempt, 0x02, 0x03};
+    links->Send(data);
+    std::string missed;
+    for (const std::string& listener : kListeners) {
+      if (!WaitFor([&] { return links->Packets(listener, data) > 0; }, 5.0)) {
+        missed += "\n" + listener + " did not hear robot_0; it heard:" + links->Describe(listener);
+      }
+    }
+    ros::WallDuration(1.0).sleep();
+    ros::spinOnce();
+    ASSERT_EQ(links->Receptions("robot_0"), 0) << "robot_0 heard its own packet:" << links->Describe("robot_0");
+    if (missed.empty()) {
+      if (!failures.empty()) std::fprintf(stderr, "nava_air_faults_rostest: heard on try %d after:%s\n", attempt, failures.c_str());
+      return;
+    }
+    failures += "\ntry " + std::to_string(attempt) + ":" + missed;
   }
-  ros::WallDuration(1.0).sleep();
-  ros::spinOnce();
-  EXPECT_EQ(links->Receptions("robot_0"), 0) << "robot_0 heard its own packet:" << links->Describe("robot_0");
+  ADD_FAILURE() << "robot_0's packet was not heard on any of three tries:" << failures;
 }
 
 // robot_0 is asked for kPackets numbered packets at once. Once the listeners have heard a few,
