@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -90,6 +93,34 @@ void WriteWavChannels(const std::string& path, const std::vector<std::vector<flo
 
 namespace {
 
+// libsndfile 1.2 can loop for hours in sf_open on a RIFF file one of whose chunks claims more
+// bytes than the file holds (its LIST/INFO parser; upstream libsndfile issue 1118). Such a file
+// is refused before libsndfile sees it. The data chunk alone may run past the end (a recording
+// cut short, or a stream's unknown length), as libsndfile reads what there is. `read(offset,
+// n, out)` reads n bytes of the file at offset, false past its end.
+template <typename Read>
+void CheckRiffChunks(std::uint64_t length, Read read, const std::string& name) {
+  unsigned char header[12];
+  if (!read(0, 12, header)) return;
+  const bool little = std::memcmp(header, "RIFF", 4) == 0, big = std::memcmp(header, "RIFX", 4) == 0;
+  if (!(little || big) || std::memcmp(header + 8, "WAVE", 4) != 0) return;
+  std::uint64_t at = 12;
+  unsigned char chunk[8];
+  while (at + 8 <= length && read(at, 8, chunk)) {
+    const std::uint32_t size = little ? chunk[4] | chunk[5] << 8 | chunk[6] << 16 | static_cast<std::uint32_t>(chunk[7]) << 24
+                                      : static_cast<std::uint32_t>(chunk[4]) << 24 | chunk[5] << 16 | chunk[6] << 8 | chunk[7];
+    if (std::memcmp(chunk, "data", 4) == 0) return;
+    if (size > length - at - 8) {
+      std::string id;
+      for (int k = 0; k < 4; ++k) id += std::isprint(chunk[k]) ? static_cast<char>(chunk[k]) : '?';
+      throw std::runtime_error(name + ": not a readable audio file (chunk '" + id + "' at byte " + std::to_string(at) +
+                               " claims " + std::to_string(size) + " bytes, more than the file's " +
+                               std::to_string(length) + ")");
+    }
+    at += 8 + size + (size & 1);  // chunks are padded to an even length
+  }
+}
+
 // Every channel of an opened file, `name` naming it in errors.
 MultiAudio ReadOpened(SndFile& file, const SF_INFO& info, const std::string& name) {
   if (info.channels < 1 || info.samplerate <= 0) {
@@ -137,7 +168,13 @@ struct MemoryFile {
 }  // namespace
 
 MultiAudio ReadAudioChannelsFromMemory(const void* data, std::size_t size, const std::string& name) {
-  MemoryFile memory{static_cast<const unsigned char*>(data), static_cast<sf_count_t>(size)};
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  CheckRiffChunks(size, [&](std::uint64_t offset, std::size_t n, unsigned char* out) {
+    if (offset + n > size) return false;
+    std::memcpy(out, bytes + offset, n);
+    return true;
+  }, name);
+  MemoryFile memory{bytes, static_cast<sf_count_t>(size)};
   SF_VIRTUAL_IO io{&MemoryFile::Length, &MemoryFile::Seek, &MemoryFile::Read, &MemoryFile::Write, &MemoryFile::Tell};
   SF_INFO info{};
   SndFile file;
@@ -149,6 +186,14 @@ MultiAudio ReadAudioChannelsFromMemory(const void* data, std::size_t size, const
 }
 
 MultiAudio ReadAudioChannels(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (in) {
+    const auto length = static_cast<std::uint64_t>(in.tellg());
+    CheckRiffChunks(length, [&](std::uint64_t offset, std::size_t n, unsigned char* out) {
+      in.seekg(static_cast<std::streamoff>(offset));
+      return static_cast<bool>(in.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n)));
+    }, path);
+  }
   SF_INFO info{};
   SndFile file;
   file.handle = sf_open(path.c_str(), SFM_READ, &info);
