@@ -92,8 +92,10 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_dependencies(tests world_sim_node wanderer_node audio_propagation_node)
 
   # scripts/soak.sh's short forms: its arguments, a soak of 3 simulated minutes of the charging
-  # demo in lockstep that passes, and one with a controller killed half way that must fail.
+  # demo in lockstep that passes, and one with a controller killed half way that must fail; and
+  # its judge on made-up runs (flat robots, growth, deaths, short runs).
   add_test(NAME soak_args COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh args)
+  add_test(NAME soak_report COMMAND ${PROJECT_SOURCE_DIR}/test/soak_report_test.sh)
   add_test(NAME soak_short COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh pass)
   add_test(NAME soak_node_died COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh died)
   add_dependencies(tests world_sim_node audio_propagation_node local_mutex_node charging_demo_node)

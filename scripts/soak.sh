@@ -5,7 +5,8 @@
 # end with the growth, every node's exit counters, each robot's lowest battery, and the nodes that
 # died. Exits 1 if a node died, a robot ran flat or a node's memory grew more than the limit after
 # the first hour (runs shorter than an hour compare against the first sample after a warm-up of a
-# quarter of the run instead, and say so); 2 on bad arguments.
+# quarter of the run instead, and say so), and if world_sim stopped short, dropped a participant
+# from the lockstep, or a node printed no summary (scripts/soak_report.py); 2 on bad arguments.
 #
 #   scripts/soak.sh HOURS [--max-growth PERCENT] [--seed N] [--keep]
 #

@@ -79,26 +79,12 @@ def mb(kb):
     return '%.1f' % (kb / 1024.0)
 
 
-def main():
-    a = parse_args()
-    failures = []
-    nodes = [n for n, _ in read_lines(os.path.join(a.dir, 'pids'))]
-    if not nodes:
-        failures.append('the monitor found no nodes (see %s)' % a.dir)
-    counters, died = read_log(a.log)
-    for sim_s, what, detail in read_lines(os.path.join(a.dir, 'events')):
-        if what == 'died':
-            died.setdefault(detail, 'gone at %s s (simulated) while world_sim ran' % sim_s)
-        elif what == 'killed':
-            print('soak: killed %s at %s s (simulated), as asked (--kill-node)' % (detail, sim_s))
-    flat = [(detail, sim_s) for sim_s, what, detail in read_lines(os.path.join(a.dir, 'events')) if what == 'flat']
-
-    samples = read_samples(os.path.join(a.dir, 'samples.csv'))
-    if a.baseline >= 3600.0:
-        print('memory: VmRSS at the first simulated hour (%.0f s) and at the end' % a.baseline)
+def memory_table(nodes, samples, baseline, max_growth, failures):
+    if baseline >= 3600.0:
+        print('memory: VmRSS at the first simulated hour (%.0f s) and at the end' % baseline)
     else:
         print('memory: the run is shorter than 1 simulated hour, so the baseline is the first sample '
-              'after a warm-up of %.0f s (simulated), not the first hour' % a.baseline)
+              'after a warm-up of %.0f s (simulated), not the first hour' % baseline)
     # CPU s: user + system time from the node's start to its last sample: where the wall time goes.
     print('%-26s %12s %12s %12s %9s %9s' % ('node', 'baseline MB', 'end MB', 'end at s', 'growth', 'CPU s'))
     for node in nodes:
@@ -110,10 +96,12 @@ def main():
         (_, base, _), (end_s, end, cpu) = series[0], series[-1]
         growth = 100.0 * (end - base) / base
         print('%-26s %12s %12s %12.0f %+8.1f%% %9.0f' % (node, mb(base), mb(end), end_s, growth, cpu))
-        if growth > a.max_growth:
+        if growth > max_growth:
             failures.append('%s: resident memory grew %.1f %% after the baseline (limit %g %%)'
-                            % (node, growth, a.max_growth))
+                            % (node, growth, max_growth))
 
+
+def counters_list(nodes, counters, died, failures):
     print('counters:')
     for node in nodes:
         lines = counters.get(node)
@@ -124,16 +112,41 @@ def main():
         for line in lines or []:
             print('  %s: %s' % (node, line))
 
+
+def world_checks(counters, duration, failures):
+    """The simulated seconds world_sim ran; fails a short run or one that lost its lockstep."""
     world = ' '.join(counters.get('/world_sim', []))
     m = SIMULATED.search(world)
     simulated = float(m.group(1)) if m else 0.0
-    if simulated < a.duration - 1.0:
-        failures.append('world_sim stopped at %.1f s of the %.0f s asked for' % (simulated, a.duration))
+    if simulated < duration - 1.0:
+        failures.append('world_sim stopped at %.1f s of the %.0f s asked for' % (simulated, duration))
     m = DROPPED.search(world)
     if m and int(m.group(1)) > 0:
         # A participant that kept the world waiting too long (or never started) runs free from
         # then on: the run is no longer the lockstep run asked for.
         failures.append('world_sim dropped %s participants from the lockstep (its log names them)' % m.group(1))
+    return simulated
+
+
+def main():
+    a = parse_args()
+    failures = []
+    nodes = [n for n, _ in read_lines(os.path.join(a.dir, 'pids'))]
+    if not nodes:
+        failures.append('the monitor found no nodes (see %s)' % a.dir)
+    counters, died = read_log(a.log)
+    events = read_lines(os.path.join(a.dir, 'events'))
+    for sim_s, what, detail in events:
+        if what == 'died':
+            died.setdefault(detail, 'gone at %s s (simulated) while world_sim ran' % sim_s)
+        elif what == 'killed':
+            print('soak: killed %s at %s s (simulated), as asked (--kill-node)' % (detail, sim_s))
+    flat = [(detail, sim_s) for sim_s, what, detail in events if what == 'flat']
+
+    samples = read_samples(os.path.join(a.dir, 'samples.csv'))
+    memory_table(nodes, samples, a.baseline, a.max_growth, failures)
+    counters_list(nodes, counters, died, failures)
+    simulated = world_checks(counters, a.duration, failures)
 
     batteries = read_lines(os.path.join(a.dir, 'batteries'))
     print('robots: lowest battery %s' % (', '.join('%s %s' % (r, v) for r, v in batteries) or 'none reported'))

@@ -65,7 +65,7 @@ case ${1:-} in
     cat "$out/out"
     # the kept logs of the failed run
     logs=$(sed -n 's/^soak: logs kept in //p' "$out/err")
-    [ -n "$logs" ] && [ -d "$logs" ] || fail "soak.sh did not keep the failed run's logs"
+    { [ -n "$logs" ] && [ -d "$logs" ]; } || fail "soak.sh did not keep the failed run's logs"
     rm -rf "$logs"
     ;;
   *)
