@@ -127,8 +127,17 @@ MultiAudio ReadOpened(SndFile& file, const SF_INFO& info, const std::string& nam
     throw std::runtime_error(name + ": no audio channels or no sample rate");
   }
   const std::size_t channels = static_cast<std::size_t>(info.channels);
-  std::vector<float> interleaved(static_cast<std::size_t>(info.frames) * channels);
-  const std::size_t got = static_cast<std::size_t>(sf_readf_float(file.handle, interleaved.data(), info.frames));
+  // Block by block (of about 64 K samples over all channels) until the end: the header's frame
+  // count is the file's claim, not a size to allocate (a few hundred bytes can claim terabytes).
+  const std::size_t block = std::max<std::size_t>(1, (std::size_t{1} << 16) / channels);
+  std::vector<float> interleaved;
+  std::size_t got = 0;
+  while (true) {
+    interleaved.resize((got + block) * channels);
+    const sf_count_t n = sf_readf_float(file.handle, interleaved.data() + got * channels, static_cast<sf_count_t>(block));
+    if (n <= 0) break;
+    got += static_cast<std::size_t>(n);
+  }
   MultiAudio audio;
   audio.sample_rate = info.samplerate;
   audio.channels.assign(channels, std::vector<float>(got));
