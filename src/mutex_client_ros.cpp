@@ -35,14 +35,21 @@ MutexClient::~MutexClient() {
 void MutexClient::Run() {
   ROS_INFO("mutex_client: waiting for %s", nh_.resolveName("local_mutex/acquire").c_str());
   while (nh_.ok() && !acquire_.waitForServer(ros::Duration(5.0))) {}
-  if (!ros::Duration(options_.start_delay).sleep()) return;
+  if (!Pause(options_.start_delay)) return;
   for (int cycle = 1; nh_.ok() && (options_.cycles == 0 || cycle <= options_.cycles); ++cycle) {
     if (Acquire(cycle)) {
-      if (!ros::Duration(options_.hold).sleep()) return;
+      if (!Pause(options_.hold)) return;
       Release(cycle);
     }
-    if (!ros::Duration(options_.pause).sleep()) return;
+    if (!Pause(options_.pause)) return;
   }
+}
+
+bool MutexClient::Pause(double seconds) {
+  // ros::Duration(0).sleep() says false on simulated time (no time passed), which is not a
+  // shutdown: a start_delay of 0 must not end the client.
+  if (seconds > 0.0) ros::Duration(seconds).sleep();
+  return nh_.ok();
 }
 
 bool MutexClient::Acquire(int cycle) {

@@ -29,6 +29,8 @@ class MutexClient {
   void Run();
 
  private:
+  // Sleeps `seconds` of ROS time; false when the node is shutting down.
+  bool Pause(double seconds);
   // True when the lock was granted.
   bool Acquire(int cycle);
   void Release(int cycle);
