@@ -22,6 +22,9 @@ catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sens
 # Bridges between the components and ROS: conversions and the node classes.
 add_library(multirobot_audio_ros STATIC
   src/conversions.cpp
+  src/input_checks.cpp
+  src/input_guard.cpp
+  src/subscription_stats.cpp
   src/params.cpp
   src/lockstep_participant.cpp
   src/world_sim_ros.cpp
@@ -75,6 +78,8 @@ if(MULTIROBOT_AUDIO_TESTS)
 
   catkin_add_gtest(conversions_test test/conversions_test.cpp)
   target_link_libraries(conversions_test multirobot_audio_ros)
+  catkin_add_gtest(input_checks_test test/input_checks_test.cpp)
+  target_link_libraries(input_checks_test multirobot_audio_ros)
   catkin_add_gtest(sounds_good_conversions_test test/sounds_good_conversions_test.cpp)
   target_link_libraries(sounds_good_conversions_test sounds_good_ros)
   catkin_add_gtest(charging_conversions_test test/charging_conversions_test.cpp)
