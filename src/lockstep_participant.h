@@ -52,13 +52,6 @@ class LockstepParticipant {
     return SubscribeEvents<M>(nh, topic, queue,
                               [callback](const ros::MessageEvent<M const>& e) { callback(e.getConstMessage()); });
   }
-  template <class M, class T>
-  ros::Subscriber Subscribe(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,
-                            void (T::*method)(const boost::shared_ptr<M const>&), T* object) {
-    return Subscribe<M>(nh, topic, queue,
-                        std::function<void(const boost::shared_ptr<M const>&)>(
-                            [object, method](const boost::shared_ptr<M const>& m) { (object->*method)(m); }));
-  }
   // The same for a callback that wants to know the publisher (an InputGuard's checked callback).
   template <class M>
   ros::Subscriber SubscribeEvents(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,

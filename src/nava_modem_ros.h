@@ -13,6 +13,7 @@
 #include <multirobot_audio/AudioPacket.h>
 #include <ros/ros.h>
 
+#include "input_guard.h"
 #include "nava_modem/alsa_device.h"
 #include "nava_modem/nava_link.h"
 
@@ -41,9 +42,9 @@ class NavaModemRos {
     std::string state;
     double threshold_db = 0.0, level_db = 0.0;
     std::uint64_t sent = 0, packets = 0, zero_byte = 0, one_byte = 0, bad_crc = 0, repaired = 0;
-    std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0, rejected = 0;
+    std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0;
   };
-  void OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
+  InputGuard::Verdict OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
   void AudioLoop();
   void Publish(const nava_modem::RxEvent& event, double ago);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -56,9 +57,10 @@ class NavaModemRos {
   ros::Publisher rx_pub_, carrier_pub_, direction_pub_;  // ~directions: an arrow per reception with a direction
   std::uint32_t direction_id_ = 0;
   diagnostic_updater::Updater updater_;
+  InputGuard guard_;  // audio/tx's checks and counts, on updater_
   ros::WallTimer diagnostics_timer_;
   std::mutex mutex_;  // guards inbox_ and counts_
-  std::deque<std::vector<std::uint8_t>> inbox_;
+  std::deque<std::vector<std::uint8_t>> inbox_;  // audio/tx for the audio thread; at most the MAC queue's capacity
   Counts counts_;
   std::atomic<bool> running_{true};
   std::thread audio_thread_;
