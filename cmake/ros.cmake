@@ -106,6 +106,13 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
 
+  # A broken peer against every simulated node: garbage, floods, a robot missing from TF.
+  add_rostest_gtest(hostile_input_rostest test/hostile_input.test test/hostile_input_rostest.cpp test/hostile_peer.cpp)
+  target_include_directories(hostile_input_rostest PRIVATE ${PROJECT_SOURCE_DIR}/test)
+  target_link_libraries(hostile_input_rostest multirobot_audio_ros)
+  add_dependencies(hostile_input_rostest world_sim_node audio_propagation_node wanderer_node sounds_good_explorer_node
+                   local_mutex_node mutex_client_node charging_demo_node task_monitor_node)
+
   # Three local mutexes on the simulated audio channel; the test node plays their clients.
   add_rostest_gtest(local_mutex_rostest test/local_mutex.test test/local_mutex_rostest.cpp test/lock_watch.cpp
                     test/rostest_main.cpp)
@@ -136,6 +143,8 @@ if(MULTIROBOT_AUDIO_TESTS)
     add_test(NAME ${target} COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh ${test_file})
   endfunction()
   multirobot_audio_air_test(nava_air_rostest nava_air.test test/nava_air_rostest.cpp)
+  # A broken peer against nava_modem's audio/tx over the air.
+  multirobot_audio_air_test(hostile_nava_rostest hostile_nava.test test/hostile_nava_rostest.cpp test/hostile_peer.cpp)
   add_test(NAME nava_air_room_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh nava_air.test profile:=room)
   multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
                             test/rostest_main.cpp)
