@@ -17,6 +17,13 @@ const float kInf = std::numeric_limits<float>::infinity();
 
 world_sim::RobotModel Model() { return world_sim::RobotModel{}; }
 
+// `msg` with `spoil` done to it.
+template <class M, class F>
+M Spoilt(M msg, F spoil) {
+  spoil(msg);
+  return msg;
+}
+
 TEST(InputChecksTest, TwistNeedsEveryNumberFinite) {
   geometry_msgs::Twist t;
   t.linear.x = 0.3;
@@ -32,19 +39,13 @@ TEST(InputChecksTest, TwistNeedsEveryNumberFinite) {
 TEST(InputChecksTest, OdometryNeedsAFinitePoseAndAUnitQuaternion) {
   nav_msgs::Odometry o = ToOdometry({1.0, 2.0, 0.5}, 0.2, 0.1, "robot_0/odom", "robot_0/base_link", ros::Time(3.0));
   EXPECT_EQ(OdometryProblem(o), "");
-  nav_msgs::Odometry bad = o;
-  bad.pose.pose.position.x = kNan;
-  EXPECT_EQ(OdometryProblem(bad), "pose.pose.position.x = nan");
-  bad = o;
-  bad.pose.pose.orientation = geometry_msgs::Quaternion();  // all zeros: a default-built message
-  bad.pose.pose.orientation.w = 0.0;
-  EXPECT_NE(OdometryProblem(bad).find("unit quaternion"), std::string::npos) << OdometryProblem(bad);
-  bad = o;
-  bad.pose.pose.orientation.z = kInf;
-  EXPECT_NE(OdometryProblem(bad).find("unit quaternion"), std::string::npos);
-  bad = o;
-  bad.twist.twist.angular.z = kNan;
-  EXPECT_EQ(OdometryProblem(bad), "twist.twist.angular.z = nan");
+  EXPECT_EQ(OdometryProblem(Spoilt(o, [](auto& m) { m.pose.pose.position.x = kNan; })), "pose.pose.position.x = nan");
+  // All zeros: a default-built message.
+  const std::string zero = OdometryProblem(Spoilt(o, [](auto& m) { m.pose.pose.orientation = geometry_msgs::Quaternion(); }));
+  EXPECT_NE(zero.find("unit quaternion"), std::string::npos) << zero;
+  EXPECT_NE(OdometryProblem(Spoilt(o, [](auto& m) { m.pose.pose.orientation.z = kInf; })).find("unit quaternion"),
+            std::string::npos);
+  EXPECT_EQ(OdometryProblem(Spoilt(o, [](auto& m) { m.twist.twist.angular.z = kNan; })), "twist.twist.angular.z = nan");
 }
 
 TEST(InputChecksTest, ScanTakesNanAndInfinityAsReadingsButNotNegativeRanges) {
@@ -54,21 +55,13 @@ TEST(InputChecksTest, ScanTakesNanAndInfinityAsReadingsButNotNegativeRanges) {
   ranges[5] = -kInf;  // too close (REP 117)
   const sensor_msgs::LaserScan scan = ToLaserScan(ranges, Model(), "robot_0/base_link", ros::Time(1.0));
   EXPECT_EQ(ScanProblem(scan), "");
-  sensor_msgs::LaserScan bad = scan;
-  bad.ranges[7] = -0.5f;
-  EXPECT_EQ(ScanProblem(bad), "ranges[7] = -0.5");
-  bad = scan;
-  bad.angle_increment = kNan;
-  EXPECT_EQ(ScanProblem(bad), "angle_increment = nan");
-  bad = scan;
-  bad.range_max = 0.0f;
-  EXPECT_EQ(ScanProblem(bad), "range_max = 0");
-  bad = scan;
-  bad.ranges.resize(40, 1.0f);  // more readings than the angles give
-  EXPECT_EQ(ScanProblem(bad), "ranges: 40 readings, angle_min to angle_max gives 16");
-  bad = scan;
-  bad.ranges.resize(15);  // one short: float rounding in a driver's angles, let through
-  EXPECT_EQ(ScanProblem(bad), "");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.ranges[7] = -0.5f; })), "ranges[7] = -0.5");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.angle_increment = kNan; })), "angle_increment = nan");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.range_max = 0.0f; })), "range_max = 0");
+  // More readings than the angles give; one short is float rounding in a driver's angles.
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.ranges.resize(40, 1.0f); })),
+            "ranges: 40 readings, angle_min to angle_max gives 16");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.ranges.resize(15); })), "");
   // A robot without rangers publishes an empty scan.
   EXPECT_EQ(ScanProblem(ToLaserScan({}, Model(), "robot_0/base_link", ros::Time(1.0))), "");
 }
@@ -76,25 +69,16 @@ TEST(InputChecksTest, ScanTakesNanAndInfinityAsReadingsButNotNegativeRanges) {
 TEST(InputChecksTest, FiducialsNeedFiniteRangeAndBearing) {
   const FiducialArray seen = ToFiducialArray({{7, 1.5, 0.2}, {9, 2.0, -1.0}}, "robot_0/base_link", ros::Time(1.0));
   EXPECT_EQ(FiducialsProblem(seen), "");
-  FiducialArray bad = seen;
-  bad.fiducials[1].bearing = kNan;
-  EXPECT_EQ(FiducialsProblem(bad), "fiducials[1].bearing = nan");
-  bad = seen;
-  bad.fiducials[0].range = -1.0f;
-  EXPECT_EQ(FiducialsProblem(bad), "fiducials[0].range = -1");
+  EXPECT_EQ(FiducialsProblem(Spoilt(seen, [](auto& m) { m.fiducials[1].bearing = kNan; })), "fiducials[1].bearing = nan");
+  EXPECT_EQ(FiducialsProblem(Spoilt(seen, [](auto& m) { m.fiducials[0].range = -1.0f; })), "fiducials[0].range = -1");
 }
 
 TEST(InputChecksTest, BatteryNeedsALevel) {
   world_sim::BatteryModel model;
   const sensor_msgs::BatteryState b = ToBatteryState(0.4, false, model, "robot_0/base_link", ros::Time(1.0));
   EXPECT_EQ(BatteryProblem(b), "");
-  sensor_msgs::BatteryState bad = b;
-  bad.percentage = kNan;
-  bad.charge = kNan;
-  EXPECT_EQ(BatteryProblem(bad), "neither a percentage nor a charge and a positive capacity");
-  bad = b;
-  bad.percentage = -0.2f;
-  EXPECT_NE(BatteryProblem(bad).find("= -0.2"), std::string::npos) << BatteryProblem(bad);
+  EXPECT_EQ(BatteryProblem(Spoilt(b, [](auto& m) { m.percentage = kNan; m.charge = kNan; })), "neither a percentage nor a charge and a positive capacity");
+  EXPECT_NE(BatteryProblem(Spoilt(b, [](auto& m) { m.percentage = -0.2f; })).find("= -0.2"), std::string::npos) << BatteryProblem(Spoilt(b, [](auto& m) { m.percentage = -0.2f; }));
 }
 
 TEST(InputChecksTest, ReceptionTakesAnUnknownDirectionButNotANanLevel) {
@@ -107,21 +91,11 @@ TEST(InputChecksTest, ReceptionTakesAnUnknownDirectionButNotANanLevel) {
   r.quality = 1.0f;
   r.path_length = kNan;  // a real link does not know it
   EXPECT_EQ(ReceptionProblem(r), "");
-  AudioReception bad = r;
-  bad.level_db = kNan;
-  EXPECT_EQ(ReceptionProblem(bad), "level_db = nan");
-  bad = r;
-  bad.direction = kInf;
-  EXPECT_EQ(ReceptionProblem(bad), "direction = inf");
-  bad = r;
-  bad.direction_confidence = kNan;
-  EXPECT_EQ(ReceptionProblem(bad), "direction_confidence = nan");
-  bad = r;
-  bad.kind = 7;
-  EXPECT_EQ(ReceptionProblem(bad), "kind = 7");
-  bad = r;
-  bad.path_length = -3.0f;
-  EXPECT_EQ(ReceptionProblem(bad), "path_length = -3");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.level_db = kNan; })), "level_db = nan");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.direction = kInf; })), "direction = inf");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.direction_confidence = kNan; })), "direction_confidence = nan");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.kind = 7; })), "kind = 7");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.path_length = -3.0f; })), "path_length = -3");
 }
 
 TEST(InputChecksTest, LockStatePacketAndJob) {
