@@ -96,6 +96,15 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_test(NAME lockstep_reproducible COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 3 30)
   add_dependencies(tests world_sim_node wanderer_node audio_propagation_node)
 
+  # scripts/soak.sh's short forms: its arguments, a soak of 3 simulated minutes of the charging
+  # demo in lockstep that passes, and one with a controller killed half way that must fail; and
+  # its judge on made-up runs (flat robots, growth, deaths, short runs).
+  add_test(NAME soak_args COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh args)
+  add_test(NAME soak_report COMMAND ${PROJECT_SOURCE_DIR}/test/soak_report_test.sh)
+  add_test(NAME soak_short COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh pass)
+  add_test(NAME soak_node_died COMMAND ${PROJECT_SOURCE_DIR}/test/soak_test.sh died)
+  add_dependencies(tests world_sim_node audio_propagation_node local_mutex_node charging_demo_node)
+
   add_rostest_gtest(record_rostest test/record.test test/record_rostest.cpp)
   target_link_libraries(record_rostest multirobot_audio_ros ${rosbag_LIBRARIES})
   add_dependencies(record_rostest world_sim_node)
@@ -146,6 +155,9 @@ if(MULTIROBOT_AUDIO_TESTS)
   # A broken peer against nava_modem's audio/tx over the air.
   multirobot_audio_air_test(hostile_nava_rostest hostile_nava.test test/hostile_nava_rostest.cpp test/hostile_peer.cpp)
   add_test(NAME nava_air_room_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh nava_air.test profile:=room)
+  # A stalled process and a sound server killed in the middle of a packet and restarted: every
+  # packet is still heard exactly once.
+  multirobot_audio_air_test(nava_air_faults_rostest nava_air_faults.test test/nava_air_faults_rostest.cpp)
   multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
                             test/rostest_main.cpp)
   add_dependencies(tests local_mutex_node)

@@ -47,6 +47,8 @@ packages=(
   x11-utils python3-yaml python3-rospy
   # headless rviz and screenshots
   xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
+  # scripts/fuzz.sh: libFuzzer needs clang; the sanitizers' and the fuzzer's runtimes
+  clang-14 libclang-rt-14-dev libfuzzer-14-dev
   # scripts/get_thesis_map.sh downloads the thesis's map from Stage's repository
   curl ca-certificates
 )

@@ -5,11 +5,14 @@
 #      launch-file checks, all through ctest, in build/;
 #   2. the sanitized suite: the ROS-free components and their tests built with AddressSanitizer
 #      and UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test).
+# The fuzz targets (scripts/fuzz.sh) run with --fuzz; they join the whole run once a clean clone
+# has shown that CI, with them, still finishes within its 45 minutes.
 #
 #   scripts/test.sh                     everything above
 #   scripts/test.sh CTEST_ARGS...       the main suite only, e.g. scripts/test.sh -R grid
 #   scripts/test.sh --sanitize [CTEST_ARGS...]
 #                                       the sanitized suite only
+#   scripts/test.sh --fuzz [SECONDS]    the fuzz targets only, SECONDS each (default 20)
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -51,6 +54,9 @@ case "${1:-}" in
   --sanitize)
     shift
     sanitized_suite "$@"
+    ;;
+  --fuzz)
+    "$here/scripts/fuzz.sh" all "${2:-20}"
     ;;
   "")
     start=$SECONDS

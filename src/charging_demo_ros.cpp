@@ -133,9 +133,7 @@ ChargingDemoRos::ChargingDemoRos(ros::NodeHandle nh, ros::NodeHandle pnh, const 
       pnh_(pnh),
       lockstep_(nh),
       options_(options),
-      controller_(options.controller),
-      // No thread of its own: its callbacks run on the node's queue, beside the control loop.
-      acquire_(nh, "local_mutex/acquire", false) {
+      controller_(options.controller) {
   release_ = nh_.serviceClient<std_srvs::Trigger>("local_mutex/release");
   cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
   state_pub_ = lockstep_.Advertise<multirobot_audio::ChargingState>(pnh_, "state", 10);
@@ -249,14 +247,14 @@ void ChargingDemoRos::FollowLock(bool want, const ros::Time& now) {
   if (want) {
     if (lock_ == State::kHeld || goal_active_) return;
     if (!last_goal_.isZero() && (now - last_goal_).toSec() < kLockRetry) return;
-    if (!acquire_.isServerConnected()) {
+    if (!acquire_ || !acquire_->isServerConnected()) {
       ROS_WARN_THROTTLE(10.0, "charging_demo %s: the lock is wanted but %s is not up", nh_.getNamespace().c_str(),
                         nh_.resolveName("local_mutex/acquire").c_str());
       return;
     }
     multirobot_audio::AcquireLockGoal goal;
     goal.timeout = 0.0;  // the behaviour decides when to give up (lock_timeout) and cancels
-    acquire_.sendGoal(
+    acquire_->sendGoal(
         goal,
         [this](const actionlib::SimpleClientGoalState& state, const multirobot_audio::AcquireLockResultConstPtr& result) {
           OnGoalDone(state, result);
@@ -271,7 +269,7 @@ void ChargingDemoRos::FollowLock(bool want, const ros::Time& now) {
   }
   if (goal_active_) {
     if (!cancel_sent_) {
-      acquire_.cancelGoal();  // withdraws the request; a grant that crossed it is released below
+      acquire_->cancelGoal();  // withdraws the request; a grant that crossed it is released below
       cancel_sent_ = true;
       ++cancels_;
     }
@@ -298,6 +296,10 @@ void ChargingDemoRos::Release(const ros::Time& now) {
 void ChargingDemoRos::OnControl(const ros::TimerEvent& event) {
   const ros::Time now = ros::Time::now();
   if (started_.isZero()) started_ = now;
+  if (!acquire_ && ros::Time::isValid()) {
+    // No thread of its own: its callbacks run on the node's queue, beside the control loop.
+    acquire_ = std::make_unique<AcquireClient>(nh_, "local_mutex/acquire", false);
+  }
   if (!have_odom_ || !have_battery_) {
     if ((now - started_).toSec() > kInputsPatience) {
       std::string missing;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include <actionlib/client/simple_action_client.h>
@@ -73,7 +74,10 @@ class ChargingDemoRos {
   InputGuard guard_;              // before the subscriptions whose callbacks it checks
   ChargingDemoNodeOptions options_;
   charging_demo::ChargingController controller_;
-  AcquireClient acquire_;
+  // Made at the first control update, not in the constructor: actionlib's client waits there
+  // for a valid ROS time, and in lockstep world_sim starts the clock only once every
+  // participant, this node too, has said hello (which needs the constructor to have returned).
+  std::unique_ptr<AcquireClient> acquire_;
   ros::ServiceClient release_;
   ros::Subscriber odom_sub_, scan_sub_, fiducials_sub_, battery_sub_, lock_sub_;
   CountedPublisher cmd_pub_, state_pub_;

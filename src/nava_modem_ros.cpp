@@ -75,10 +75,16 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   rx.max_fixed_bits = IntParam(pnh, "max_fixed_bits", rx.max_fixed_bits, 0, 2);
   rx.detect_threshold = NumberParam(pnh, "detect_threshold", rx.detect_threshold, 0.05, 1.0);
   o.link.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
+  o.link.max_capture_lag = NumberParam(pnh, "max_capture_lag", o.link.max_capture_lag, 0.001, 10.0);
+  nava_modem::ReopenOptions& reopen = o.link.reopen;
+  reopen.first_wait = NumberParam(pnh, "reopen_backoff_min", reopen.first_wait, 0.001, 60.0);
+  reopen.max_wait = NumberParam(pnh, "reopen_backoff_max", reopen.max_wait, reopen.first_wait, 600.0);
+  reopen.settle_time = NumberParam(pnh, "reopen_settle_time", reopen.settle_time, 0.0, 60.0);
   try {
     nava_modem::ValidateModemOptions(m);
     nava_modem::MakeProfile(o.link.profile, m);  // refuses a rate the profile's band does not fit
     nava_modem::ValidateMacOptions(mac);
+    nava_modem::ValidateReopenOptions(reopen);
   } catch (const std::invalid_argument& e) {
     throw ParamError(e.what());
   }
@@ -119,13 +125,16 @@ NavaModemRos::~NavaModemRos() {
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("nava_modem summary: sent %lu, heard %lu packets (%lu repaired) and noise %lu zero_byte, %lu one_byte, "
               "%lu bad_crc; queue drops %lu; capture overruns %lu, playback underruns %lu, "
-              "packets cut %lu; %s\n",
+              "packets cut %lu",
               static_cast<unsigned long>(c.sent), static_cast<unsigned long>(c.packets),
               static_cast<unsigned long>(c.repaired), static_cast<unsigned long>(c.zero_byte),
               static_cast<unsigned long>(c.one_byte), static_cast<unsigned long>(c.bad_crc),
               static_cast<unsigned long>(c.queue_drops), static_cast<unsigned long>(c.overruns),
-              static_cast<unsigned long>(c.underruns), static_cast<unsigned long>(c.packets_cut),
-              guard_.Summary().c_str());
+              static_cast<unsigned long>(c.underruns), static_cast<unsigned long>(c.packets_cut));
+  std::printf("; capture catch-ups %lu; device faults %lu, reopens %lu, packets re-queued %lu%s; %s\n",
+              static_cast<unsigned long>(health_.catch_ups), static_cast<unsigned long>(health_.faults),
+              static_cast<unsigned long>(health_.reopens), static_cast<unsigned long>(health_.requeued),
+              health_.down ? " (the device is down)" : "", guard_.Summary().c_str());
   std::fflush(stdout);
 }
 
@@ -161,6 +170,7 @@ void NavaModemRos::AudioLoop() {
       }
       events.clear();
       if (!link_->Tick(events)) break;
+      ReportDevice();
       for (const nava_modem::RxEvent& e : events) Publish(e, link_->time() - e.end);
       const bool carrier = link_->carrier();
       if (carrier != last_carrier || link_->time() - last_carrier_sent >= carrier_period) {
@@ -206,6 +216,39 @@ void NavaModemRos::AudioLoop() {
   }
 }
 
+void NavaModemRos::ReportDevice() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  DeviceHealth& h = health_;
+  const char* device = options_.alsa.device.c_str();
+  const nava_modem::ReopenOptions& r = options_.link.reopen;
+  if (link_->device_faults() != h.faults) {
+    ROS_ERROR("nava_modem: ALSA device '%s' failed: %s; %lu packets not played whole go back to the queue; reopening in "
+              "%.2f s, the wait doubling up to %.1f s (device faults %lu so far)",
+              device, link_->device_error().c_str(), static_cast<unsigned long>(link_->packets_requeued() - h.requeued),
+              r.first_wait, r.max_wait, static_cast<unsigned long>(link_->device_faults()));
+    h.down_since = ros::WallTime::now();
+  }
+  if (link_->reopens() != h.reopens) {
+    ROS_WARN("nava_modem: ALSA device '%s' reopened after %.1f s (%d tries failed); sending again after %.1f s",
+             device, (ros::WallTime::now() - h.down_since).toSec(), link_->failed_reopens(), r.settle_time);
+  } else if (link_->device_down() && link_->failed_reopens() != h.failed_reopens) {
+    ROS_WARN_THROTTLE(10.0, "nava_modem: ALSA device '%s' still down after %.1f s (%d tries): %s", device,
+                      (ros::WallTime::now() - h.down_since).toSec(), link_->failed_reopens(), link_->device_error().c_str());
+  }
+  if (link_->catch_ups() != h.catch_ups) {
+    ROS_WARN_THROTTLE(1.0, "nava_modem: capture fell more than %.2f s behind (a stalled process?): catching up without "
+                      "playing silence, no send meanwhile (%lu catch-ups so far)",
+                      options_.link.max_capture_lag, static_cast<unsigned long>(link_->catch_ups()));
+  }
+  h.catch_ups = link_->catch_ups();
+  h.down = link_->device_down();
+  h.error = link_->device_error();
+  h.faults = link_->device_faults();
+  h.reopens = link_->reopens();
+  h.requeued = link_->packets_requeued();
+  h.failed_reopens = link_->failed_reopens();
+}
+
 void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
   const ros::Time stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
   rx_pub_.publish(ToAudioReception(e, options_.frame_id, stamp));
@@ -237,6 +280,27 @@ void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("playback underruns", c.underruns);
   status.add("packets cut by underruns", c.packets_cut);
   status.add("queue drops", c.queue_drops);
+  DiagnoseDevice(status);
+}
+
+// Called with mutex_ held. A device that is down is an error (nothing is heard or sent), one
+// that failed and came back a warning.
+void NavaModemRos::DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const DeviceHealth& h = health_;
+  if (h.down) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                   "audio device down for " + std::to_string(static_cast<int>((ros::WallTime::now() - h.down_since).toSec())) +
+                       " s, reopening: " + h.error);
+  } else if (h.faults > 0 && status.level == diagnostic_msgs::DiagnosticStatus::OK) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "running; the audio device failed and was reopened");
+  }
+  status.add("device", h.down ? "down, reopening" : "open");
+  status.add("device faults", h.faults);
+  status.add("device reopens", h.reopens);
+  status.add("failed reopen tries", h.failed_reopens);
+  status.add("packets re-queued after device faults", h.requeued);
+  status.add("capture catch-ups", h.catch_ups);
+  if (!h.error.empty()) status.add("last device error", h.error);
 }
 
 }  // namespace multirobot_audio

@@ -21,8 +21,8 @@ namespace multirobot_audio {
 
 // Options of the nava_modem node, filled from its private parameters.
 struct NavaModemOptions {
-  nava_modem::AlsaOptions alsa;   // ~device, ~sample_rate, ~latency
-  nava_modem::LinkOptions link;   // modem, MAC and receiver settings (see docs/nodes.md)
+  nava_modem::AlsaOptions alsa;   // ~device, ~sample_rate, ~latency, ~channels
+  nava_modem::LinkOptions link;   // modem, MAC, receiver and device-fault settings (see docs/nodes.md)
   std::string frame_id = "base_link";  // ~frame_id: stamped on what is published
   double carrier_rate = 10.0;     // ~carrier_rate: Hz of audio/carrier besides every change
 };
@@ -44,8 +44,19 @@ class NavaModemRos {
     std::uint64_t sent = 0, packets = 0, zero_byte = 0, one_byte = 0, bad_crc = 0, repaired = 0;
     std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0;
   };
+  // The sound card's health, as the link last reported it (guarded by mutex_).
+  struct DeviceHealth {
+    bool down = false;
+    std::string error;  // why it last failed, or why the last try to reopen it did
+    std::uint64_t faults = 0, reopens = 0, requeued = 0;
+    int failed_reopens = 0;       // since it last failed
+    std::uint64_t catch_ups = 0;  // times the capture fell behind and the link caught up
+    ros::WallTime down_since;
+  };
   InputGuard::Verdict OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
   void AudioLoop();
+  void ReportDevice();  // logs and records a failure, a reopen or a catch-up of the device
+  void DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status);
   void Publish(const nava_modem::RxEvent& event, double ago);
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
@@ -59,9 +70,10 @@ class NavaModemRos {
   diagnostic_updater::Updater updater_;
   InputGuard guard_;  // audio/tx's checks and counts, on updater_
   ros::WallTimer diagnostics_timer_;
-  std::mutex mutex_;  // guards inbox_ and counts_
+  std::mutex mutex_;  // guards inbox_, counts_ and health_
   std::deque<std::vector<std::uint8_t>> inbox_;  // audio/tx for the audio thread; at most the MAC queue's capacity
   Counts counts_;
+  DeviceHealth health_;
   std::atomic<bool> running_{true};
   std::thread audio_thread_;
 };

@@ -3,9 +3,11 @@
 #
 #   test/nava_air.sh TEST_FILE [rostest arguments]     e.g. test/nava_air.sh nava_air.test
 #
-# starts a private PulseAudio server whose null sink is the shared "air" (norewinds=1, or its
-# monitor drops audio), points ALSA's pulse device at it, runs TEST_FILE (a .test file of this
-# package) with rostest, and stops the server by its PID.
+# starts a private PulseAudio server whose null sink is the shared "air"
+# (test/nava_air_server.sh), points ALSA's pulse device at it, runs TEST_FILE (a .test file of
+# this package) with rostest, and stops the server by its PID. A test that fails the air on
+# purpose runs "$NAVA_AIR_CONTROL kill" (the server dies as in a crash) and later
+# "$NAVA_AIR_CONTROL start" (it comes back on the same socket).
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 
@@ -16,29 +18,21 @@ fi
 test_file=$1
 shift
 
+server="$(cd "$(dirname "$0")" && pwd)/nava_air_server.sh"
 dir=$(mktemp -d /tmp/nava_air.XXXXXX)
-pa_pid=""
 cleanup() {
-  if [ -n "$pa_pid" ]; then kill "$pa_pid" 2>/dev/null || true; wait "$pa_pid" 2>/dev/null || true; fi
+  "$server" stop "$dir" || true
   rm -rf "$dir"
 }
 trap cleanup EXIT
 
-cat >"$dir/air.pa" <<PA
-load-module module-native-protocol-unix auth-anonymous=1 socket=$dir/native
-load-module module-null-sink sink_name=air norewinds=1 rate=48000 channels=1
-set-default-sink air
-set-default-source air.monitor
-PA
-mkdir -p "$dir/home" "$dir/run"
-HOME="$dir/home" XDG_RUNTIME_DIR="$dir/run" pulseaudio -n --daemonize=no --exit-idle-time=-1 \
-  --disable-shm=yes --log-target=file:"$dir/pulse.log" -F "$dir/air.pa" &
-pa_pid=$!
-for _ in $(seq 50); do [ -S "$dir/native" ] && break; sleep 0.1; done
-if [ ! -S "$dir/native" ]; then
-  echo "nava_air.sh: PulseAudio did not start:" >&2
-  cat "$dir/pulse.log" >&2 || true
-  exit 1
-fi
+"$server" start "$dir"
+cat >"$dir/control" <<CONTROL
+#!/bin/sh
+# start | stop | kill this run's air
+exec "$server" "\$1" "$dir"
+CONTROL
+chmod +x "$dir/control"
+export NAVA_AIR_CONTROL="$dir/control"
 export PULSE_SERVER="unix:$dir/native"
 rostest multirobot_audio "$test_file" "$@"

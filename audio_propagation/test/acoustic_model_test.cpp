@@ -285,7 +285,9 @@ TEST(AcousticChannel, TwoRobotsTalkingAtOnceGiveNoiseWhenEvenAndCaptureWhenOneIs
     even.channel->Send(2, {2, 2, 2, 2});
     for (const Reception& rx : even.Run(2.0).received) {
       if (rx.receiver == 0 && rx.kind == Reception::Kind::kPacket) ++even_heard;
-      if (rx.receiver == 0) EXPECT_TRUE(rx.collision || rx.kind == Reception::Kind::kPacket);
+      if (rx.receiver == 0) {
+        EXPECT_TRUE(rx.collision || rx.kind == Reception::Kind::kPacket);
+      }
     }
   }
   // CSMA spreads some pairs apart (then both are heard); those that overlap decide the rest.

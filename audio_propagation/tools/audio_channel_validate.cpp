@@ -29,28 +29,14 @@
 #include <sstream>
 
 #include "acoustic_world.h"
+#include "audio_propagation_args.h"
 #include "tool_args/line_chart.h"
 
 namespace {
 
 using namespace audio_propagation;
 
-const char* kUsage =
-    "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
-    "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
-    "--predict X1,Y1 X2,Y2";
 constexpr int kMinBinLinks = 15;
-
-Eigen::Vector2d ParsePoint(const multirobot_audio::tools::ToolArgs& args, const std::string& text) {
-  std::istringstream in(text);
-  double x = 0.0, y = 0.0;
-  char comma = 0;
-  std::string rest;
-  if (!(in >> x >> comma >> y) || comma != ',' || (in >> rest) || !std::isfinite(x) || !std::isfinite(y)) {
-    args.Fail("--predict: expected two points X1,Y1 X2,Y2 in m, got '" + text + "'");
-  }
-  return {x, y};
-}
 
 std::string Json(double v) {
   if (!std::isfinite(v)) return "null";
@@ -59,26 +45,15 @@ std::string Json(double v) {
   return text;
 }
 
-int Predict(const multirobot_audio::tools::ToolArgs& args, const tools::AcousticWorld& world, const DecodeTable& table,
-            const std::string& first, double time) {
-  // "--predict X1,Y1 X2,Y2": the second point is the next argument (or the same one, quoted).
-  std::string a = first, b;
-  const auto space = first.find(' ');
-  if (space != std::string::npos) {
-    a = first.substr(0, space);
-    b = first.substr(first.find_first_not_of(' ', space));
-    if (!args.positional().empty()) args.Fail("unexpected argument " + args.positional().front());
-  } else {
-    if (args.positional().size() != 1) args.Fail("--predict: expected two points X1,Y1 X2,Y2");
-    b = args.positional().front();
-  }
-  args.CheckAllUsed();
-  const Eigen::Vector2d from = ParsePoint(args, a), to = ParsePoint(args, b);
+int Predict(const tools::ValidateArgs& args, const tools::AcousticWorld& world, const DecodeTable& table) {
+  const Eigen::Vector2d& from = args.from;
+  const Eigen::Vector2d& to = args.to;
+  const double time = args.time;
   for (const Eigen::Vector2d& p : {from, to}) {
     if (!world.loaded.map.IsFreeAt(p)) {
       std::ostringstream s;
       s << "--predict: (" << p.x() << ", " << p.y() << ") is not in the map's free space";
-      args.Fail(s.str());
+      args.usage.Fail(s.str());
     }
   }
   const AcousticModel model(*world.propagation, world.acoustics, table, world.robots);
@@ -136,35 +111,21 @@ std::string Range(double low, double high) {
   return text;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Run(const tools::ValidateArgs& args) {
   const std::string program = "audio_channel_validate";
-  const multirobot_audio::tools::ToolArgs args(program, kUsage, argc, argv);
-  const std::string world_file = args.Required("--world");
-  const std::string map_file = args.String("--map", "");
-  const std::string profile_name = args.String("--profile", "nava");
-  const std::string table_file = args.String("--table", "");
-  const std::string predict = args.String("--predict", "");
-  const double time = args.Double("--time", 0.0, -1e9, 1e9);
-  ValidationOptions options;
-  options.links = static_cast<int>(args.Int("--links", 300, 1, 100000));
-  options.packets = static_cast<int>(args.Int("--packets", 4, 1, 1000));
-  options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
-  options.threads = static_cast<int>(args.Int("--threads", 2, 1, 64));
-  const std::string out = args.String("--out", ".");
-  if (predict.empty()) args.CheckAllUsed();
-  const auto profile = nava_modem::ParseProfile(profile_name);
-  if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got " + profile_name);
-  options.profile = *profile;
+  const std::string& world_file = args.world_file;
+  const std::string& profile_name = args.profile_name;
+  const std::string& table_file = args.table_file;
+  const std::string& out = args.out;
+  ValidationOptions options = args.validation;
 
   const double cpu_start = nava_modem::tools::CpuNow();
   const auto wall_start = std::chrono::steady_clock::now();
-  const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, map_file);
+  const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, args.map_file);
   const DecodeTable table = tools::LoadTable(program, options.profile, table_file);
-  if (!predict.empty()) {
+  if (args.predict) {
     try {
-      return Predict(args, world, table, predict, time);
+      return Predict(args, world, table);
     } catch (const std::exception& e) {
       tools::Fail(program, e.what());
     }
@@ -277,4 +238,11 @@ int main(int argc, char** argv) {
   std::printf("plot: %s\ncpu: %.1f s (wall %.1f s) on %d threads\n", plot.c_str(), nava_modem::tools::CpuNow() - cpu_start,
               wall, options.threads);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool(
+      [&] { return Run(audio_propagation::tools::ParseValidateArgs(multirobot_audio::tools::Words(argc, argv))); });
 }

@@ -23,32 +23,24 @@
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/propagation_model.h"
 #include "grid/map_file.h"
+#include "audio_propagation_args.h"
 #include "world_sim/world_file.h"
-#include "tool_args/tool_args.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(const audio_propagation::tools::BenchArgs& args) {
   using namespace audio_propagation;
   using Clock = std::chrono::steady_clock;
-  const multirobot_audio::tools::ToolArgs args(
-      "audio_propagation_bench",
-      "audio_propagation_bench --map MAP.yaml [--robots N] [--steps K] [--seed S] [--rule masks|convex_corners]\n"
-      "                        [--acoustics WORLD.yaml [--profile nava|room]]",
-      argc, argv);
-  const std::string map_file = args.Required("--map");
-  const int robots = static_cast<int>(args.Int("--robots", 20, 2, 100000));
-  const int steps = static_cast<int>(args.Int("--steps", 50, 1, 1000000));
-  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  const std::string rule_name = args.String("--rule", "masks");
-  const std::string acoustics_file = args.String("--acoustics", "");
-  const std::string profile = args.String("--profile", "nava");
-  args.CheckAllUsed();
-  const auto rule = ParseDiffractionRule(rule_name);
-  if (!rule) args.Fail("--rule: expected masks or convex_corners, got " + rule_name);
+  const std::string& map_file = args.map_file;
+  const int robots = args.robots, steps = args.steps;
+  const unsigned seed = args.seed;
+  const std::string& acoustics_file = args.acoustics_file;
+  const std::string& profile = args.profile;
 
   try {
     grid::OccupancyMap map = grid::LoadMapFile(map_file);
     PropagationOptions options;
-    options.rule = *rule;
+    options.rule = args.rule;
     const auto t0 = Clock::now();
     const PropagationModel model(std::move(map), options);
     const double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -57,7 +49,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<AcousticModel> acoustic;
     if (!acoustics_file.empty()) {
       const world_sim::LoadedWorld world = world_sim::LoadWorldFile(acoustics_file, map_file);
-      if (!world.config.acoustics) args.Fail("--acoustics: " + acoustics_file + " has no acoustics section");
+      if (!world.config.acoustics) args.usage.Fail("--acoustics: " + acoustics_file + " has no acoustics section");
       std::vector<std::string> names;
       for (int r = 0; r < robots; ++r) names.push_back(r < static_cast<int>(world.config.robots.size()) ? world.config.robots[r].name : "robot_" + std::to_string(r));
       PropagationOptions low = options;
@@ -110,7 +102,7 @@ int main(int argc, char** argv) {
         "{\"map\": \"%s\", \"rule\": \"%s\", \"robots\": %d, \"steps\": %d, "
         "\"diffraction_points\": %zu, \"graph_nodes\": %zu, \"edges\": %zu, \"build_ms\": %.1f, \"step_ms\": %.3f, "
         "\"pairs_per_s\": %.0f, \"heard_fraction\": %.3f",
-        map_file.c_str(), DiffractionRuleName(*rule), robots, steps, model.diffraction_points().size(), model.graph().size(),
+        map_file.c_str(), DiffractionRuleName(args.rule), robots, steps, model.diffraction_points().size(), model.graph().size(),
         model.graph().edge_count(), build_ms, median, pairs / (total / 1000.0), heard / pairs);
     if (acoustic) {
       std::sort(acoustic_ms.begin(), acoustic_ms.end());
@@ -124,4 +116,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool(
+      [&] { return Run(audio_propagation::tools::ParseBenchArgs(multirobot_audio::tools::Words(argc, argv))); });
 }

@@ -14,22 +14,16 @@
 #include <string>
 
 #include "audio_propagation/propagation_model.h"
+#include "audio_propagation_args.h"
 #include "grid/map_file.h"
-#include "tool_args/tool_args.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(const audio_propagation::tools::QueryArgs& args) {
   using namespace audio_propagation;
-  const multirobot_audio::tools::ToolArgs args("audio_propagation_query",
-                             "audio_propagation_query --map MAP.yaml [--rule masks|convex_corners] < queries",
-                             argc, argv);
-  const std::string map_file = args.Required("--map");
-  const std::string rule_name = args.String("--rule", "masks");
-  args.CheckAllUsed();
-  const auto rule = ParseDiffractionRule(rule_name);
-  if (!rule) args.Fail("--rule: expected masks or convex_corners, got " + rule_name);
-
+  const std::string& map_file = args.map_file;
   PropagationOptions options;
-  options.rule = *rule;
+  options.rule = args.rule;
   // Paths of any length: a level threshold would hide far paths from the check.
   options.source_level_db = 1000.0;
   options.threshold_db = -1000.0;
@@ -60,4 +54,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool(
+      [&] { return Run(audio_propagation::tools::ParseQueryArgs(multirobot_audio::tools::Words(argc, argv))); });
 }

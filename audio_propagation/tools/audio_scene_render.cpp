@@ -20,26 +20,19 @@
 
 #include "acoustic_world.h"
 #include "audio_propagation/scene_render.h"
+#include "audio_propagation_args.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int Run(const audio_propagation::tools::SceneRenderArgs& args) {
   using namespace audio_propagation;
   const std::string program = "audio_scene_render";
-  const multirobot_audio::tools::ToolArgs args(
-      program,
-      "audio_scene_render --world W [--map M] --scene S --out DIR [--profile nava|room] [--rate 48000] "
-      "[--table FILE] [--seed 1]",
-      argc, argv);
-  const std::string world_file = args.Required("--world");
-  const std::string map_file = args.String("--map", "");
-  const std::string scene_file = args.Required("--scene");
-  const std::string out = args.Required("--out");
-  const std::string profile_name = args.String("--profile", "");
-  const double rate = args.Double("--rate", 48000.0, 8000.0, 192000.0);
-  const std::string table_file = args.String("--table", "");
-  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  args.CheckAllUsed();
+  const std::string& out = args.out;
+  const std::string& scene_file = args.scene_file;
+  const double rate = args.rate;
+  const unsigned seed = args.seed;
 
-  const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, map_file);
+  const tools::AcousticWorld world = tools::LoadAcousticWorld(program, args.world_file, args.map_file);
   Scene scene;
   try {
     scene = LoadScene(scene_file);
@@ -47,12 +40,8 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     tools::Fail(program, e.what());
   }
-  if (!profile_name.empty()) {
-    const auto p = nava_modem::ParseProfile(profile_name);
-    if (!p) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got " + profile_name);
-    scene.profile = *p;
-  }
-  const DecodeTable table = tools::LoadTable(program, scene.profile, table_file);
+  if (args.profile) scene.profile = *args.profile;
+  const DecodeTable table = tools::LoadTable(program, scene.profile, args.table_file);
   try {
     const AcousticModel model(*world.propagation, world.acoustics, table, world.robots);
     SceneRenderOptions options;
@@ -84,4 +73,11 @@ int main(int argc, char** argv) {
     tools::Fail(program, e.what());
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool(
+      [&] { return Run(audio_propagation::tools::ParseSceneRenderArgs(multirobot_audio::tools::Words(argc, argv))); });
 }

@@ -35,8 +35,8 @@
 #include "tool_args/parallel_for.h"
 #include "tool_args/progress_bar.h"
 #include "tool_args/record.h"
+#include "charging_experiment_args.h"
 #include "tool_args/shard.h"
-#include "tool_args/tool_args.h"
 #include "world_sim/world_file.h"
 
 namespace {
@@ -44,13 +44,7 @@ namespace {
 using namespace charging_demo;
 namespace fs = std::filesystem;
 using multirobot_audio::tools::BatchRun;
-using multirobot_audio::tools::ToolArgs;
-
-const char* kUsage =
-    "charging_experiment [--map MAP.yaml | --world WORLD.yaml] [--robots 4] [--chargers 1]\n"
-    "  [--hours 2] [--seeds 10] [--seed 1] [--out charging_results] [--timeline FILE.png]\n"
-    "  [--hearing 15] [--spacing 12] [--low 0.3] [--full 0.98] [--wait-distance 1]\n"
-    "  [--lock-timeout 1500] [--threads 0] [--shard K/N] | --merge SHARD_DIR... [--out DIR] [--timeline FILE.png]";
+using tools::Protocol;
 
 double Mean(const std::vector<double>& values) {
   if (values.empty()) return std::nan("");
@@ -93,50 +87,6 @@ void WriteCsv(const fs::path& out, const std::vector<Seeded>& runs) {
   if (!trials || !robots) throw std::runtime_error((out / "trials.csv").string() + ": cannot write");
 }
 
-// What the command line asks for.
-struct Protocol {
-  std::string world_file, map_file, out_dir, timeline;
-  ChargingWorldOptions placement;
-  double hours = 2.0, hearing = 15.0;
-  int seeds = 10, threads = 0;
-  std::uint32_t first_seed = 1;
-  ChargingTrialOptions options;
-};
-
-Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
-  Protocol p;
-  p.world_file = args.String("--world", "");
-  p.map_file = args.String("--map", MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml");
-  ChargingWorldOptions& placement = p.placement;
-  placement.robots = static_cast<int>(args.Int("--robots", placement.robots, 1, 255));
-  placement.chargers = static_cast<int>(args.Int("--chargers", placement.chargers, 1, 1000));
-  placement.charger_spacing = args.Double("--spacing", placement.charger_spacing, 0.0, 1e6);
-  p.hours = args.Double("--hours", 2.0, 1e-3, 1000.0);
-  p.seeds = static_cast<int>(args.Int("--seeds", 10, 1, 100000));
-  p.first_seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
-  p.hearing = args.Double("--hearing", 15.0, 0.0, 1e6);
-  ChargingTrialOptions& options = p.options;
-  options.duration = p.hours * 3600.0;
-  ChargingOptions& charging = options.controller.charging;
-  charging.low_battery = args.Double("--low", charging.low_battery, -1e9, 1e9);
-  charging.full_battery = args.Double("--full", charging.full_battery, -1e9, 1e9);
-  charging.wait_distance = args.Double("--wait-distance", charging.wait_distance, -1e9, 1e9);
-  charging.lock_timeout = args.Double("--lock-timeout", charging.lock_timeout, -1e9, 1e9);
-  p.threads = static_cast<int>(args.Int("--threads", 0, 0, 256));
-  p.out_dir = args.String("--out", "charging_results");
-  p.timeline = args.String("--timeline", "");
-  if (!p.world_file.empty() && (!args.String("--robots", "").empty() || !args.String("--chargers", "").empty() ||
-                                !args.String("--map", "").empty() || !args.String("--spacing", "").empty()))
-    args.Fail("--world gives the robots, chargers and map: drop --robots, --chargers, --map and --spacing");
-  if (batch.sharded() && !p.timeline.empty())
-    args.Fail("--timeline: give it to --merge, which draws the first seed's trial from the shards");
-  args.CheckAllUsed();
-  // The options' own checks name the field (a threshold outside (0, 1), ...) before any work.
-  charging.chargers = {placement.first_marker};
-  ValidateOptions(options.controller);
-  ValidateOptions(options);
-  return p;
-}
 
 // One trial's result as a record (tool_args/record.h), and back. Only the first seed's record
 // keeps the phases and battery samples: they are for the timeline, which draws that trial. The
@@ -232,8 +182,7 @@ void Report(const Protocol& p, const std::vector<std::string>& records,
 }
 
 // A whole run, or one shard of it.
-int Run(const ToolArgs& args, const BatchRun& batch) {
-  const Protocol p = ParseProtocol(args, batch);
+int Run(const Protocol& p, const BatchRun& batch) {
   const std::vector<std::size_t> which = batch.Trials(p.seeds);
   std::vector<world_sim::WorldConfig> worlds(p.seeds);
   grid::OccupancyMap map;
@@ -292,7 +241,7 @@ int Run(const ToolArgs& args, const BatchRun& batch) {
 
 int Merge(const BatchRun& batch) {
   const multirobot_audio::tools::MergedShards shards = batch.Merge();
-  const Protocol p = ParseProtocol(batch.MergedArgs(shards), batch);
+  const Protocol p = tools::ParseProtocol(batch.MergedArgs(shards), batch);
   const std::vector<std::string>& records = shards.Records(p.seeds);
   shards.CopyFiles(p.out_dir);
   Report(p, records, [&](std::size_t i) { return shards.Where(i); });
@@ -302,12 +251,13 @@ int Merge(const BatchRun& batch) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const ToolArgs args("charging_experiment", kUsage, argc, argv, {"--merge"});
-  const BatchRun batch(args, {"--out", "--threads", "--timeline"});
-  try {
-    return batch.merging() ? Merge(batch) : Run(args, batch);
-  } catch (const std::exception& e) {
-    std::cerr << "charging_experiment: " << e.what() << "\n";
-  }
-  return 1;
+  return multirobot_audio::tools::RunTool([&] {
+    const tools::ExperimentCommand command = tools::ParseExperimentArgs(multirobot_audio::tools::Words(argc, argv));
+    try {
+      return command.batch.merging() ? Merge(command.batch) : Run(*command.protocol, command.batch);
+    } catch (const std::exception& e) {
+      std::cerr << "charging_experiment: " << e.what() << "\n";
+    }
+    return 1;
+  });
 }

@@ -33,9 +33,23 @@ Eigen::Vector2d OccupancyMap::CellCoordsToWorld(const Eigen::Vector2d& cell) con
           origin_.y + origin_sin_ * p.x() + origin_cos_ * p.y()};
 }
 
+namespace {
+
+// A cell index for a cell coordinate. Points beyond int's reach (a pose typed with too many
+// digits, an infinity) and NaN come out far off any map, on their side of it (NaN below), and
+// still far enough from int's limits that a neighbour's index does not overflow.
+int CellIndex(double c) {
+  constexpr double kFar = 1 << 30;
+  if (!(c > -kFar)) return -(1 << 30);
+  if (c >= kFar) return 1 << 30;
+  return static_cast<int>(std::floor(c));
+}
+
+}  // namespace
+
 Eigen::Vector2i OccupancyMap::WorldToCell(const Eigen::Vector2d& world) const {
   const Eigen::Vector2d c = WorldToCellCoords(world);
-  return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
+  return {CellIndex(c.x()), CellIndex(c.y())};
 }
 
 Eigen::Vector2d OccupancyMap::CellCenter(int i, int j) const {

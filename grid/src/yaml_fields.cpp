@@ -37,6 +37,11 @@ void YamlFields::ExpectOnlyKeys(std::initializer_list<const char*> known) const 
   std::string list;
   for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
   for (const auto& kv : node_) {
+    // A key may be a list, a mapping or null in YAML; none of ours is.
+    if (!kv.first.IsScalar()) {
+      Fail("", std::string("expected text keys, got ") +
+                   (kv.first.IsSequence() ? "a list" : kv.first.IsMap() ? "a mapping" : "an empty key"));
+    }
     const std::string key = kv.first.as<std::string>();
     bool found = false;
     for (const char* k : known) found = found || key == k;

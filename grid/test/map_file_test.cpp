@@ -139,6 +139,15 @@ TEST_F(MapFileTest, BadThresholdsNegateAndMode) {
   ExpectError(Write("d.yaml", head + "mode: scale\n"), "mode: expected 'trinary'");
 }
 
+// Found by fuzz/world_file.cpp: a key that is a list or a mapping, not text, escaped as
+// yaml-cpp's bad conversion instead of an InputError.
+TEST_F(MapFileTest, KeyThatIsNotTextIsRefused) {
+  WriteImage("room.pgm");
+  ExpectError(Write("list_key.yaml", std::string(kGood) + "[a, b]: 1\n"), "expected text keys");
+  ExpectError(Write("map_key.yaml", std::string(kGood) + "? {a: 1}\n: 2\n"), "expected text keys, got a mapping");
+  ExpectError(Write("null_key.yaml", std::string(kGood) + "~: 2\n"), "expected text keys, got an empty key");
+}
+
 TEST_F(MapFileTest, MissingImage) {
   ExpectError(Write("bad.yaml", "image: gone.pgm\nresolution: 1\norigin: [0, 0, 0]\n"),
               "image: file not found");

@@ -27,6 +27,24 @@ TEST(OccupancyMap, WorldToCellWithOffsetOrigin) {
   EXPECT_EQ(map.WorldToCell(centre), Eigen::Vector2i(3, 4));
 }
 
+// Found by fuzz/world_file.cpp: a robot at y = 4.3e10 m made WorldToCell convert a number beyond
+// int's range (undefined behaviour; on x86 it came out as INT_MIN, "off the map" by luck). Points
+// beyond int's reach, infinite or NaN must land on a cell off the map on the right side.
+TEST(OccupancyMap, FarAndNonFinitePointsAreOffTheMap) {
+  const OccupancyMap map(10, 20, 0.5, {1.0, -2.0, 0.0});
+  const Eigen::Vector2i far = map.WorldToCell({1.5, 42949672961.5});
+  EXPECT_EQ(far.x(), 1);
+  EXPECT_GE(far.y(), map.height());
+  EXPECT_LT(map.WorldToCell({-1e300, 0.0}).x(), 0);
+  EXPECT_GE(map.WorldToCell({HUGE_VAL, 0.0}).x(), map.width());
+  const Eigen::Vector2i nan = map.WorldToCell({std::nan(""), 0.0});
+  EXPECT_FALSE(map.InBounds(nan.x(), nan.y()));
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(1.5, 4.3e10), Eigen::Vector2d(-4.3e10, 0.0),
+                                  Eigen::Vector2d(std::nan(""), 1.0), Eigen::Vector2d(1.5, -HUGE_VAL)}) {
+    EXPECT_FALSE(map.IsFreeAt(p)) << p.transpose();
+  }
+}
+
 TEST(OccupancyMap, RotatedOriginRoundTrips) {
   const OccupancyMap map(10, 10, 0.1, {2.0, 3.0, M_PI / 2});
   // With the map turned a quarter turn, its +i axis points along world +y.

@@ -31,30 +31,15 @@
 
 #include "local_mutex/scenarios.h"
 #include "local_mutex/timeline_plot.h"
+#include "local_mutex_sim_args.h"
 #include "tool_args/record.h"
 #include "tool_args/shard.h"
-#include "tool_args/tool_args.h"
 
 namespace {
 
 using namespace local_mutex;
 using multirobot_audio::tools::BatchRun;
 using multirobot_audio::tools::ToolArgs;
-
-void ParseRange(const multirobot_audio::tools::ToolArgs& args, const std::string& text, int& lo, int& hi) {
-  const auto dots = text.find("..");
-  try {
-    if (dots == std::string::npos) {
-      lo = hi = std::stoi(text);
-    } else {
-      lo = std::stoi(text.substr(0, dots));
-      hi = std::stoi(text.substr(dots + 2));
-    }
-  } catch (const std::exception&) {
-    args.Fail("--robots: expected a count or a range like 2..8, got " + text);
-  }
-  if (lo < 1 || hi < lo || hi > 64) args.Fail("--robots: expected 1 <= min <= max <= 64, got " + text);
-}
 
 double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
@@ -98,49 +83,7 @@ void PrintSummary(const TrialSummary& s) {
               s.mean_wait, s.max_wait);
 }
 
-// What the command line asks for.
-struct Request {
-  std::string scenario, timeline, out;
-  int trial_count = 0, sweep = 0;
-  TeamSimOptions options;
-  TrialOptions trials;
-};
-
-Request ParseRequest(const ToolArgs& args, const BatchRun& batch) {
-  Request r;
-  r.scenario = args.String("--scenario", "");
-  r.timeline = args.String("--timeline", "");
-  r.out = args.String("--out", "");
-  r.trial_count = static_cast<int>(args.Int("--trials", 0, 0, 100000000));
-  r.sweep = static_cast<int>(args.Int("--sweep", 0, 0, 100000000));
-  TeamSimOptions& options = r.options;
-  options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
-  options.noise = args.Double("--noise", 0.0, 0.0, 1.0);
-  options.loss = args.Double("--loss", 0.0, 0.0, 1.0);
-  MutexOptions& m = options.mutex;
-  m.grab_time = args.Double("--grab", m.grab_time, 1e-3, 1e6);
-  m.request_mean = args.Double("--request", m.request_mean, 1e-3, 1e6);
-  m.request_sd = args.Double("--request-sd", m.request_sd, 0.0, 1e6);
-  m.lock_mean = args.Double("--lock", m.lock_mean, 1e-3, 1e6);
-  m.lock_sd = args.Double("--lock-sd", m.lock_sd, 0.0, 1e6);
-  TrialOptions& trials = r.trials;
-  ParseRange(args, args.String("--robots", "2..6"), trials.min_robots, trials.max_robots);
-  trials.radius = args.Double("--radius", trials.radius, 0.0, 9.0);
-  trials.want_spread = args.Double("--want-spread", trials.want_spread, 0.0, 1e6);
-  trials.hold_min = args.Double("--hold-min", trials.hold_min, 0.0, 1e6);
-  trials.hold_max = args.Double("--hold-max", trials.hold_max, trials.hold_min, 1e6);
-  trials.cycles = static_cast<int>(args.Int("--cycles", trials.cycles, 1, 1000));
-  trials.liveness_bound = args.Double("--bound", 0.0, 0.0, 1e9);
-  args.CheckAllUsed();
-  if ((r.scenario.empty() ? 0 : 1) + (r.trial_count > 0) + (r.sweep > 0) != 1) {
-    args.Fail("give exactly one of --scenario, --trials N, --sweep N");
-  }
-  if (batch.sharded() && !r.scenario.empty()) args.Fail("--shard: for --trials N and --sweep N, not --scenario");
-  if (batch.sharded() && r.out.empty()) args.Fail("--shard: give --out DIR for the shard's files");
-  if (!batch.sharded() && !r.out.empty()) args.Fail("--out: for --shard only (the report is printed)");
-  if (batch.sharded() && !r.timeline.empty()) args.Fail("--timeline draws one trial: give it without --shard");
-  return r;
-}
+using Request = tools::SimRequest;
 
 // The groups of trials a run is made of, each `count` trials of one TeamSimOptions: --trials N
 // is one group of N, --sweep N a group of N per cell of its tables (tables, then rows). Trial t
@@ -259,7 +202,7 @@ void RunTrialsOrSweep(const Request& r, const BatchRun& batch) {
 int Merge(const BatchRun& batch) {
   const multirobot_audio::tools::MergedShards shards = batch.Merge();
   const ToolArgs args = batch.MergedArgs(shards);
-  const Request r = ParseRequest(args, batch);
+  const Request r = tools::ParseSimRequest(args, batch);
   const std::vector<SweepCell> groups = Groups(r);
   const std::size_t count = PerGroup(r);
   const std::vector<std::string>& records = shards.Records(groups.size() * count);
@@ -276,29 +219,26 @@ int Merge(const BatchRun& batch) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const ToolArgs args(
-      "local_mutex_sim",
-      "local_mutex_sim --scenario single|three [--timeline out.png] | --trials N [--robots 2..6] [--noise P] "
-      "[--loss Q] | --sweep N; timers --grab --request --request-sd --lock --lock-sd; trials --radius "
-      "--want-spread --hold-min --hold-max --cycles --bound; --seed S; --shard K/N --out DIR | --merge DIR...",
-      argc, argv, {"--merge"});
-  const BatchRun batch(args, {"--out"});
-  try {
-    if (batch.merging()) return Merge(batch);
-    const Request r = ParseRequest(args, batch);
-    ValidateMutexOptions(r.options.mutex);
-    if (!r.scenario.empty()) return RunScenario(r.scenario, r.options, r.timeline);
-    if (!r.timeline.empty() && r.trial_count != 1) args.Fail("--timeline goes with --scenario or --trials 1");
-    if (!r.timeline.empty()) {
-      TeamSimOptions options = r.options;
-      options.record = true;
-      DrawTimeline(*RunTrial(*OpenFloor(), r.trials, options, 0), r.timeline);
-      std::printf("timeline written to %s\n", r.timeline.c_str());
+  return multirobot_audio::tools::RunTool([&] {
+    const tools::SimCommand command = tools::ParseSimArgs(multirobot_audio::tools::Words(argc, argv));
+    const BatchRun& batch = command.batch;
+    try {
+      if (batch.merging()) return Merge(batch);
+      const Request& r = *command.request;
+      ValidateMutexOptions(r.options.mutex);
+      if (!r.scenario.empty()) return RunScenario(r.scenario, r.options, r.timeline);
+      if (!r.timeline.empty() && r.trial_count != 1) batch.command().Fail("--timeline goes with --scenario or --trials 1");
+      if (!r.timeline.empty()) {
+        TeamSimOptions options = r.options;
+        options.record = true;
+        DrawTimeline(*RunTrial(*OpenFloor(), r.trials, options, 0), r.timeline);
+        std::printf("timeline written to %s\n", r.timeline.c_str());
+      }
+      RunTrialsOrSweep(r, batch);
+    } catch (const std::exception& e) {
+      std::cerr << "local_mutex_sim: " << e.what() << "\n";
+      return 1;
     }
-    RunTrialsOrSweep(r, batch);
-  } catch (const std::exception& e) {
-    std::cerr << "local_mutex_sim: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -61,7 +61,7 @@ struct ChirpDetector::Fftw {
 };
 
 ChirpDetector::ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options)
-    : options_(options), sample_rate_(sample_rate), chirp_length_(chirp.size()) {
+    : options_(options), chirp_length_(chirp.size()) {
   if (chirp.empty()) throw std::invalid_argument("chirp detector: empty chirp");
   margin_ = static_cast<std::size_t>(std::ceil(kWhiteningSpan * sample_rate));
   fft_size_ = PowerOfTwoAtLeast(2.0 * (chirp_length_ + 2 * margin_));

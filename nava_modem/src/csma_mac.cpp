@@ -1,6 +1,7 @@
 #include "nava_modem/csma_mac.h"
 
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -72,6 +73,15 @@ bool CsmaMac::Enqueue(Packet packet) {
   return true;
 }
 
+void CsmaMac::Interrupt(std::vector<Packet> unsent, double hold_seconds) {
+  requeued_ += unsent.size();
+  queue_.insert(queue_.begin(), std::make_move_iterator(unsent.begin()), std::make_move_iterator(unsent.end()));
+  carrier_ = false;
+  if (state_ == MacState::kCalibrating) return;
+  EnterWaiting();
+  remaining_ += Ticks(hold_seconds);
+}
+
 void CsmaMac::EnterWaiting() {
   state_ = MacState::kWaiting;
   // A fresh random back-off every time the medium is free again: that is what spreads out
@@ -81,7 +91,7 @@ void CsmaMac::EnterWaiting() {
   remaining_ = backoff(rng_);
 }
 
-std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db) {
+std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db, bool may_send) {
   ++ticks_;
   switch (state_) {
     case MacState::kCalibrating:
@@ -100,7 +110,7 @@ std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db) {
         ++receptions_;
         return std::nullopt;
       }
-      if (queue_.empty()) return std::nullopt;
+      if (queue_.empty() || !may_send) return std::nullopt;
       if (--remaining_ > 0) return std::nullopt;
       {
         Packet p = std::move(queue_.front());

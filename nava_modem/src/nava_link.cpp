@@ -17,6 +17,13 @@ constexpr double kBlockSeconds = 0.005;
 // How long after a packet ends its receiver may report it (the room profile's matched filter
 // works in blocks of up to a third of a second), and a little more.
 constexpr double kDirectionMarginSeconds = 1.5;
+// The longest a tick waits for the next try at reopening a failed device.
+constexpr double kDownWaitSeconds = 0.05;
+// A link behind its capture has caught up once it is within this share of max_capture_lag.
+constexpr double kCaughtUpShare = 0.5;
+// The longest (s of audio) a link behind its capture holds its sends: one that cannot catch up
+// (a machine too slow for real time) sends on stale carrier sense rather than not at all.
+constexpr double kLongestHoldSeconds = 2.0;
 
 LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
   if (std::abs(device.sample_rate() - o.modem.sample_rate) > 0.5) {
@@ -29,12 +36,16 @@ LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
                                 std::to_string(o.microphones.size()) + " microphone positions were given (one per channel)");
   }
   UseProfileTiming(o.profile, o.modem, o.mac);
+  ValidateReopenOptions(o.reopen);
+  if (!(o.max_capture_lag > 0.0 && o.max_capture_lag <= 10.0)) {
+    throw std::invalid_argument("max capture lag " + std::to_string(o.max_capture_lag) + " s: expected above 0 and at most 10");
+  }
   return o;
 }
 
 }  // namespace
 
-NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
+NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock)
     : options_(Checked(options, device)),
       device_(device),
       profile_(MakeProfile(options_.profile, options_.modem)),
@@ -42,7 +53,9 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device)
       mac_(options_.mac, options_.seed),
       samples_per_tick_(mac_.tick_seconds() * options_.modem.sample_rate),
       block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))),
-      channels_(static_cast<std::size_t>(device.capture_channels())) {
+      channels_(static_cast<std::size_t>(device.capture_channels())),
+      clock_(clock),
+      reopen_(options_.reopen) {
   if (options_.microphones.size() >= 2) {
     estimator_ = std::make_unique<DirectionEstimator>(DirectionOptionsFor(options_.profile, options_.modem, options_.microphones));
     // A packet and what it takes the receiver to report it.
@@ -61,6 +74,19 @@ bool NavaLink::Send(std::vector<std::uint8_t> data) {
 }
 
 bool NavaLink::Tick(std::vector<RxEvent>& events) {
+  if (device_down_) {
+    TryReopen();
+    return true;
+  }
+  try {
+    return Run(events);
+  } catch (const DeviceFault& e) {
+    Fail(e.what(), events);
+    return true;
+  }
+}
+
+bool NavaLink::Run(std::vector<RxEvent>& events) {
   // Ticks are a whole number of samples on average: tick k ends at sample round((k+1) * s).
   const std::int64_t end = std::llround((ticks_ + 1) * samples_per_tick_);
   const std::size_t count = static_cast<std::size_t>(end - samples_done_);
@@ -81,8 +107,12 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     threshold_shared_ = true;
   }
 
-  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db())) {
+  // Behind real time, carrier sense is stale: no send starts (for a while).
+  const bool may_send = !behind_ || samples_done_ - behind_since_ > std::llround(kLongestHoldSeconds * options_.modem.sample_rate);
+  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db(), may_send)) {
     burst_ = profile_->ModulatePacket(*packet);
+    // It starts with this tick's playback.
+    in_flight_.push_back({std::move(*packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
     burst_at_ = 0;
     burst_cut_ = false;
     burst_written_ = 0;
@@ -95,6 +125,12 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     std::copy(burst_.begin() + burst_at_, burst_.begin() + burst_at_ + n, out.begin());
     burst_at_ += n;
     burst_pending_ += n;
+  } else if (behind_ && playing_.size() + count > device_.PlaybackRoom()) {
+    // The process stalled and the device kept what it captured meanwhile: silence is played
+    // only where it needs no wait (what waits to play goes now), so that the link runs faster
+    // than real time until it has heard the backlog. No captured sound is lost.
+    if (!playing_.empty() && playing_.size() <= device_.PlaybackRoom()) Write();
+    return true;
   }
   Put(out.data(), count);
   return true;
@@ -117,6 +153,14 @@ bool NavaLink::Take(float* out, std::size_t count) {
       }
     }
     frames_read_ += static_cast<std::int64_t>(block_);
+    const double lag = static_cast<double>(device_.CaptureLag()) / options_.modem.sample_rate;
+    if (!behind_ && lag > options_.max_capture_lag) {
+      behind_ = true;
+      behind_since_ = samples_done_;
+      ++catch_ups_;
+    } else if (behind_ && lag <= kCaughtUpShare * options_.max_capture_lag) {
+      behind_ = false;
+    }
   }
   std::copy(captured_.begin() + captured_at_, captured_.begin() + captured_at_ + count, out);
   captured_at_ += count;
@@ -144,10 +188,17 @@ void NavaLink::EstimateDirections(std::vector<RxEvent>& events, std::size_t firs
 }
 
 void NavaLink::Put(const float* in, std::size_t count) {
+  queued_out_ += static_cast<std::int64_t>(count);
   playing_.insert(playing_.end(), in, in + count);
-  if (playing_.size() < block_) return;
+  if (playing_.size() >= block_) Write();
+}
+
+void NavaLink::Write() {
   device_.Write(playing_.data(), playing_.size());
+  written_ += static_cast<std::int64_t>(playing_.size());
   playing_.clear();
+  played_ = std::max(played_, written_ - static_cast<std::int64_t>(device_.PlaybackDelay()));
+  while (!in_flight_.empty() && in_flight_.front().end <= played_) in_flight_.pop_front();
   // An underrun met by this write left a gap before its samples: inside the packet when some
   // of it went out before and some goes out now.
   if (device_.underruns() != underruns_seen_) {
@@ -159,6 +210,71 @@ void NavaLink::Put(const float* in, std::size_t count) {
   }
   burst_written_ += burst_pending_;
   burst_pending_ = 0;
+}
+
+// The device failed: what it had not played of the packets sent goes again, and what was heard
+// is decoded to its end.
+void NavaLink::Fail(const std::string& error, std::vector<RxEvent>& events) {
+  ++device_faults_;
+  device_error_ = error;
+  device_down_ = true;
+  // The playback position is known as of the last write: a packet whose end played after it
+  // goes again (listeners that lost the same sound server most likely missed that end too).
+  std::vector<CsmaMac::Packet> unsent;
+  for (InFlight& f : in_flight_) unsent.push_back(std::move(f.data));
+  in_flight_.clear();
+  mac_.Interrupt(std::move(unsent), options_.reopen.settle_time);
+  burst_.clear();
+  burst_at_ = 0;
+  burst_cut_ = false;
+  burst_written_ = burst_pending_ = 0;
+  playing_.clear();
+  queued_out_ = written_ = played_ = 0;
+  behind_ = false;
+  EndHearing(events);
+  reopen_.Start(clock_.Now());
+}
+
+// The audio heard before a failure is decoded as if silence followed: a packet that had just
+// ended is reported now, one cut short ends as noise or nothing, and the audio after the
+// reopen begins nothing half-heard. The receiver's clock (and the microphones' history, which
+// follows it) moves past that silence.
+void NavaLink::EndHearing(std::vector<RxEvent>& events) {
+  const std::size_t first = events.size();
+  const double rate = options_.modem.sample_rate;
+  const std::size_t unheard = captured_.size() - captured_at_;
+  receiver_->Process(captured_.data() + captured_at_, unheard, events);
+  captured_.clear();
+  captured_at_ = 0;
+  const double before = receiver_->time();
+  receiver_->Flush(events);
+  const std::int64_t silence = std::llround((receiver_->time() - before) * rate);
+  if (!history_.empty()) {
+    for (std::int64_t n = frames_read_; n < frames_read_ + silence; ++n) {
+      for (std::vector<float>& channel : history_) channel[static_cast<std::size_t>(n) & history_mask_] = 0.0f;
+    }
+  }
+  frames_read_ += silence;
+  samples_flushed_ += static_cast<std::int64_t>(unheard) + silence;
+  if (estimator_) EstimateDirections(events, first);
+}
+
+void NavaLink::TryReopen() {
+  const double now = clock_.Now();
+  if (now < reopen_.next_try()) {
+    clock_.Sleep(std::min(reopen_.next_try() - now, kDownWaitSeconds));
+    return;
+  }
+  try {
+    device_.Reopen();
+  } catch (const DeviceFault& e) {
+    device_error_ = e.what();
+    reopen_.Failed(clock_.Now());
+    return;
+  }
+  device_down_ = false;
+  ++reopens_;
+  underruns_seen_ = device_.underruns();
 }
 
 }  // namespace nava_modem

@@ -1,6 +1,7 @@
 #include "nava_modem/csma_mac.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -97,6 +98,48 @@ TEST(CsmaMac, QueueOverflowIsCountedNotSilent) {
       if (auto p = mac.Tick(kSilence)) return *p;
   }();
   EXPECT_EQ(first, CsmaMac::Packet({1}));
+}
+
+// A failed device cuts the packet being sent: it goes back to the front of the queue, before
+// the packets that waited behind it, even when the queue is full, and the MAC waits the hold
+// and a back-off before sending it again.
+TEST(CsmaMac, AnInterruptedSendGoesBackToTheFrontAfterAHold) {
+  MacOptions o = Fixed();
+  o.queue_capacity = 2;
+  o.backoff_min_bits = o.backoff_max_bits = 2.0;
+  CsmaMac mac(o, 1);
+  ASSERT_TRUE(mac.Enqueue({1, 1, 1, 1}));
+  ASSERT_TRUE(mac.Enqueue({2, 2, 2, 2}));
+  ASSERT_GT(TicksUntilSend(mac, kSilence), 0);
+  ASSERT_TRUE(mac.Enqueue({3, 3, 3, 3}));
+  EXPECT_FALSE(mac.Enqueue({4, 4, 4, 4}));  // full
+  for (int k = 0; k < 100; ++k) mac.Tick(kSilence);
+  ASSERT_EQ(mac.state(), MacState::kSending);
+  mac.Interrupt({{1, 1, 1, 1}}, 0.5);
+  EXPECT_EQ(mac.state(), MacState::kWaiting);
+  EXPECT_EQ(mac.queued(), 3u);
+  EXPECT_EQ(mac.requeued(), 1u);
+  const int hold = static_cast<int>(std::lround(0.5 / mac.tick_seconds())) + 32;
+  EXPECT_EQ(TicksUntilSend(mac, kSilence), hold);
+  std::vector<CsmaMac::Packet> order;
+  order.push_back({1, 1, 1, 1});
+  for (int n = 0; n < 2; ++n) {
+    for (int k = 0; k < mac.packet_ticks() + 2000; ++k) {
+      if (auto p = mac.Tick(kSilence)) order.push_back(*p);
+    }
+  }
+  EXPECT_EQ(order, (std::vector<CsmaMac::Packet>{{1, 1, 1, 1}, {2, 2, 2, 2}, {3, 3, 3, 3}}));
+  EXPECT_EQ(mac.sent(), 4u);  // the first one twice
+}
+
+// A calibration under way is not cut short by a failure.
+TEST(CsmaMac, AnInterruptedCalibrationGoesOn) {
+  MacOptions o;
+  o.calibration_time = 1.0;
+  CsmaMac mac(o, 1);
+  for (int k = 0; k < 100; ++k) mac.Tick(kSilence);
+  mac.Interrupt({}, 0.5);
+  EXPECT_EQ(mac.state(), MacState::kCalibrating);
 }
 
 TEST(CsmaMac, RandomBackOffSpreadsRobotsWaitingForTheSameSender) {

@@ -184,6 +184,10 @@ class UnderrunningDevice : public AudioDevice {
     for (std::size_t s : at_) underruns_ += s >= played_ && s < played_ + count;
     played_ += count;
   }
+  std::size_t PlaybackDelay() override { return 0; }
+  std::size_t PlaybackRoom() override { return SIZE_MAX; }
+  std::size_t CaptureLag() override { return 0; }
+  void Reopen() override {}
   std::uint64_t overruns() const override { return 0; }
   std::uint64_t underruns() const override { return underruns_; }
 

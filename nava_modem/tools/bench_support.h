@@ -111,10 +111,10 @@ inline std::vector<std::string> MinimodemPackets(const std::string& bytes, CrcVa
 }
 
 // The folder for a bench's files: `dir` when given, else a new one in /tmp.
-inline std::string TempDir(const multirobot_audio::tools::ToolArgs& args, const std::string& dir) {
+inline std::string TempDir(const multirobot_audio::tools::ToolUsage& usage, const std::string& dir) {
   if (!dir.empty()) return dir;
   char tmpl[] = "/tmp/nava_bench.XXXXXX";
-  if (!mkdtemp(tmpl)) args.Fail("cannot make a folder in /tmp");
+  if (!mkdtemp(tmpl)) usage.Fail("cannot make a folder in /tmp");
   return tmpl;
 }
 

@@ -226,47 +226,21 @@ void PrintSummary(const DecodeTable& t) {
   std::printf("delivery falls by 2 packets or more as the SNR rises: %d of %d steps\n", falls, steps);
 }
 
-// "-30,-27,-24" as an ascending axis; else the tool fails naming the flag.
-std::vector<double> AxisArg(const multirobot_audio::tools::ToolArgs& args, const std::string& flag,
-                            const std::string& list) {
-  std::vector<double> axis;
-  std::size_t at = 0;
-  while (at <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', at), list.size());
-    const std::string item = list.substr(at, comma - at);
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(v) || std::fabs(v) > 60.0 || (!axis.empty() && v <= axis.back())) {
-      args.Fail(flag + ": expected ascending numbers from -60 to 60 separated by commas, got " + list);
-    }
-    axis.push_back(v);
-    at = comma + 1;
-  }
-  return axis;
-}
-
 }  // namespace
 
-int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::string& command) {
+int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::tools::ToolUsage& usage) {
   Setup s;
-  const std::string name = args.String("--table", "");
-  const auto profile = ParseProfile(name);
-  if (!profile) args.Fail(std::string("--table: expected ") + kProfileNames + ", got " + name);
-  s.profile = *profile;
-  const bool quick = args.Switch("--quick");
+  s.profile = request.profile;
   DecodeTable& t = s.table;
   t.profile = ProfileName(s.profile);
-  t.packets = static_cast<int>(args.Int("--packets", quick ? 4 : 12, 1, 100000));
-  const int threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
-  s.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  const std::string out = args.String("--out", "decode_table_" + t.profile + ".yaml");
-  const std::string dir_arg = args.String("--dir", "");
-  const std::string snr_list = args.String("--snr-db", "");
-  args.CheckAllUsed();
+  t.packets = request.packets;
+  const int threads = request.threads;
+  s.seed = request.seed;
+  const std::string& out = request.out;
   const std::filesystem::path folder = std::filesystem::path(out).parent_path();
-  if (!folder.empty() && !std::filesystem::is_directory(folder)) args.Fail("--out: no folder " + folder.string());
-  t.command = command;
-  if (quick) {
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) usage.Fail("--out: no folder " + folder.string());
+  t.command = request.command;
+  if (request.quick) {
     t.snr_db = {-12, 0, 12};
     t.drr_db = {-18, 0, 18};
     t.rt60 = {0.5};
@@ -279,7 +253,7 @@ int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::s
     t.drr_db = {-30, -24, -18, -12, -6, 0, 6, 12, 24};
     t.rt60 = {0.3, 0.6, 1.2};
   }
-  if (!snr_list.empty()) t.snr_db = AxisArg(args, "--snr-db", snr_list);
+  if (!request.snr_db.empty()) t.snr_db = request.snr_db;
   // The band: the nava tones and ~150 Hz about each (a bit's main lobe is +-300 Hz wide, the
   // receiver's filters narrower), or the room profile's chirp. The whine sits in the band where
   // a motor's would hurt most without sitting on a tone: midway between nava's two tones, and
@@ -295,7 +269,7 @@ int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::s
   }
   t.Resize();
   // Made only now, so that bad arguments leave no folder behind.
-  s.speech = Speech(TempDir(args, dir_arg), s.modem.sample_rate, s.seed);
+  s.speech = Speech(TempDir(usage, request.dir), s.modem.sample_rate, s.seed);
 
   const std::size_t per_kind = t.rt60.size() * t.drr_db.size() * t.snr_db.size();
   const std::size_t cells = t.cells.size();

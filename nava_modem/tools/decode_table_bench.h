@@ -38,11 +38,11 @@
 // the rt60 and DRR nearest 0.6 s and 0 dB) and the CPU time to stdout.
 #include <string>
 
-#include "tool_args/tool_args.h"
+#include "nava_bench_args.h"
 
 namespace nava_modem::tools {
 
-// `command` is recorded in the table as how it was made.
-int DecodeTableBench(const multirobot_audio::tools::ToolArgs& args, const std::string& command);
+// Measures and writes the table; `usage` refuses an --out in no folder.
+int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::tools::ToolUsage& usage);
 
 }  // namespace nava_modem::tools

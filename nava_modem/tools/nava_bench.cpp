@@ -42,6 +42,7 @@
 #include "bench_support.h"
 #include "decode_table_bench.h"
 #include "modem_args.h"
+#include "nava_bench_args.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
@@ -56,6 +57,7 @@ using namespace nava_modem;
 using namespace nava_modem::tools;
 using multirobot_audio::tools::LineChart;
 using multirobot_audio::tools::LineSeries;
+using multirobot_audio::tools::ToolUsage;
 using multirobot_audio::tools::WriteLineChart;
 
 struct Decoders {
@@ -99,19 +101,15 @@ Decoded DecodeWithMinimodem(const Decoders& d, const ModemOptions& o, const std:
   return {Score(MinimodemPackets(r.out, o.crc), sent), r.cpu_s, true};
 }
 
-int WhiteNoiseTable(const multirobot_audio::tools::ToolArgs& args) {
-  const int packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
-  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  const int snr_min = static_cast<int>(args.Int("--snr-min", -12, -60, 60));
-  const int snr_max = static_cast<int>(args.Int("--snr-max", 0, -60, 60));
-  const std::string dir = TempDir(args, args.String("--dir", ""));
+int WhiteNoiseTable(const WhiteNoiseRequest& r, const ToolUsage& usage) {
+  const int packets = r.packets;
+  const unsigned seed = r.seed;
+  const int snr_min = r.snr_min, snr_max = r.snr_max;
+  const std::string dir = TempDir(usage, r.dir);
   Decoders decoders;
-  const std::string minimodem = args.String("--minimodem", "minimodem");
-  const ToolModem modem = ProfileArgs(args);
+  decoders.minimodem = r.minimodem;
+  const ToolModem& modem = r.modem;
   const ModemOptions& options = modem.options;
-  if (minimodem != "none" && modem.profile == Profile::kNava) decoders.minimodem = minimodem;
-  args.CheckAllUsed();
-  if (snr_min > snr_max) args.Fail("--snr-min must not be above --snr-max");
 
   std::mt19937 rng(seed);
   const auto profile = MakeProfile(modem.profile, options);
@@ -178,28 +176,15 @@ struct RoomRow {
   Decoded nava, minimodem, room;
 };
 
-int RoomsTable(const multirobot_audio::tools::ToolArgs& args) {
-  const int packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
-  const int plot_packets = static_cast<int>(args.Int("--plot-packets", 30, 0, 100000));
-  const int rooms_per_row = static_cast<int>(args.Int("--rooms-per-row", 6, 1, 1000));
-  if (rooms_per_row > std::min(packets, std::max(1, plot_packets))) args.Fail("--rooms-per-row: expected at most the packets per row and per plot point");
-  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  const std::string dir = TempDir(args, args.String("--dir", ""));
-  const std::string which = args.String("--profile", "both");
-  const std::string minimodem = args.String("--minimodem", "minimodem");
-  const std::string plot = args.String("--plot", dir + "/delivery_vs_drr.png");
-  ModemOptions options = ModemArgs(args);
-  args.CheckAllUsed();
-  std::vector<Profile> profiles;
-  if (which == "both") {
-    profiles = {Profile::kNava, Profile::kRoom};
-  } else if (const auto p = ParseProfile(which)) {
-    profiles = {*p};
-  } else {
-    args.Fail(std::string("--profile: expected both, ") + kProfileNames + ", got " + which);
-  }
+int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
+  const int packets = request.packets, plot_packets = request.plot_packets, rooms_per_row = request.rooms_per_row;
+  const unsigned seed = request.seed;
+  const std::string dir = TempDir(usage, request.dir);
+  const std::string plot = request.plot.empty() ? dir + "/delivery_vs_drr.png" : request.plot;
+  const ModemOptions& options = request.options;
+  const std::vector<Profile>& profiles = request.profiles;
   Decoders decoders;
-  if (minimodem != "none") decoders.minimodem = minimodem;
+  decoders.minimodem = request.minimodem;
   const bool has_nava = std::count(profiles.begin(), profiles.end(), Profile::kNava) > 0;
   const bool has_room = std::count(profiles.begin(), profiles.end(), Profile::kRoom) > 0;
 
@@ -462,13 +447,12 @@ void WritePolarPlot(const std::string& path, const std::vector<std::string>& tit
   if (!cv::imwrite(path, image)) throw std::runtime_error(path + ": cannot write the PNG");
 }
 
-int DoaTable(const multirobot_audio::tools::ToolArgs& args) {
-  const int packets = static_cast<int>(args.Int("--packets", 100, 1, 100000));
-  const unsigned seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  const std::string dir = TempDir(args, args.String("--dir", ""));
-  const std::string plot = args.String("--plot", dir + "/doa_polar.png");
-  ModemOptions options = ModemArgs(args);
-  args.CheckAllUsed();
+int DoaTable(const DoaRequest& request, const ToolUsage& usage) {
+  const int packets = request.packets;
+  const unsigned seed = request.seed;
+  const std::string dir = TempDir(usage, request.dir);
+  const std::string plot = request.plot.empty() ? dir + "/doa_polar.png" : request.plot;
+  const ModemOptions& options = request.options;
   const double half = 0.1 / std::sqrt(2.0);
   const std::vector<Geometry> geometries = {
       {"pair 0.2 m on x", {{0.1, 0.0}, {-0.1, 0.0}}, true},
@@ -539,15 +523,18 @@ int DoaTable(const multirobot_audio::tools::ToolArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string usage = std::string(
-      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2] [--snr-db LIST]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
-      "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const multirobot_audio::tools::ToolArgs args("nava_bench", usage, argc, argv, {"--rooms", "--doa", "--quick"});
-  if (!args.String("--table", "").empty()) {
-    std::string command = "nava_bench";
-    for (int k = 1; k < argc; ++k) command += std::string(" ") + argv[k];
-    return DecodeTableBench(args, command);
-  }
-  if (args.Switch("--doa")) return DoaTable(args);
-  return args.Switch("--rooms") ? RoomsTable(args) : WhiteNoiseTable(args);
+  return multirobot_audio::tools::RunTool([&] {
+    const NavaBenchOptions o = ParseNavaBenchArgs(multirobot_audio::tools::Words(argc, argv));
+    switch (o.mode) {
+      case NavaBenchOptions::Mode::kTable:
+        return DecodeTableBench(o.table, o.usage);
+      case NavaBenchOptions::Mode::kDoa:
+        return DoaTable(o.doa, o.usage);
+      case NavaBenchOptions::Mode::kRooms:
+        return RoomsTable(o.rooms, o.usage);
+      case NavaBenchOptions::Mode::kWhiteNoise:
+        break;
+    }
+    return WhiteNoiseTable(o.white, o.usage);
+  });
 }

@@ -13,7 +13,7 @@
 #include <iostream>
 #include <optional>
 
-#include "modem_args.h"
+#include "nava_decode_args.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/wav_file.h"
@@ -37,72 +37,57 @@ std::string DirectionJson(const RxEvent& e) {
 
 int main(int argc, char** argv) {
   using namespace nava_modem;
-  const std::string usage = std::string("nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] ") +
-                            tools::kModemUsage + " FILE.wav";
-  const multirobot_audio::tools::ToolArgs args("nava_decode", usage, argc, argv);
-  const double threshold = args.Double("--threshold-db", tools::kToolCarrierThresholdDb, -200.0, 20.0);
-  const int fixed = static_cast<int>(args.Int("--max-fixed-bits", 2, 0, 2));
-  const std::string given_rate = args.String("--rate", "");
-  std::optional<std::vector<Microphone2D>> mics;
-  if (const std::string text = args.String("--mics", ""); !text.empty()) {
+  return multirobot_audio::tools::RunTool([&] {
+    tools::NavaDecodeOptions o = tools::ParseNavaDecodeArgs(multirobot_audio::tools::Words(argc, argv));
+    Audio audio;
+    MultiAudio array;
     try {
-      mics = ParseMicPositions(text);
-    } catch (const std::exception& e) {
-      args.Fail(std::string("--mics: ") + e.what());
-    }
-  }
-  const std::vector<std::string>& files = args.positional();
-  if (files.size() != 1) args.Fail("expected one audio file");
-  Audio audio;
-  MultiAudio array;
-  try {
-    if (mics) {
-      array = ReadAudioChannels(files[0]);
-      if (array.channels.size() != mics->size()) {
-        std::cerr << "nava_decode: " << files[0] << " has " << array.channels.size() << " channels, but --mics gives "
-                  << mics->size() << " microphones\n";
-        return 1;
+      if (o.mics) {
+        array = ReadAudioChannels(o.file);
+        if (array.channels.size() != o.mics->size()) {
+          std::cerr << "nava_decode: " << o.file << " has " << array.channels.size() << " channels, but --mics gives "
+                    << o.mics->size() << " microphones\n";
+          return 1;
+        }
+        audio.sample_rate = array.sample_rate;
+      } else {
+        audio = ReadAudioFile(o.file);
       }
-      audio.sample_rate = array.sample_rate;
-    } else {
-      audio = ReadAudioFile(files[0]);
+    } catch (const std::exception& e) {
+      std::cerr << "nava_decode: " << e.what() << "\n";
+      return 1;
     }
-  } catch (const std::exception& e) {
-    std::cerr << "nava_decode: " << e.what() << "\n";
-    return 1;
-  }
-  tools::ToolModem modem = tools::ProfileArgs(args);
-  ModemOptions& options = modem.options;
-  if (!given_rate.empty() && std::abs(options.sample_rate - audio.sample_rate) > 0.5) {
-    args.Fail("--rate " + given_rate + " Hz, but " + files[0] + " is sampled at " +
-              std::to_string(static_cast<long>(audio.sample_rate)) + " Hz");
-  }
-  options.sample_rate = audio.sample_rate;
-  args.CheckAllUsed();
-  ReceiverOptions rx;
-  rx.carrier_threshold_db = threshold;
-  rx.max_fixed_bits = fixed;
-  std::vector<RxEvent> events;
-  try {
-    const auto profile = MakeProfile(modem.profile, options);
-    if (mics) {
-      events = DecodeArray(*profile, rx, array.channels, *mics);
-    } else {
-      const auto receiver = profile->MakeReceiver(rx);
-      receiver->Process(audio.samples.data(), audio.samples.size(), events);
-      receiver->Flush(events);
+    ModemOptions& options = o.modem.options;
+    if (!o.given_rate.empty() && std::abs(options.sample_rate - audio.sample_rate) > 0.5) {
+      o.usage.Fail("--rate " + o.given_rate + " Hz, but " + o.file + " is sampled at " +
+                   std::to_string(static_cast<long>(audio.sample_rate)) + " Hz");
     }
-  } catch (const std::exception& e) {
-    std::cerr << "nava_decode: " << files[0] << ": " << e.what() << "\n";
-    return 1;
-  }
-  for (std::size_t k = 0; k < events.size(); ++k) {
-    const RxEvent& e = events[k];
-    std::printf("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"level_db\": %.1f, "
-                "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s}\n",
-                e.end, e.kind == RxEvent::Kind::kPacket ? "packet" : "noise", NoiseName(e.noise),
-                tools::HexBytes(e.data).c_str(), e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error,
-                mics ? DirectionJson(e).c_str() : "");
-  }
-  return 0;
+    options.sample_rate = audio.sample_rate;
+    ReceiverOptions rx;
+    rx.carrier_threshold_db = o.threshold_db;
+    rx.max_fixed_bits = o.max_fixed_bits;
+    std::vector<RxEvent> events;
+    try {
+      const auto profile = MakeProfile(o.modem.profile, options);
+      if (o.mics) {
+        events = DecodeArray(*profile, rx, array.channels, *o.mics);
+      } else {
+        const auto receiver = profile->MakeReceiver(rx);
+        receiver->Process(audio.samples.data(), audio.samples.size(), events);
+        receiver->Flush(events);
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "nava_decode: " << o.file << ": " << e.what() << "\n";
+      return 1;
+    }
+    for (std::size_t k = 0; k < events.size(); ++k) {
+      const RxEvent& e = events[k];
+      std::printf("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"level_db\": %.1f, "
+                  "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s}\n",
+                  e.end, e.kind == RxEvent::Kind::kPacket ? "packet" : "noise", NoiseName(e.noise),
+                  tools::HexBytes(e.data).c_str(), e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error,
+                  o.mics ? DirectionJson(e).c_str() : "");
+    }
+    return 0;
+  });
 }

@@ -19,33 +19,9 @@
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
-#include "tool_args/tool_args.h"
+#include "nava_room_args.h"
 
 namespace {
-
-using multirobot_audio::tools::ToolArgs;
-
-// Any finite number; the ranges are RoomOptions' own (ValidateRoomOptions), so that the tool
-// and the library cannot disagree.
-double Number(const ToolArgs& args, const std::string& flag, double fallback) {
-  const std::string v = args.String(flag, "");
-  if (v.empty()) return fallback;
-  char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (*end || !std::isfinite(x)) args.Fail(flag + " " + v + ": expected a number");
-  return x;
-}
-
-// The flag that sets each RoomOptions field, to name it in errors.
-const std::map<std::string, std::string>& FlagOfField() {
-  static const std::map<std::string, std::string> flags = {
-      {"rt60", "--rt60"},          {"drr_db", "--drr"},        {"tilt_db", "--tilt"},
-      {"tilt_low_hz", "--tilt-band"}, {"tilt_high_hz", "--tilt-band"}, {"clock_offset", "--clock"},
-      {"snr_db", "--snr"},         {"sir_db", "--sir"},        {"whine_hz", "--whine"},
-      {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"},
-      {"bearing", "--bearing"},    {"distance", "--distance"}};
-  return flags;
-}
 
 std::string Fixed(double v) {
   char text[32];
@@ -94,95 +70,29 @@ std::string ArraySummary(const nava_modem::Audio& clean, std::size_t frames, con
   return s.str();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// Renders the room (or the array) and writes the output; an input file that does not fit the
+// options is refused in the parser's words.
+int Run(const nava_modem::tools::NavaRoomOptions& r) {
   using namespace nava_modem;
-  const std::string usage =
-      "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI] "
-      "[--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB] [--whine HZ] "
-      "[--whine-sir DB] [--whine-am HZ] [--seed N] [--mics X1,Y1,X2,Y2,... [--bearing DEG] [--distance M]]";
-  const ToolArgs args("nava_room", usage, argc, argv);
-  const std::string in = args.Required("--in");
-  const std::string out = args.Required("--out");
-  RoomOptions o;
-  o.rt60 = Number(args, "--rt60", o.rt60);
-  o.drr_db = Number(args, "--drr", o.drr_db);
-  o.tilt_db = Number(args, "--tilt", o.tilt_db);
-  const std::string band = args.String("--tilt-band", "");
-  if (!band.empty()) {
-    char* end = nullptr;
-    o.tilt_low_hz = std::strtod(band.c_str(), &end);
-    if (*end != ',') args.Fail("--tilt-band " + band + ": expected LO,HI in Hz, e.g. 2300,3700");
-    const char* high = end + 1;
-    o.tilt_high_hz = std::strtod(high, &end);
-    if (*end || end == high) args.Fail("--tilt-band " + band + ": expected LO,HI in Hz, e.g. 2300,3700");
-  }
-  o.clock_offset = Number(args, "--clock", 0.0) / 100.0;
-  const std::string noise = args.String("--noise", "");
-  if (noise == "white") {
-    o.noise = RoomOptions::Noise::kWhite;
-  } else if (noise == "pink") {
-    o.noise = RoomOptions::Noise::kPink;
-  } else if (!noise.empty()) {
-    args.Fail("--noise " + noise + ": expected white or pink");
-  }
-  const std::string interferer_path = args.String("--interferer", "");
-  o.snr_db = Number(args, "--snr", o.snr_db);
-  o.sir_db = Number(args, "--sir", o.sir_db);
-  o.whine_hz = Number(args, "--whine", o.whine_hz);
-  o.whine_sir_db = Number(args, "--whine-sir", o.whine_sir_db);
-  o.whine_am_hz = Number(args, "--whine-am", o.whine_am_hz);
-  o.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
-  const std::string mics = args.String("--mics", "");
-  ArraySource source;
-  source.bearing = Number(args, "--bearing", 0.0) * 3.141592653589793 / 180.0;
-  source.distance = Number(args, "--distance", source.distance);
-  args.CheckAllUsed();
-  if (!mics.empty()) {
-    try {
-      source.mics = nava_modem::ParseMicPositions(mics);
-    } catch (const std::invalid_argument& e) {
-      args.Fail(std::string("--mics: ") + e.what());
-    }
-    try {
-      ValidateArraySource(source);
-    } catch (const RoomOptionError& e) {
-      args.Fail(e.field() == "mics" ? "--mics " + mics + ": " + e.what() : FlagOfField().at(e.field()) + ": " + e.what());
-    }
-  }
-  for (const char* flag : {"--bearing", "--distance"}) {
-    if (!args.String(flag, "").empty() && mics.empty()) {
-      args.Fail(std::string(flag) + ": there is no microphone array to place the source around; add --mics X1,Y1,X2,Y2,...");
-    }
-  }
-  // A ratio for a disturbance that is not there is a mistake in the command, not a no-op.
-  if (!args.String("--snr", "").empty() && o.noise == RoomOptions::Noise::kNone) {
-    args.Fail("--snr: there is no noise to set; add --noise white|pink");
-  }
-  if (!args.String("--sir", "").empty() && interferer_path.empty()) {
-    args.Fail("--sir: there is no interferer to set; add --interferer FILE");
-  }
-  for (const char* flag : {"--whine-sir", "--whine-am"}) {
-    if (!args.String(flag, "").empty() && o.whine_hz == 0.0) {
-      args.Fail(std::string(flag) + ": there is no whine to set; add --whine HZ");
-    }
-  }
-
+  const RoomOptions& o = r.room;
+  const ArraySource& source = r.source;
+  const std::string& noise = r.noise;
+  const std::string& interferer_path = r.interferer_path;
+  const std::string& out = r.out;
   // Reads a file named by `flag`, naming both in the error.
-  auto read = [&args](const std::string& flag, const std::string& path) {
+  auto read = [&r](const std::string& flag, const std::string& path) {
     try {
       return ReadAudioFile(path);
     } catch (const std::exception& e) {
-      args.Fail(flag + " " + e.what());
+      r.usage.Fail(flag + " " + e.what());
     }
   };
   try {
-    const Audio clean = read("--in", in);
+    const Audio clean = read("--in", r.in);
     try {
       ValidateRoomOptions(o, clean.sample_rate);
     } catch (const RoomOptionError& e) {
-      args.Fail(FlagOfField().at(e.field()) + ": " + e.what());
+      r.usage.Fail(tools::NavaRoomFlag(e.field()) + ": " + e.what());
     }
     std::vector<float> interferer;
     if (!interferer_path.empty()) {
@@ -193,7 +103,7 @@ int main(int argc, char** argv) {
                   << " Hz to " << std::lround(clean.sample_rate) << " Hz\n";
         interferer = Resample(interferer, clean.sample_rate / audio.sample_rate);
       }
-      if (interferer.empty()) args.Fail("--interferer " + interferer_path + ": no samples");
+      if (interferer.empty()) r.usage.Fail("--interferer " + interferer_path + ": no samples");
     }
     if (!source.mics.empty()) {
       ArrayRenderInfo info;
@@ -224,4 +134,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool(
+      [&] { return Run(nava_modem::tools::ParseNavaRoomArgs(multirobot_audio::tools::Words(argc, argv))); });
 }

@@ -44,8 +44,8 @@
 #include "sounds_good_explorer/experiment_report.h"
 #include "tool_args/progress_bar.h"
 #include "tool_args/record.h"
+#include "sounds_good_experiment_args.h"
 #include "tool_args/shard.h"
-#include "tool_args/tool_args.h"
 #include "world_sim/world_file.h"
 
 namespace {
@@ -53,24 +53,7 @@ namespace {
 using namespace sounds_good_explorer;
 namespace fs = std::filesystem;
 using multirobot_audio::tools::BatchRun;
-using multirobot_audio::tools::ToolArgs;
-
-const char* kUsage =
-    "sounds_good_experiment (--map MAP.yaml | --worlds W1.yaml,W2.yaml | --quick) [--out DIR]\n"
-    "  [--configs 10] [--modes none,bidirectional,omni] [--trials 20] [--robots 5] [--jobs 20]\n"
-    "  [--work 30] [--hearing 15] [--ir-range 1.5] [--camera-range 5] [--cap 20000] [--seed 1]\n"
-    "  [--threads 0] [--chart-config 9] [--audio-weight 3] [--noise-std 0.3]\n"
-    "  [--announce-period 2] [--announce-window 10] [--arrive-radius 0.6]\n"
-    "  [--channel threshold|acoustic] [--profile nava|room] [--table FILE] [--acoustics WORLD.yaml]\n"
-    "  [--shard K/N] | --merge SHARD_DIR... [--out DIR]";
-
-std::vector<std::string> Split(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, ',');)
-    if (!part.empty()) parts.push_back(part);
-  return parts;
-}
+using tools::Protocol;
 
 void WriteText(const std::string& path, const std::string& text) {
   std::ofstream out(path);
@@ -100,91 +83,6 @@ Setup LoadWorlds(const std::vector<std::string>& files, const TaskOptions& task)
     setup.configs.push_back(world.config);
   }
   return setup;
-}
-
-// What the command line asks for.
-struct Protocol {
-  ExperimentOptions options;
-  ConfigurationOptions placement;
-  world_sim::RobotModel body;
-  std::vector<std::string> worlds;  // world files to run, or none: configurations are generated
-  std::string map_file;
-  int configs = 0;                  // the number of configurations (generated or given)
-  double hearing = 15.0;
-  bool hearing_given = false;
-  int chart_config = 9;
-  std::string out_dir, channel, profile_name, table_file, acoustics_file;
-};
-
-Protocol ParseProtocol(const ToolArgs& args) {
-  Protocol p;
-  const bool quick = args.Switch("--quick");
-  ExperimentOptions& options = p.options;
-  TrialOptions& trial = options.trial;
-  ExplorerOptions& explorer = trial.explorer;
-  const std::string worlds = args.String("--worlds", "");
-  p.map_file = args.String("--map", quick ? MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml" : "");
-  if (worlds.empty() && p.map_file.empty()) args.Fail("give --map, --worlds or --quick");
-  if (!worlds.empty() && !args.String("--map", "").empty()) args.Fail("give --map or --worlds, not both");
-  if (!worlds.empty() && Split(worlds).empty()) args.Fail("--worlds: expected world files separated by commas, got '" + worlds + "'");
-  if (!worlds.empty()) {
-    if (quick) args.Fail("--quick makes configurations; give --worlds without it");
-    for (const char* flag : {"--configs", "--robots", "--ir-range", "--camera-range"})
-      if (!args.String(flag, "").empty())
-        args.Fail(std::string(flag) + " makes configurations; the world files given by --worlds are used as they are");
-  }
-  p.worlds = Split(worlds);
-
-  p.configs = static_cast<int>(args.Int("--configs", quick ? 3 : 10, 1, 1000));
-  if (!p.worlds.empty()) p.configs = static_cast<int>(p.worlds.size());
-  options.trials = static_cast<int>(args.Int("--trials", quick ? 6 : 20, 1, 100000));
-  options.modes.clear();
-  for (const std::string& name : Split(args.String("--modes", "none,bidirectional,omni"))) {
-    const auto mode = ParseListenMode(name);
-    if (!mode) args.Fail("--modes: expected none, bidirectional or omni, got '" + name + "'");
-    options.modes.push_back(*mode);
-  }
-  if (options.modes.empty()) args.Fail("--modes: expected at least one mode");
-  p.placement.robots = static_cast<int>(args.Int("--robots", 5, 1, 200));
-  trial.jobs = static_cast<int>(args.Int("--jobs", quick ? 8 : 20, 1, 100000));
-  explorer.task.work_time = args.Double("--work", 30.0, 0.0, 1e6);
-  p.hearing = args.Double("--hearing", 15.0, 0.0, 1e4);
-  p.hearing_given = !args.String("--hearing", "").empty();
-  // The thesis's robots never ran flat; world_sim's do (about two hours), which would stop long
-  // "no audio" trials. Generated configurations carry no battery drain.
-  p.body.battery.idle_drain = 0.0;
-  p.body.battery.motion_drain = 0.0;
-  p.body.ir_range = args.Double("--ir-range", 1.5, 0.01, 100.0);
-  p.body.camera_range = args.Double("--camera-range", 5.0, 0.01, 1000.0);
-  trial.time_cap = args.Double("--cap", 20000.0, 1.0, 1e8);
-  options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
-  options.threads = static_cast<int>(args.Int("--threads", 0, 0, 1024));
-  p.chart_config = static_cast<int>(args.Int("--chart-config", 9, 1, 1000));
-  if (p.chart_config > p.configs && !args.String("--chart-config", "").empty())
-    args.Fail("--chart-config: expected a configuration from 1 to " + std::to_string(p.configs) +
-              ", got " + std::to_string(p.chart_config));
-  p.chart_config = std::min(p.chart_config, p.configs);
-  explorer.frontier.audio_weight = args.Double("--audio-weight", explorer.frontier.audio_weight, 0.0, 1e6);
-  explorer.frontier.noise_std = args.Double("--noise-std", explorer.frontier.noise_std, 0.0, 1e6);
-  explorer.task.announce_period = args.Double("--announce-period", explorer.task.announce_period, 0.01, 1e6);
-  explorer.task.announce_window = args.Double("--announce-window", explorer.task.announce_window, 0.0, 1e6);
-  explorer.task.arrive_radius = args.Double("--arrive-radius", explorer.task.arrive_radius, 0.01, 100.0);
-  p.out_dir = args.String("--out", "sounds_good_results");
-  p.channel = args.String("--channel", "threshold");
-  if (p.channel != "threshold" && p.channel != "acoustic") args.Fail("--channel: expected threshold or acoustic, got '" + p.channel + "'");
-  p.profile_name = args.String("--profile", "nava");
-  const auto profile = nava_modem::ParseProfile(p.profile_name);
-  if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got '" + p.profile_name + "'");
-  nava_modem::UseProfileTiming(*profile, {}, trial.channel.mac);
-  p.table_file = args.String("--table", "");
-  p.acoustics_file = args.String("--acoustics", "");
-  if (p.channel != "acoustic" && (!p.table_file.empty() || !p.acoustics_file.empty())) {
-    args.Fail(std::string(p.table_file.empty() ? "--acoustics" : "--table") + " is for --channel acoustic");
-  }
-  args.CheckAllUsed();
-  p.placement.source = explorer.task.source;
-  p.placement.sink = explorer.task.sink;
-  return p;
 }
 
 // The configurations (loaded or generated) and, for the acoustic channel, the decode table and
@@ -279,8 +177,7 @@ void Report(const Protocol& p, std::vector<TrialRow>& rows, const std::vector<st
 }
 
 // A whole run, or one shard of it.
-int Run(const ToolArgs& args, const BatchRun& batch) {
-  Protocol p = ParseProtocol(args);
+int Run(Protocol p, const BatchRun& batch) {
   const Setup setup = MakeSetup(p);
   audio_propagation::PropagationOptions audio;
   audio.max_range = p.hearing;
@@ -315,7 +212,7 @@ int Run(const ToolArgs& args, const BatchRun& batch) {
 
 int Merge(const BatchRun& batch) {
   const multirobot_audio::tools::MergedShards shards = batch.Merge();
-  const Protocol p = ParseProtocol(batch.MergedArgs(shards));
+  const Protocol p = tools::ParseProtocol(batch.MergedArgs(shards));
   std::vector<TrialRow> rows = ExperimentRows(p.configs, p.options);
   const std::vector<std::string>& records = shards.Records(rows.size());
   shards.CopyFiles(p.out_dir);
@@ -326,14 +223,15 @@ int Merge(const BatchRun& batch) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const ToolArgs args("sounds_good_experiment", kUsage, argc, argv, {"--quick", "--merge"});
-  const BatchRun batch(args, {"--out", "--threads"});
-  try {
-    return batch.merging() ? Merge(batch) : Run(args, batch);
-  } catch (const grid::InputError& e) {
-    std::cerr << "sounds_good_experiment: " << e.what() << "\n";
-  } catch (const std::exception& e) {
-    std::cerr << "sounds_good_experiment: " << e.what() << "\n";
-  }
-  return 1;
+  return multirobot_audio::tools::RunTool([&] {
+    const tools::ExperimentCommand command = tools::ParseExperimentArgs(multirobot_audio::tools::Words(argc, argv));
+    try {
+      return command.batch.merging() ? Merge(command.batch) : Run(*command.protocol, command.batch);
+    } catch (const grid::InputError& e) {
+      std::cerr << "sounds_good_experiment: " << e.what() << "\n";
+    } catch (const std::exception& e) {
+      std::cerr << "sounds_good_experiment: " << e.what() << "\n";
+    }
+    return 1;
+  });
 }

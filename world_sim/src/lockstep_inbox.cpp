@@ -1,5 +1,6 @@
 #include "world_sim/lockstep_inbox.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -79,12 +80,13 @@ void LockstepInbox::Run() {
 }
 
 void LockstepInbox::AddTimer(double period, double start, TimerCallback callback) {
-  timers_.push_back(Timer{period, start + period, start > 0.0, std::move(callback)});
+  timers_.push_back(Timer{period, start, 1, start + period, start > 0.0, std::move(callback)});
 }
 
 void LockstepInbox::RunTimers(double now) {
   for (Timer& t : timers_) {
     if (!t.anchored) {
+      t.anchor = now;
       t.due = now + t.period;
       t.anchored = true;
     }
@@ -102,9 +104,11 @@ void LockstepInbox::RunTimers(double now) {
     fired[best] = true;
     Timer& t = timers_[best];
     const double expected = t.due;
-    // The next due time is the first multiple of the period after now.
-    const double periods = std::floor((now - t.due) / t.period + 1e-9) + 1.0;
-    t.due += periods * t.period;
+    // The next due time is the first multiple of the period after now (with the tolerance
+    // above: a due time within it counts as now and must not fire again next step).
+    const double passed = std::floor((now + 1e-9 - t.anchor) / t.period);
+    t.periods = std::max(t.periods + 1, static_cast<std::uint64_t>(std::max(passed, 0.0)) + 1);
+    t.due = t.anchor + static_cast<double>(t.periods) * t.period;
     t.callback(expected, now);
   }
 }

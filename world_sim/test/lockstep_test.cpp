@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -145,6 +147,29 @@ TEST(LockstepInbox, RunsTimersAtTheStepsTimeOnceEachEarliestFirst) {
   EXPECT_EQ(log[0], "fast 1.100000");  // due at 1.03, fires once for the jump
   EXPECT_EQ(log[1], "slow 1.100000 1.100000");
   EXPECT_NEAR(inbox.NextDue(), 1.11, 1e-9);
+}
+
+// A day of 0.02 s steps as a participant sees them (world_sim's start + step x 0.02, through a
+// ROS stamp: whole nanoseconds), with a 10 Hz timer: it fires exactly ten times a second, on
+// time. (The due time once drifted a nanosecond past a step's time and, within the comparison's
+// tolerance, fired there without moving on: a second firing one step later, some 3500 extra an
+// hour, found by scripts/soak.sh.)
+TEST(LockstepInbox, TimersKeepTheirRateOverASimulatedDay) {
+  LockstepInbox inbox;
+  std::uint64_t fired = 0, late = 0;
+  inbox.AddTimer(0.1, 0.0, [&](double expected, double now) {
+    ++fired;
+    if (now - expected > 1e-6) ++late;
+  });
+  const std::uint64_t steps = 24 * 3600 * 50;
+  for (std::uint64_t k = 0; k <= steps; ++k) {
+    const auto ns = static_cast<std::int64_t>(std::llround((1.0 + k * 0.02) * 1e9));
+    const double stamp = static_cast<double>(ns / 1000000000) + 1e-9 * static_cast<double>(ns % 1000000000);
+    inbox.Order(StepOrder{"/n", k + 1, stamp, {}}, {"/world"});
+    inbox.Run();
+  }
+  EXPECT_EQ(fired, 24u * 3600u * 10u);
+  EXPECT_EQ(late, 0u);
 }
 
 TEST(LockstepInbox, BoundsWhatItHoldsAndCountsTheOverflow) {

@@ -229,6 +229,22 @@ TEST_F(WorldFileTest, UnknownKeys) {
               "robot_model.legs: unknown key");
 }
 
+// Found by fuzz/world_file.cpp: a list as a key in a nested section escaped as yaml-cpp's bad
+// conversion instead of an InputError naming the section.
+TEST_F(WorldFileTest, KeyThatIsNotTextIsRefused) {
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nacoustics: {volume: 50, regions: [{name: r, [x]: 1}]}\n",
+              "acoustics.regions[0]: expected text keys");
+}
+
+// Found by fuzz/world_file.cpp: a pose far beyond the map (or NaN) overflowed the cell index
+// (undefined behaviour) instead of being refused as off the map.
+TEST_F(WorldFileTest, FarAndNonFinitePosesAreOffTheMap) {
+  ExpectError("robots: [{name: a, pose: [1.5, 42949672961.5, 0]}]\n", "robots[0].pose: robot 'a' starts outside");
+  ExpectError("robots: [{name: a, pose: [.nan, 1, 0]}]\n", "robots[0].pose: robot 'a' starts outside");
+  ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nmarkers: [{id: 1, position: [-1e300, 1]}]\n",
+              "markers[0].position");
+}
+
 TEST_F(WorldFileTest, MissingMapAndBadMap) {
   ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\n", "map: missing", false);
   ExpectError("map: nowhere.yaml\nrobots: [{name: a, pose: [1, 1, 0]}]\n", "map: cannot load the map",

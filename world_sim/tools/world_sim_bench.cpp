@@ -8,7 +8,6 @@
 // `real_time_factor R`, simulated seconds per wall-clock second.
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <random>
 #include <string>
@@ -17,50 +16,14 @@
 #include "grid/map_file.h"
 #include "world_sim/wanderer.h"
 #include "world_sim/world.h"
+#include "tool_args/usage_error.h"
 #include "world_sim/world_file.h"
+#include "world_sim_bench_args.h"
 
 namespace {
 
-struct Args {
-  std::string map = std::string(MULTIROBOT_AUDIO_MAPS_DIR) + "/office.yaml";
-  int robots = 20;
-  double seconds = 600.0;
-  unsigned seed = 1;
-};
-
-[[noreturn]] void Usage(const std::string& problem) {
-  std::cerr << "world_sim_bench: " << problem
-            << "\nusage: world_sim_bench [--map MAP.yaml] [--robots N] [--seconds S] [--seed K]\n";
-  std::exit(1);
-}
-
-Args Parse(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (i + 1 >= argc) Usage(flag + " needs a value");
-    const std::string value = argv[++i];
-    char* end = nullptr;
-    if (flag == "--map") {
-      a.map = value;
-    } else if (flag == "--robots") {
-      a.robots = static_cast<int>(std::strtol(value.c_str(), &end, 10));
-      if (*end || a.robots < 1) Usage("--robots: expected a whole number >= 1, got " + value);
-    } else if (flag == "--seconds") {
-      a.seconds = std::strtod(value.c_str(), &end);
-      if (*end || !(a.seconds > 0)) Usage("--seconds: expected a positive number, got " + value);
-    } else if (flag == "--seed") {
-      a.seed = static_cast<unsigned>(std::strtoul(value.c_str(), &end, 10));
-      if (*end) Usage("--seed: expected a whole number, got " + value);
-    } else {
-      Usage("unknown option " + flag);
-    }
-  }
-  return a;
-}
-
 // Random robots that fit the free space without touching each other, and a few markers.
-world_sim::WorldConfig RandomTeam(const grid::OccupancyMap& map, const Args& args) {
+world_sim::WorldConfig RandomTeam(const grid::OccupancyMap& map, const world_sim::tools::WorldSimBenchArgs& args) {
   world_sim::WorldConfig c;
   c.map_file = args.map;
   c.seed = args.seed;
@@ -69,7 +32,7 @@ world_sim::WorldConfig RandomTeam(const grid::OccupancyMap& map, const Args& arg
       yaw(-M_PI, M_PI);
   int attempts = 0;
   while (static_cast<int>(c.robots.size()) < args.robots) {
-    if (++attempts > 1000000) Usage("cannot place " + std::to_string(args.robots) + " robots on " + args.map);
+    if (++attempts > 1000000) world_sim::tools::RefuseWorldSimBench("cannot place " + std::to_string(args.robots) + " robots on " + args.map);
     const Eigen::Vector2d p = map.CellCoordsToWorld(Eigen::Vector2d(x(rng), y(rng)) / map.resolution());
     world_sim::WorldConfig trial = c;
     trial.robots.push_back({"robot_" + std::to_string(c.robots.size()), {p.x(), p.y(), yaw(rng)},
@@ -88,10 +51,7 @@ world_sim::WorldConfig RandomTeam(const grid::OccupancyMap& map, const Args& arg
   return c;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const Args args = Parse(argc, argv);
+int Run(const world_sim::tools::WorldSimBenchArgs& args) {
   try {
     const grid::OccupancyMap map = grid::LoadMapFile(args.map);
     world_sim::World world(map, RandomTeam(map, args));
@@ -122,4 +82,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool(
+      [&] { return Run(world_sim::tools::ParseWorldSimBenchArgs(multirobot_audio::tools::Words(argc, argv))); });
 }

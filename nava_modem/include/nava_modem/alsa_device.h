@@ -15,9 +15,11 @@ struct AlsaOptions {
   int capture_channels = 1;  // microphones captured (interleaved); playback stays mono
 };
 
-// One capture and one playback stream on an ALSA device, kept open for the link's lifetime.
-// Under- and overruns are recovered from and counted. Throws std::runtime_error naming the
-// device and what failed when a stream cannot be opened or refuses the rate.
+// One capture and one playback stream on an ALSA device. Under- and overruns are recovered
+// from and counted. The constructor throws std::runtime_error (DeviceFault) naming the device
+// and what failed when a stream cannot be opened or refuses the rate, std::invalid_argument
+// for impossible options; once open, a failure that cannot be recovered in place throws
+// DeviceFault from Read or Write, and Reopen() tries again.
 class AlsaDevice : public AudioDevice {
  public:
   explicit AlsaDevice(const AlsaOptions& options);
@@ -29,10 +31,16 @@ class AlsaDevice : public AudioDevice {
   int capture_channels() const override { return options_.capture_channels; }
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
+  std::size_t PlaybackDelay() override;
+  std::size_t PlaybackRoom() override;
+  std::size_t CaptureLag() override;
+  void Reopen() override;
   std::uint64_t overruns() const override { return overruns_; }
   std::uint64_t underruns() const override { return underruns_; }
 
  private:
+  void Open();
+  void Close();
   template <typename Buffer, typename Io>
   void Transfer(snd_pcm_t* pcm, Buffer* data, std::size_t count, std::size_t width, Io io, const char* what,
                 std::uint64_t& xruns);
@@ -40,6 +48,7 @@ class AlsaDevice : public AudioDevice {
   AlsaOptions options_;
   snd_pcm_t* capture_ = nullptr;
   snd_pcm_t* playback_ = nullptr;
+  std::size_t written_since_start_ = 0;  // playback frames since the stream was last prepared
   std::uint64_t overruns_ = 0, underruns_ = 0;
 };
 

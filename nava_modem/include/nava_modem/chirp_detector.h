@@ -62,7 +62,6 @@ class ChirpDetector {
   void Judge(std::int64_t n, double p, std::vector<ChirpPeak>& peaks);
 
   ChirpDetectorOptions options_;
-  double sample_rate_;
   std::size_t chirp_length_, fft_size_, hop_, margin_;
   double template_energy_, template_spectrum_energy_;
   std::unique_ptr<NoiseSpectrum> noise_;

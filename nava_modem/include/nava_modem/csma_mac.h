@@ -44,7 +44,16 @@ class CsmaMac {
   bool Enqueue(Packet packet);
 
   // Advances one tick having heard `level_db`; returns the packet to start sending now, if any.
-  std::optional<Packet> Tick(double level_db);
+  // With `may_send` false (the caller's carrier sense is stale) a send waits, its back-off
+  // held where it is.
+  std::optional<Packet> Tick(double level_db, bool may_send = true);
+
+  // The audio stopped (the device failed): a send, deaf time or reception under way is over.
+  // `unsent` (packets whose sound did not all play, oldest first) go back to the front of the
+  // queue, even past its capacity (they were accepted once), and count in requeued(). The
+  // MAC then waits at least `hold_seconds` and a fresh back-off (with something to send and the
+  // air free) before it sends; a calibration under way goes on.
+  void Interrupt(std::vector<Packet> unsent, double hold_seconds);
 
   // Waiting with nothing to send: a Tick() on a level below the threshold changes nothing but
   // the tick count, so a caller that knows the air is silent may skip such ticks.
@@ -62,6 +71,7 @@ class CsmaMac {
   std::uint64_t sent() const { return sent_; }
   std::uint64_t dropped() const { return dropped_; }
   std::uint64_t receptions() const { return receptions_; }
+  std::uint64_t requeued() const { return requeued_; }
 
  private:
   void EnterWaiting();
@@ -77,7 +87,7 @@ class CsmaMac {
   bool carrier_ = false;
   int remaining_ = 0;  // ticks left in the current timed phase (calibration, back-off, send, deaf, release)
   std::deque<Packet> queue_;
-  std::uint64_t ticks_ = 0, sent_ = 0, dropped_ = 0, receptions_ = 0;
+  std::uint64_t ticks_ = 0, sent_ = 0, dropped_ = 0, receptions_ = 0, requeued_ = 0;
 };
 
 }  // namespace nava_modem

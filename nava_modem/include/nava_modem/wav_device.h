@@ -21,6 +21,11 @@ class WavDevice : public AudioDevice {
   int capture_channels() const override { return channels_; }
   bool Read(float* out, std::size_t count) override;
   void Write(const float* in, std::size_t count) override;
+  // A file takes what is written at once, and never fails.
+  std::size_t PlaybackDelay() override { return 0; }
+  std::size_t PlaybackRoom() override { return SIZE_MAX; }
+  std::size_t CaptureLag() override { return 0; }
+  void Reopen() override {}
   std::uint64_t overruns() const override { return 0; }
   std::uint64_t underruns() const override { return 0; }
 

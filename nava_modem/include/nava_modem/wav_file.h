@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -37,5 +38,9 @@ struct MultiAudio {
 // Reads any audio file libsndfile knows, keeping its channels. Throws std::runtime_error naming
 // the file when it cannot be read or is not audio.
 MultiAudio ReadAudioChannels(const std::string& path);
+
+// The same from a file's bytes in memory (through libsndfile's virtual I/O), for audio that
+// arrives other than as a file, and for the fuzzer; `name` names it in errors.
+MultiAudio ReadAudioChannelsFromMemory(const void* data, std::size_t size, const std::string& name);
 
 }  // namespace nava_modem

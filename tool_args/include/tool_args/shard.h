@@ -71,6 +71,9 @@ class BatchRun {
   // --merge takes besides the directories.
   BatchRun(const ToolArgs& command, std::set<std::string> local);
 
+  // The command it was read from (a copy), to refuse it later in the parser's words.
+  const ToolArgs& command() const { return command_; }
+
   bool merging() const { return !dirs_.empty(); }
   bool sharded() const { return sharded_; }
   const Shard& shard() const { return shard_; }
@@ -89,7 +92,7 @@ class BatchRun {
   ToolArgs MergedArgs(const MergedShards& shards) const;
 
  private:
-  const ToolArgs& command_;
+  ToolArgs command_;  // a copy: a parser returns the BatchRun, not the words it read
   std::set<std::string> local_;
   Shard shard_;
   bool sharded_ = false;

@@ -1,14 +1,16 @@
 #pragma once
 
 // Command-line parsing shared by the command-line tools: --flag value pairs and positional
-// arguments, with errors that name the flag and exit 1.
+// arguments, with errors that name the flag. Errors throw UsageError and -h/--help throws
+// HelpRequested (usage_error.h); the tool's main (RunTool) prints them and exits 1 or 0.
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
+
+#include "tool_args/usage_error.h"
 
 namespace multirobot_audio::tools {
 
@@ -26,10 +28,7 @@ class ToolArgs {
     const int argc = static_cast<int>(words.size());
     for (int i = 0; i < argc; ++i) {
       const std::string flag = words[i];
-      if (flag == "-h" || flag == "--help") {
-        std::cout << "usage: " << usage_ << "\n";
-        std::exit(0);
-      }
+      if (flag == "-h" || flag == "--help") throw HelpRequested(usage_);
       if (flag.rfind("--", 0) != 0 || flag == "--") {
         positional_.push_back(flag);
         continue;
@@ -43,10 +42,7 @@ class ToolArgs {
     }
   }
 
-  [[noreturn]] void Fail(const std::string& problem) const {
-    std::cerr << program_ << ": " << problem << "\nusage: " << usage_ << "\n";
-    std::exit(1);
-  }
+  [[noreturn]] void Fail(const std::string& problem) const { throw UsageError(program_, problem, usage_); }
 
   std::string String(const std::string& flag, const std::string& fallback) const {
     const auto it = values_.find(flag);
@@ -97,6 +93,7 @@ class ToolArgs {
   const std::set<std::string>& switches() const { return switches_; }
   const std::string& program() const { return program_; }
   const std::string& usage() const { return usage_; }
+  ToolUsage tool_usage() const { return {program_, usage_}; }
 
   // Rejects flags the tool does not know, once all have been read.
   void CheckAllUsed() const {

@@ -49,10 +49,14 @@ class LockstepInbox {
   std::size_t held() const { return held_count_; }
 
  private:
+  // Due times are counted in whole periods from the anchor, never summed up period by period:
+  // a sum drifts off the steps' times over a long run.
   struct Timer {
     double period;
+    double anchor;          // the time the timer counts from
+    std::uint64_t periods;  // `due` is anchor + periods x period
     double due;
-    bool anchored;  // `due` is known (else it is set at the first step)
+    bool anchored;          // `anchor` is known (else it is the first step's time)
     TimerCallback callback;
   };
   struct Stream {

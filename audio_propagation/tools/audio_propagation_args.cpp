@@ -1,0 +1,131 @@
+#include "audio_propagation_args.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace audio_propagation::tools {
+namespace {
+
+using multirobot_audio::tools::ToolArgs;
+
+DiffractionRule Rule(const ToolArgs& args, const std::string& name) {
+  const auto rule = ParseDiffractionRule(name);
+  if (!rule) args.Fail("--rule: expected masks or convex_corners, got " + name);
+  return *rule;
+}
+
+nava_modem::Profile Profile(const ToolArgs& args, const std::string& name) {
+  const auto profile = nava_modem::ParseProfile(name);
+  if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got " + name);
+  return *profile;
+}
+
+Eigen::Vector2d ParsePoint(const ToolArgs& args, const std::string& text) {
+  std::istringstream in(text);
+  double x = 0.0, y = 0.0;
+  char comma = 0;
+  std::string rest;
+  if (!(in >> x >> comma >> y) || comma != ',' || (in >> rest) || !std::isfinite(x) || !std::isfinite(y)) {
+    args.Fail("--predict: expected two points X1,Y1 X2,Y2 in m, got '" + text + "'");
+  }
+  return {x, y};
+}
+
+}  // namespace
+
+QueryArgs ParseQueryArgs(const std::vector<std::string>& words) {
+  const ToolArgs args("audio_propagation_query",
+                      "audio_propagation_query --map MAP.yaml [--rule masks|convex_corners] < queries", words);
+  QueryArgs q;
+  q.map_file = args.Required("--map");
+  const std::string rule_name = args.String("--rule", "masks");
+  args.CheckAllUsed();
+  q.rule = Rule(args, rule_name);
+  return q;
+}
+
+BenchArgs ParseBenchArgs(const std::vector<std::string>& words) {
+  const ToolArgs args(
+      "audio_propagation_bench",
+      "audio_propagation_bench --map MAP.yaml [--robots N] [--steps K] [--seed S] [--rule masks|convex_corners]\n"
+      "                        [--acoustics WORLD.yaml [--profile nava|room]]",
+      words);
+  BenchArgs b;
+  b.usage = args.tool_usage();
+  b.map_file = args.Required("--map");
+  b.robots = static_cast<int>(args.Int("--robots", 20, 2, 100000));
+  b.steps = static_cast<int>(args.Int("--steps", 50, 1, 1000000));
+  b.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  const std::string rule_name = args.String("--rule", "masks");
+  b.acoustics_file = args.String("--acoustics", "");
+  b.profile = args.String("--profile", "nava");
+  args.CheckAllUsed();
+  b.rule = Rule(args, rule_name);
+  return b;
+}
+
+SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words) {
+  const ToolArgs args(
+      "audio_scene_render",
+      "audio_scene_render --world W [--map M] --scene S --out DIR [--profile nava|room] [--rate 48000] "
+      "[--table FILE] [--seed 1]",
+      words);
+  SceneRenderArgs s;
+  s.world_file = args.Required("--world");
+  s.map_file = args.String("--map", "");
+  s.scene_file = args.Required("--scene");
+  s.out = args.Required("--out");
+  const std::string profile_name = args.String("--profile", "");
+  s.rate = args.Double("--rate", 48000.0, 8000.0, 192000.0);
+  s.table_file = args.String("--table", "");
+  s.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  args.CheckAllUsed();
+  if (!profile_name.empty()) s.profile = Profile(args, profile_name);
+  return s;
+}
+
+ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
+  const ToolArgs args(
+      "audio_channel_validate",
+      "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
+      "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
+      "--predict X1,Y1 X2,Y2",
+      words);
+  ValidateArgs v;
+  v.usage = args.tool_usage();
+  v.world_file = args.Required("--world");
+  v.map_file = args.String("--map", "");
+  v.profile_name = args.String("--profile", "nava");
+  v.table_file = args.String("--table", "");
+  const std::string predict = args.String("--predict", "");
+  v.time = args.Double("--time", 0.0, -1e9, 1e9);
+  ValidationOptions& options = v.validation;
+  options.links = static_cast<int>(args.Int("--links", 300, 1, 100000));
+  options.packets = static_cast<int>(args.Int("--packets", 4, 1, 1000));
+  options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
+  options.threads = static_cast<int>(args.Int("--threads", 2, 1, 64));
+  v.out = args.String("--out", ".");
+  if (predict.empty()) args.CheckAllUsed();
+  options.profile = Profile(args, v.profile_name);
+  if (predict.empty()) return v;
+  // "--predict X1,Y1 X2,Y2": the second point is the next argument (or the same one, quoted).
+  v.predict = true;
+  std::string a = predict, b;
+  const auto space = predict.find(' ');
+  if (space != std::string::npos) {
+    a = predict.substr(0, space);
+    const auto second = predict.find_first_not_of(' ', space);
+    if (second == std::string::npos) args.Fail("--predict: expected two points X1,Y1 X2,Y2");
+    b = predict.substr(second);
+    if (!args.positional().empty()) args.Fail("unexpected argument " + args.positional().front());
+  } else {
+    if (args.positional().size() != 1) args.Fail("--predict: expected two points X1,Y1 X2,Y2");
+    b = args.positional().front();
+  }
+  args.CheckAllUsed();
+  v.from = ParsePoint(args, a);
+  v.to = ParsePoint(args, b);
+  return v;
+}
+
+}  // namespace audio_propagation::tools

@@ -1,0 +1,56 @@
+#pragma once
+
+// The command lines of audio_propagation's tools (audio_propagation_query, _bench,
+// audio_scene_render, audio_channel_validate), parsed apart from the tools so that tests and the
+// fuzzer can call them. Each parser throws multirobot_audio::tools::UsageError naming what it
+// refuses, HelpRequested for -h.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "audio_propagation/channel_validation.h"
+#include "audio_propagation/diffraction_points.h"
+#include "nava_modem/modem_profile.h"
+#include "tool_args/tool_args.h"
+
+namespace audio_propagation::tools {
+
+struct QueryArgs {
+  std::string map_file;
+  DiffractionRule rule = DiffractionRule::kMasks;
+};
+QueryArgs ParseQueryArgs(const std::vector<std::string>& words);
+
+struct BenchArgs {
+  std::string map_file;
+  int robots = 20, steps = 50;
+  unsigned seed = 1;
+  DiffractionRule rule = DiffractionRule::kMasks;
+  std::string acoustics_file, profile;  // acoustics_file "" for none
+  multirobot_audio::tools::ToolUsage usage;  // to refuse a world file without acoustics
+};
+BenchArgs ParseBenchArgs(const std::vector<std::string>& words);
+
+struct SceneRenderArgs {
+  std::string world_file, map_file, scene_file, out, table_file;
+  std::optional<nava_modem::Profile> profile;  // none: the scene's own
+  double rate = 48000.0;
+  unsigned seed = 1;
+};
+SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words);
+
+struct ValidateArgs {
+  std::string world_file, map_file, profile_name, table_file, out;
+  ValidationOptions validation;  // links, packets, seed, threads, profile
+  // --predict: one link from `from` to `to` at `time` instead of the validation.
+  bool predict = false;
+  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
+  double time = 0.0;
+  multirobot_audio::tools::ToolUsage usage;  // to refuse points outside the world's free space
+};
+ValidateArgs ParseValidateArgs(const std::vector<std::string>& words);
+
+}  // namespace audio_propagation::tools

@@ -1,0 +1,35 @@
+#pragma once
+
+// local_mutex_sim's command line (local_mutex_sim.cpp), parsed apart from the tool so that tests
+// and the fuzzer can call it.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "local_mutex/scenarios.h"
+#include "local_mutex/team_sim.h"
+#include "tool_args/shard.h"
+#include "tool_args/tool_args.h"
+
+namespace local_mutex::tools {
+
+// What a run asks for: a scenario, N random trials or the sweep.
+struct SimRequest {
+  std::string scenario, timeline, out;
+  int trial_count = 0, sweep = 0;
+  TeamSimOptions options;
+  TrialOptions trials;
+};
+
+// The command: a run (`request`), or the merge of shards (batch.merging(), no request: the merge
+// parses the shards' options with ParseSimRequest).
+struct SimCommand {
+  multirobot_audio::tools::BatchRun batch;
+  std::optional<SimRequest> request;
+};
+
+// Both throw multirobot_audio::tools::UsageError naming what they refuse, HelpRequested for -h.
+SimCommand ParseSimArgs(const std::vector<std::string>& words);
+SimRequest ParseSimRequest(const multirobot_audio::tools::ToolArgs& args, const multirobot_audio::tools::BatchRun& batch);
+
+}  // namespace local_mutex::tools

@@ -1,0 +1,126 @@
+#include "nava_bench_args.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace nava_modem::tools {
+namespace {
+
+using multirobot_audio::tools::ToolArgs;
+
+WhiteNoiseRequest ParseWhiteNoise(const ToolArgs& args) {
+  WhiteNoiseRequest r;
+  r.packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.snr_min = static_cast<int>(args.Int("--snr-min", -12, -60, 60));
+  r.snr_max = static_cast<int>(args.Int("--snr-max", 0, -60, 60));
+  r.dir = args.String("--dir", "");
+  const std::string minimodem = args.String("--minimodem", "minimodem");
+  r.modem = ProfileArgs(args);
+  if (minimodem != "none" && r.modem.profile == Profile::kNava) r.minimodem = minimodem;
+  args.CheckAllUsed();
+  if (r.snr_min > r.snr_max) args.Fail("--snr-min must not be above --snr-max");
+  return r;
+}
+
+RoomsRequest ParseRooms(const ToolArgs& args) {
+  RoomsRequest r;
+  r.packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
+  r.plot_packets = static_cast<int>(args.Int("--plot-packets", 30, 0, 100000));
+  r.rooms_per_row = static_cast<int>(args.Int("--rooms-per-row", 6, 1, 1000));
+  if (r.rooms_per_row > std::min(r.packets, std::max(1, r.plot_packets))) {
+    args.Fail("--rooms-per-row: expected at most the packets per row and per plot point");
+  }
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.dir = args.String("--dir", "");
+  const std::string which = args.String("--profile", "both");
+  const std::string minimodem = args.String("--minimodem", "minimodem");
+  r.plot = args.String("--plot", "");
+  r.options = ModemArgs(args);
+  args.CheckAllUsed();
+  if (which == "both") {
+    r.profiles = {Profile::kNava, Profile::kRoom};
+  } else if (const auto p = ParseProfile(which)) {
+    r.profiles = {*p};
+  } else {
+    args.Fail(std::string("--profile: expected both, ") + kProfileNames + ", got " + which);
+  }
+  if (minimodem != "none") r.minimodem = minimodem;
+  return r;
+}
+
+DoaRequest ParseDoa(const ToolArgs& args) {
+  DoaRequest r;
+  r.packets = static_cast<int>(args.Int("--packets", 100, 1, 100000));
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.dir = args.String("--dir", "");
+  r.plot = args.String("--plot", "");
+  r.options = ModemArgs(args);
+  args.CheckAllUsed();
+  return r;
+}
+
+// "-30,-27,-24" as an ascending axis; else the tool fails naming the flag.
+std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const std::string& list) {
+  std::vector<double> axis;
+  std::size_t at = 0;
+  while (at <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    const std::string item = list.substr(at, comma - at);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(v) || std::fabs(v) > 60.0 || (!axis.empty() && v <= axis.back())) {
+      args.Fail(flag + ": expected ascending numbers from -60 to 60 separated by commas, got " + list);
+    }
+    axis.push_back(v);
+    at = comma + 1;
+  }
+  return axis;
+}
+
+DecodeTableRequest ParseTable(const ToolArgs& args) {
+  DecodeTableRequest r;
+  const std::string name = args.String("--table", "");
+  const auto profile = ParseProfile(name);
+  if (!profile) args.Fail(std::string("--table: expected ") + kProfileNames + ", got " + name);
+  r.profile = *profile;
+  r.quick = args.Switch("--quick");
+  r.packets = static_cast<int>(args.Int("--packets", r.quick ? 4 : 12, 1, 100000));
+  r.threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.out = args.String("--out", std::string("decode_table_") + ProfileName(r.profile) + ".yaml");
+  r.dir = args.String("--dir", "");
+  const std::string snr_list = args.String("--snr-db", "");
+  args.CheckAllUsed();
+  if (!snr_list.empty()) r.snr_db = AxisArg(args, "--snr-db", snr_list);
+  return r;
+}
+
+}  // namespace
+
+NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
+  const std::string usage = std::string(
+      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2] [--snr-db LIST]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--quick"});
+  NavaBenchOptions o;
+  o.usage = args.tool_usage();
+  if (!args.String("--table", "").empty()) {
+    o.mode = NavaBenchOptions::Mode::kTable;
+    o.table = ParseTable(args);
+    o.table.command = "nava_bench";
+    for (const std::string& word : words) o.table.command += " " + word;
+  } else if (args.Switch("--doa")) {
+    o.mode = NavaBenchOptions::Mode::kDoa;
+    o.doa = ParseDoa(args);
+  } else if (args.Switch("--rooms")) {
+    o.mode = NavaBenchOptions::Mode::kRooms;
+    o.rooms = ParseRooms(args);
+  } else {
+    o.white = ParseWhiteNoise(args);
+  }
+  return o;
+}
+
+}  // namespace nava_modem::tools

@@ -1,0 +1,64 @@
+#pragma once
+
+// nava_bench's command line (nava_bench.cpp, decode_table_bench.cpp), parsed apart from the
+// tool so that tests and the fuzzer can call it. Each mode reads its own flags and refuses the
+// rest.
+#include <string>
+#include <vector>
+
+#include "modem_args.h"
+
+namespace nava_modem::tools {
+
+// nava_bench [--profile P] ...: packets in white noise against the SNR.
+struct WhiteNoiseRequest {
+  int packets = 60;
+  unsigned seed = 1;
+  int snr_min = -12, snr_max = 0;
+  std::string dir;        // "" for a new folder in /tmp
+  std::string minimodem;  // "" for not run (--minimodem none, or a profile minimodem cannot decode)
+  ToolModem modem;
+};
+
+// nava_bench --rooms: packets under each room condition, and delivery against DRR.
+struct RoomsRequest {
+  int packets = 60, plot_packets = 30, rooms_per_row = 6;
+  unsigned seed = 1;
+  std::string dir, minimodem, plot;  // dir "" for a new folder; minimodem "" for not run; plot "" for DIR/delivery_vs_drr.png
+  std::vector<Profile> profiles;
+  ModemOptions options;
+};
+
+// nava_bench --doa: directions of arrival from microphone arrays.
+struct DoaRequest {
+  int packets = 100;
+  unsigned seed = 1;
+  std::string dir, plot;  // plot "" for DIR/doa_polar.png
+  ModemOptions options;
+};
+
+// nava_bench --table PROFILE: a decode table (decode_table_bench.h).
+struct DecodeTableRequest {
+  Profile profile = Profile::kNava;
+  bool quick = false;
+  int packets = 12, threads = 2;
+  unsigned seed = 1;
+  std::string out, dir;
+  std::vector<double> snr_db;  // --snr-db; empty: the default axis
+  std::string command;         // how the table was made: the whole command line
+};
+
+struct NavaBenchOptions {
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kTable };
+  Mode mode = Mode::kWhiteNoise;
+  WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
+  RoomsRequest rooms;
+  DoaRequest doa;
+  DecodeTableRequest table;
+  multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
+};
+
+// Throws multirobot_audio::tools::UsageError naming what it refuses, HelpRequested for -h.
+NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words);
+
+}  // namespace nava_modem::tools
