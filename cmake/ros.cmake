@@ -22,6 +22,9 @@ catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sens
 # Bridges between the components and ROS: conversions and the node classes.
 add_library(multirobot_audio_ros STATIC
   src/conversions.cpp
+  src/input_checks.cpp
+  src/input_guard.cpp
+  src/subscription_stats.cpp
   src/params.cpp
   src/lockstep_participant.cpp
   src/world_sim_ros.cpp
@@ -75,6 +78,8 @@ if(MULTIROBOT_AUDIO_TESTS)
 
   catkin_add_gtest(conversions_test test/conversions_test.cpp)
   target_link_libraries(conversions_test multirobot_audio_ros)
+  catkin_add_gtest(input_checks_test test/input_checks_test.cpp)
+  target_link_libraries(input_checks_test multirobot_audio_ros)
   catkin_add_gtest(sounds_good_conversions_test test/sounds_good_conversions_test.cpp)
   target_link_libraries(sounds_good_conversions_test sounds_good_ros)
   catkin_add_gtest(charging_conversions_test test/charging_conversions_test.cpp)
@@ -110,6 +115,13 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
 
+  # A broken peer against every simulated node: garbage, floods, a robot missing from TF.
+  add_rostest_gtest(hostile_input_rostest test/hostile_input.test test/hostile_input_rostest.cpp test/hostile_peer.cpp)
+  target_include_directories(hostile_input_rostest PRIVATE ${PROJECT_SOURCE_DIR}/test)
+  target_link_libraries(hostile_input_rostest multirobot_audio_ros)
+  add_dependencies(hostile_input_rostest world_sim_node audio_propagation_node wanderer_node sounds_good_explorer_node
+                   local_mutex_node mutex_client_node charging_demo_node task_monitor_node)
+
   # Three local mutexes on the simulated audio channel; the test node plays their clients.
   add_rostest_gtest(local_mutex_rostest test/local_mutex.test test/local_mutex_rostest.cpp test/lock_watch.cpp
                     test/rostest_main.cpp)
@@ -140,6 +152,8 @@ if(MULTIROBOT_AUDIO_TESTS)
     add_test(NAME ${target} COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh ${test_file})
   endfunction()
   multirobot_audio_air_test(nava_air_rostest nava_air.test test/nava_air_rostest.cpp)
+  # A broken peer against nava_modem's audio/tx over the air.
+  multirobot_audio_air_test(hostile_nava_rostest hostile_nava.test test/hostile_nava_rostest.cpp test/hostile_peer.cpp)
   add_test(NAME nava_air_room_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh nava_air.test profile:=room)
   # A stalled process and a sound server killed in the middle of a packet and restarted: every
   # packet is still heard exactly once.

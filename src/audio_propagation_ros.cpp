@@ -11,6 +11,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "input_checks.h"
 #include "audio_propagation/delivery_map.h"
 #include "audio_propagation/decode_table.h"
 #include "params.h"
@@ -109,7 +110,8 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
 
 AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh,
                                          const AudioPropagationOptions& options)
-    : nh_(nh), pnh_(pnh), lockstep_(nh), options_(options), tf_listener_(tf_buffer_) {
+    : nh_(nh), pnh_(pnh), lockstep_(nh), updater_(nh, pnh), guard_(updater_), options_(options),
+      tf_listener_(tf_buffer_) {
   grid::OccupancyMap map;
   std::vector<world_sim::RobotSpec> specs;
   std::optional<world_sim::Acoustics> acoustics;
@@ -191,18 +193,22 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
   const std::size_t n = options_.robots.size();
   last_carrier_.assign(n, false);
   have_pose_.assign(n, false);
+  missing_poses_.assign(n, 0);
+  pose_stamps_.assign(n, ros::Time());
+  const std::size_t packet_bytes = static_cast<std::size_t>(options_.packet_bytes);
   for (std::size_t k = 0; k < n; ++k) {
     ros::NodeHandle rnh(nh_, options_.robots[k]);
-    tx_subs_.push_back(lockstep_.Subscribe<multirobot_audio::AudioPacket>(
-        rnh, "audio/tx", 10, [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { OnTx(k, m); }));
+    tx_subs_.push_back(guard_.Subscribe<multirobot_audio::AudioPacket>(
+        lockstep_, rnh, "audio/tx", 10,
+        [packet_bytes](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, packet_bytes); },
+        [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { return OnTx(k, m); }));
     rx_pubs_.push_back(lockstep_.Advertise<multirobot_audio::AudioReception>(rnh, "audio/rx", 50));
     carrier_pubs_.push_back(lockstep_.Advertise<multirobot_audio::CarrierSense>(rnh, "audio/carrier", 10));
     truth_.emplace_back();
     if (lockstep_.enabled()) {
-      truth_subs_.push_back(lockstep_.Subscribe<nav_msgs::Odometry>(
-          rnh, "ground_truth", 10, [this, k](const nav_msgs::Odometry::ConstPtr& m) {
-            truth_[k] = std::make_unique<grid::Pose2D>(grid::Pose2D{
-                m->pose.pose.position.x, m->pose.pose.position.y, FromQuaternionYaw(m->pose.pose.orientation)});
+      truth_subs_.push_back(guard_.Subscribe<nav_msgs::Odometry>(
+          lockstep_, rnh, "ground_truth", 10, OdometryProblem, [this, k](const nav_msgs::Odometry::ConstPtr& m) {
+            truth_[k] = std::make_unique<grid::Pose2D>(FromPose(m->pose.pose));
           }));
     }
     channel_->SetPose(k, {kUnknown, kUnknown, 0.0});
@@ -211,34 +217,48 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
   points_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("diffraction_points", 1, true);
   PublishDiffractionPoints();
   timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.update_rate), &AudioPropagationRos::OnTimer, this);
+  updater_.setHardwareID("none");
+  updater_.add("poses", this, &AudioPropagationRos::DiagnosePoses);
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
 }
 
 AudioPropagationRos::~AudioPropagationRos() {
   // Printed directly: the node's logging is already shut down when it is destroyed.
-  std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; rejected %lu "
-              "packets, %lu queue drops, %lu pose look-ups failed; path cache %lu hits, %lu misses; "
-              "%lu arrivals unheard (acoustic model)\n",
+  std::uint64_t missing = 0;
+  for (const std::uint64_t m : missing_poses_) missing += m;
+  std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; %s; %lu pose look-ups "
+              "failed; path cache %lu hits, %lu misses; %lu arrivals unheard (acoustic model)\n",
               static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
-              static_cast<unsigned long>(noise_heard_), static_cast<unsigned long>(rejected_packets_),
-              static_cast<unsigned long>(queue_drops_), static_cast<unsigned long>(missing_poses_),
+              static_cast<unsigned long>(noise_heard_), guard_.Summary().c_str(), static_cast<unsigned long>(missing),
               static_cast<unsigned long>(channel_ ? channel_->cache().hits() : 0),
               static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0),
               static_cast<unsigned long>(channel_ ? channel_->unheard() : 0));
   std::fflush(stdout);
 }
 
-void AudioPropagationRos::OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg) {
-  if (static_cast<int>(msg->data.size()) != options_.packet_bytes) {
-    ++rejected_packets_;
-    ROS_WARN_THROTTLE(5.0, "audio_propagation: %s/audio/tx: packet of %zu bytes rejected, expected %d (%lu rejected so far)",
-                      options_.robots[robot].c_str(), msg->data.size(), options_.packet_bytes,
-                      static_cast<unsigned long>(rejected_packets_));
-    return;
+InputGuard::Verdict AudioPropagationRos::OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg) {
+  if (!channel_->Send(robot, msg->data)) return InputGuard::Verdict::Drop("the robot's transmit queue is full");
+  return InputGuard::Verdict::Accept();
+}
+
+void AudioPropagationRos::DiagnosePoses(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  std::string missing;
+  const ros::Time now = ros::Time::now();
+  for (std::size_t k = 0; k < options_.robots.size(); ++k) {
+    char text[128];
+    if (have_pose_[k]) {
+      std::snprintf(text, sizeof text, "pose %.1f s old, %lu look-ups failed", (now - pose_stamps_[k]).toSec(),
+                    static_cast<unsigned long>(missing_poses_[k]));
+    } else {
+      std::snprintf(text, sizeof text, "no pose yet, %lu look-ups failed", static_cast<unsigned long>(missing_poses_[k]));
+      missing += (missing.empty() ? "" : ", ") + options_.robots[k];
+    }
+    status.add(options_.robots[k], text);
   }
-  if (!channel_->Send(robot, msg->data)) {
-    ++queue_drops_;
-    ROS_WARN_THROTTLE(5.0, "audio_propagation: %s: transmit queue full, packet dropped (%lu dropped so far)",
-                      options_.robots[robot].c_str(), static_cast<unsigned long>(queue_drops_));
+  if (missing.empty()) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "every robot's pose known");
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no pose (neither heard nor heard from): " + missing);
   }
 }
 
@@ -250,9 +270,11 @@ void AudioPropagationRos::UpdatePoses() {
       if (lockstep_.enabled()) {
         if (!truth_[k]) throw tf2::LookupException("no " + options_.robots[k] + "/ground_truth yet");
         pose = *truth_[k];
+        pose_stamps_[k] = ros::Time::now();
       } else {
         const auto t = tf_buffer_.lookupTransform("map", frame, ros::Time(0));
         pose = grid::Pose2D{t.transform.translation.x, t.transform.translation.y, FromQuaternionYaw(t.transform.rotation)};
+        pose_stamps_[k] = t.header.stamp;
       }
       if (!model_->map().IsFreeAt(pose.position())) {
         ROS_WARN_THROTTLE(5.0, "audio_propagation: %s is inside a wall or off the map at (%.2f, %.2f): it neither hears nor is heard",
@@ -261,7 +283,7 @@ void AudioPropagationRos::UpdatePoses() {
       channel_->SetPose(k, pose);
       have_pose_[k] = true;
     } catch (const tf2::TransformException& e) {
-      ++missing_poses_;
+      ++missing_poses_[k];
       if (!have_pose_[k]) {
         ROS_WARN_THROTTLE(5.0, "audio_propagation: no pose for %s yet (%s)", options_.robots[k].c_str(), e.what());
       }

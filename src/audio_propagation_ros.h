@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <multirobot_audio/AudioPacket.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
@@ -14,6 +15,7 @@
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/propagation_model.h"
+#include "input_guard.h"
 #include "lockstep_participant.h"
 
 namespace multirobot_audio {
@@ -56,14 +58,19 @@ class AudioPropagationRos {
   ~AudioPropagationRos();
 
  private:
-  void OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg);
+  InputGuard::Verdict OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg);
   void OnTimer(const ros::TimerEvent& event);
   void UpdatePoses();
   void PublishDiffractionPoints();
   void PublishDeliveryMap(const ros::Time& now);
+  // Whose pose is known, and how many look-ups failed for each robot (a robot missing from TF).
+  void DiagnosePoses(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   ros::NodeHandle nh_, pnh_;
   LockstepParticipant lockstep_;  // before what it hands messages and timers to
+  diagnostic_updater::Updater updater_;
+  InputGuard guard_;              // before the subscriptions whose callbacks it checks
+  ros::WallTimer diagnostics_timer_;
   AudioPropagationOptions options_;
   std::vector<world_sim::Microphone> microphones_;
   std::unique_ptr<audio_propagation::PropagationModel> model_;
@@ -77,6 +84,8 @@ class AudioPropagationRos {
   // counted like every other message, rather than from the TF listener's own thread.
   std::vector<std::unique_ptr<grid::Pose2D>> truth_;
   std::vector<bool> last_carrier_, have_pose_;
+  std::vector<std::uint64_t> missing_poses_;  // per robot
+  std::vector<ros::Time> pose_stamps_;        // of each robot's latest pose
   ros::Publisher paths_pub_, points_pub_, delivery_pub_;
   std::size_t delivery_robot_ = 0;
   double next_delivery_map_ = 0.0;  // s of channel time
@@ -84,9 +93,8 @@ class AudioPropagationRos {
   ros::Time start_;
   std::uint64_t updates_ = 0;
   int marker_id_ = 0;
-  // Reported at shutdown and in throttled warnings.
-  std::uint64_t rejected_packets_ = 0, queue_drops_ = 0, missing_poses_ = 0, sent_ = 0,
-                packets_heard_ = 0, noise_heard_ = 0;
+  // Reported at shutdown.
+  std::uint64_t sent_ = 0, packets_heard_ = 0, noise_heard_ = 0;
 };
 
 }  // namespace multirobot_audio

@@ -12,6 +12,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "input_checks.h"
 #include "navigation_conversions.h"
 #include "navigation_params.h"
 #include "params.h"
@@ -137,11 +138,22 @@ ChargingDemoRos::ChargingDemoRos(ros::NodeHandle nh, ros::NodeHandle pnh, const 
   cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
   state_pub_ = lockstep_.Advertise<multirobot_audio::ChargingState>(pnh_, "state", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("charger", 1);
-  odom_sub_ = lockstep_.Subscribe(nh_, "odom", 10, &ChargingDemoRos::OnOdometry, this);
-  scan_sub_ = lockstep_.Subscribe(nh_, "scan", 10, &ChargingDemoRos::OnScan, this);
-  fiducials_sub_ = lockstep_.Subscribe(nh_, "fiducials", 10, &ChargingDemoRos::OnFiducials, this);
-  battery_sub_ = lockstep_.Subscribe(nh_, "battery", 10, &ChargingDemoRos::OnBattery, this);
-  lock_sub_ = lockstep_.Subscribe(nh_, "local_mutex/state", 10, &ChargingDemoRos::OnLockState, this);
+  odom_sub_ = guard_.Subscribe<nav_msgs::Odometry>(lockstep_, nh_, "odom", 10, OdometryProblem,
+                                                   [this](const nav_msgs::Odometry::ConstPtr& m) { OnOdometry(m); });
+  scan_sub_ = guard_.Subscribe<sensor_msgs::LaserScan>(lockstep_, nh_, "scan", 10, ScanProblem,
+                                                       [this](const sensor_msgs::LaserScan::ConstPtr& m) { OnScan(m); });
+  fiducials_sub_ = guard_.Subscribe<multirobot_audio::FiducialArray>(
+      lockstep_, nh_, "fiducials", 10, FiducialsProblem,
+      [this](const multirobot_audio::FiducialArray::ConstPtr& m) { OnFiducials(m); });
+  battery_sub_ = guard_.Subscribe<sensor_msgs::BatteryState>(
+      lockstep_, nh_, "battery", 10, BatteryProblem, [this](const sensor_msgs::BatteryState::ConstPtr& m) { OnBattery(m); });
+  lock_sub_ = guard_.Subscribe<multirobot_audio::LockState>(
+      lockstep_, nh_, "local_mutex/state", 10, LockStateProblem,
+      [this](const multirobot_audio::LockState::ConstPtr& m) { OnLockState(m); });
+  // The action client's subscriptions: what the local_mutex (or anyone) says about goals.
+  for (const char* topic : {"status", "feedback", "result"}) {
+    guard_.Watch(nh_.resolveName(std::string("local_mutex/acquire/") + topic));
+  }
   control_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.control_rate), &ChargingDemoRos::OnControl, this);
   std::string ids;
   for (const std::uint32_t id : options_.controller.charging.chargers) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
@@ -155,10 +167,10 @@ ChargingDemoRos::~ChargingDemoRos() {
   const charging_demo::ChargingBehaviour& b = controller_.behaviour();
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("charging_demo summary: %s phase %s, battery %.2f, charges %lu, give-ups %lu, redocks %lu, "
-              "lock goals %lu (granted %lu, cancelled %lu), releases %lu, late updates %lu of %lu\n",
+              "lock goals %lu (granted %lu, cancelled %lu), releases %lu, late updates %lu of %lu; %s\n",
               nh_.getNamespace().c_str(), charging_demo::PhaseName(b.phase()), battery_, Count(b.charges()),
               Count(b.give_ups()), Count(b.redocks()), Count(goals_), Count(grants_), Count(cancels_),
-              Count(releases_), Count(late_), Count(updates_));
+              Count(releases_), Count(late_), Count(updates_), guard_.Summary().c_str());
   std::fflush(stdout);
 }
 
@@ -185,12 +197,7 @@ void ChargingDemoRos::OnFiducials(const multirobot_audio::FiducialArray::ConstPt
 }
 
 void ChargingDemoRos::OnBattery(const sensor_msgs::BatteryState::ConstPtr& msg) {
-  const BatteryReading r = FromBatteryState(*msg);
-  if (!std::isfinite(r.level)) {
-    ROS_WARN_THROTTLE(10.0, "charging_demo %s: %s gives neither a percentage nor charge and capacity; ignored",
-                      nh_.getNamespace().c_str(), battery_sub_.getTopic().c_str());
-    return;
-  }
+  const BatteryReading r = FromBatteryState(*msg);  // a finite level: BatteryProblem has seen to it
   battery_ = r.level;
   docked_ = r.docked;
   have_battery_ = true;
@@ -207,13 +214,8 @@ void ChargingDemoRos::SetLock(State state, const ros::Time& stamp, bool own) {
 }
 
 void ChargingDemoRos::OnLockState(const multirobot_audio::LockState::ConstPtr& msg) {
-  const std::optional<State> state = FromLockStateValue(msg->state);
-  if (!state) {
-    ROS_WARN_THROTTLE(10.0, "charging_demo %s: unknown lock state %u on %s", nh_.getNamespace().c_str(),
-                      static_cast<unsigned>(msg->state), lock_sub_.getTopic().c_str());
-    return;
-  }
-  SetLock(*state, msg->header.stamp, false);
+  // A known state: LockStateProblem has seen to it.
+  if (const std::optional<State> state = FromLockStateValue(msg->state)) SetLock(*state, msg->header.stamp, false);
 }
 
 void ChargingDemoRos::OnGoalFeedback(const multirobot_audio::AcquireLockFeedbackConstPtr& feedback) {

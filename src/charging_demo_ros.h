@@ -14,6 +14,7 @@
 #include <sensor_msgs/LaserScan.h>
 
 #include "charging_conversions.h"
+#include "input_guard.h"
 #include "lockstep_participant.h"
 #include "charging_demo/charging_controller.h"
 
@@ -70,6 +71,7 @@ class ChargingDemoRos {
 
   ros::NodeHandle nh_, pnh_;
   LockstepParticipant lockstep_;  // before what it hands messages and timers to
+  InputGuard guard_;              // before the subscriptions whose callbacks it checks
   ChargingDemoNodeOptions options_;
   charging_demo::ChargingController controller_;
   // Made at the first control update, not in the constructor: actionlib's client waits there

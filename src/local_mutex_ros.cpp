@@ -6,6 +6,7 @@
 #include <multirobot_audio/AudioPacket.h>
 #include <multirobot_audio/LockState.h>
 
+#include "input_checks.h"
 #include "params.h"
 
 namespace multirobot_audio {
@@ -65,7 +66,12 @@ LocalMutexRos::LocalMutexRos(ros::NodeHandle nh, const LocalMutexNodeOptions& op
   lock_.SetObserver([this](const local_mutex::MutexEvent& e) { OnEvent(e); });
   tx_pub_ = lockstep_.Advertise<multirobot_audio::AudioPacket>(nh_, "audio/tx", 10);
   state_pub_ = lockstep_.Advertise<multirobot_audio::LockState>(nh_, "local_mutex/state", 10, true);
-  rx_sub_ = lockstep_.Subscribe(nh_, "audio/rx", 50, &LocalMutexRos::OnRx, this);
+  rx_sub_ = guard_.Subscribe<multirobot_audio::AudioReception>(
+      lockstep_, nh_, "audio/rx", 50, ReceptionProblem,
+      [this](const multirobot_audio::AudioReception::ConstPtr& m) { OnRx(m); });
+  // The action server's own subscriptions: goals and cancels from any client.
+  guard_.Watch(nh_.resolveName("local_mutex/acquire/goal"));
+  guard_.Watch(nh_.resolveName("local_mutex/acquire/cancel"));
   release_srv_ = nh_.advertiseService("local_mutex/release", &LocalMutexRos::OnRelease, this);
   acquire_server_.registerGoalCallback([this] { OnGoal(); });
   acquire_server_.registerPreemptCallback([this] { OnPreempt(); });
@@ -84,9 +90,9 @@ LocalMutexRos::~LocalMutexRos() {
   const local_mutex::MutexCounters& c = lock_.counters();
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("local_mutex summary: robot %d, grants %lu, sent %lu, heard %lu, noise %lu, malformed %lu, "
-              "duplicate ids %lu, echoes %lu; ended %s\n",
+              "duplicate ids %lu, echoes %lu; ended %s; %s\n",
               lock_.robot_id(), Count(c.grants), Count(c.sent), Count(c.heard), Count(c.noise), Count(c.malformed),
-              Count(c.duplicate_ids), Count(c.echoes), local_mutex::StateName(lock_.state()));
+              Count(c.duplicate_ids), Count(c.echoes), local_mutex::StateName(lock_.state()), guard_.Summary().c_str());
   std::fflush(stdout);
 }
 

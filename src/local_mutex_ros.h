@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
+#include "input_guard.h"
 #include "lockstep_participant.h"
 #include "local_mutex/local_mutex.h"
 
@@ -50,6 +51,7 @@ class LocalMutexRos {
 
   ros::NodeHandle nh_;
   LockstepParticipant lockstep_;  // before what it hands messages and timers to
+  InputGuard guard_;              // before the subscriptions whose callbacks it checks
   LocalMutexNodeOptions options_;
   local_mutex::LocalMutex lock_;
   local_mutex::State last_state_ = local_mutex::State::kReleased;

@@ -48,14 +48,14 @@ class LockstepParticipant {
 
   template <class M>
   ros::Subscriber Subscribe(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,
-                            std::function<void(const boost::shared_ptr<M const>&)> callback);
-  template <class M, class T>
-  ros::Subscriber Subscribe(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,
-                            void (T::*method)(const boost::shared_ptr<M const>&), T* object) {
-    return Subscribe<M>(nh, topic, queue,
-                        std::function<void(const boost::shared_ptr<M const>&)>(
-                            [object, method](const boost::shared_ptr<M const>& m) { (object->*method)(m); }));
+                            std::function<void(const boost::shared_ptr<M const>&)> callback) {
+    return SubscribeEvents<M>(nh, topic, queue,
+                              [callback](const ros::MessageEvent<M const>& e) { callback(e.getConstMessage()); });
   }
+  // The same for a callback that wants to know the publisher (an InputGuard's checked callback).
+  template <class M>
+  ros::Subscriber SubscribeEvents(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,
+                                  std::function<void(const ros::MessageEvent<M const>&)> callback);
   template <class M>
   CountedPublisher Advertise(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue, bool latch = false);
   // A periodic timer on ROS time. In lockstep the returned ros::Timer is empty: the inbox runs it.
@@ -89,17 +89,16 @@ class LockstepParticipant {
 };
 
 template <class M>
-ros::Subscriber LockstepParticipant::Subscribe(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,
-                                               std::function<void(const boost::shared_ptr<M const>&)> callback) {
-  if (!enabled_) return nh.subscribe<M>(topic, queue, callback);
+ros::Subscriber LockstepParticipant::SubscribeEvents(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue,
+                                                     std::function<void(const ros::MessageEvent<M const>&)> callback) {
+  using Callback = boost::function<void(const ros::MessageEvent<M const>&)>;
+  if (!enabled_) return nh.subscribe<M>(topic, queue, Callback(callback));
   const std::string resolved = nh.resolveName(topic);
   ros::Subscriber sub = nh.subscribe<M>(
       topic, std::max<std::uint32_t>(queue, 1000),
-      boost::function<void(const ros::MessageEvent<M const>&)>(
-          [this, resolved, callback](const ros::MessageEvent<M const>& event) {
-            boost::shared_ptr<M const> msg = event.getConstMessage();
-            Arrive(resolved, event.getPublisherName(), [callback, msg] { callback(msg); });
-          }));
+      Callback([this, resolved, callback](const ros::MessageEvent<M const>& event) {
+        Arrive(resolved, event.getPublisherName(), [callback, event] { callback(event); });
+      }));
   subscriptions_.emplace_back(resolved, sub);
   return sub;
 }

@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
     // Both handles live as long as the node: destroying the last handle shuts ROS down.
     ros::NodeHandle nh, pnh("~");
     multirobot_audio::MutexClient client(nh, multirobot_audio::ReadMutexClientOptions(pnh));
+    // Run() blocks; the global queue (the input guard's timers) is served beside it.
+    ros::AsyncSpinner spinner(1);
+    spinner.start();
     client.Run();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mutex_client: %s\n", e.what());

@@ -8,6 +8,7 @@
 #include <multirobot_audio/CarrierSense.h>
 
 #include "conversions.h"
+#include "input_checks.h"
 #include "nava_modem/frame.h"
 #include "params.h"
 
@@ -91,7 +92,7 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
 }
 
 NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaModemOptions& options)
-    : nh_(nh), pnh_(pnh), options_(options), updater_(nh, pnh) {
+    : nh_(nh), pnh_(pnh), options_(options), updater_(nh, pnh), guard_(updater_) {
   device_ = std::make_unique<nava_modem::AlsaDevice>(options_.alsa);
   link_ = std::make_unique<nava_modem::NavaLink>(options_.link, *device_);
   if (options_.link.profile == nava_modem::Profile::kNava) {
@@ -104,7 +105,10 @@ NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaMo
              options_.alsa.sample_rate, nava_modem::ProfileName(options_.link.profile), link_->profile().Airtime(),
              options_.link.mac.fixed_threshold_db ? "fixed carrier threshold" : "calibrating on silence");
   }
-  tx_sub_ = nh_.subscribe("audio/tx", 20, &NavaModemRos::OnTx, this);
+  tx_sub_ = guard_.Subscribe<multirobot_audio::AudioPacket>(
+      nh_, "audio/tx", 20,
+      [](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, nava_modem::kDataBytes); },
+      [this](const multirobot_audio::AudioPacket::ConstPtr& m) { return OnTx(m); });
   rx_pub_ = nh_.advertise<multirobot_audio::AudioReception>("audio/rx", 50);
   carrier_pub_ = nh_.advertise<multirobot_audio::CarrierSense>("audio/carrier", 20);
   direction_pub_ = pnh_.advertise<visualization_msgs::Marker>("directions", 20);
@@ -120,30 +124,28 @@ NavaModemRos::~NavaModemRos() {
   const Counts& c = counts_;
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("nava_modem summary: sent %lu, heard %lu packets (%lu repaired) and noise %lu zero_byte, %lu one_byte, "
-              "%lu bad_crc; rejected %lu, queue drops %lu; capture overruns %lu, playback underruns %lu, "
+              "%lu bad_crc; queue drops %lu; capture overruns %lu, playback underruns %lu, "
               "packets cut %lu",
               static_cast<unsigned long>(c.sent), static_cast<unsigned long>(c.packets),
               static_cast<unsigned long>(c.repaired), static_cast<unsigned long>(c.zero_byte),
               static_cast<unsigned long>(c.one_byte), static_cast<unsigned long>(c.bad_crc),
-              static_cast<unsigned long>(c.rejected), static_cast<unsigned long>(c.queue_drops),
-              static_cast<unsigned long>(c.overruns), static_cast<unsigned long>(c.underruns),
-              static_cast<unsigned long>(c.packets_cut));
-  std::printf("; capture catch-ups %lu; device faults %lu, reopens %lu, packets re-queued %lu%s\n",
+              static_cast<unsigned long>(c.queue_drops), static_cast<unsigned long>(c.overruns),
+              static_cast<unsigned long>(c.underruns), static_cast<unsigned long>(c.packets_cut));
+  std::printf("; capture catch-ups %lu; device faults %lu, reopens %lu, packets re-queued %lu%s; %s\n",
               static_cast<unsigned long>(health_.catch_ups), static_cast<unsigned long>(health_.faults),
               static_cast<unsigned long>(health_.reopens), static_cast<unsigned long>(health_.requeued),
-              health_.down ? " (the device is down)" : "");
+              health_.down ? " (the device is down)" : "", guard_.Summary().c_str());
   std::fflush(stdout);
 }
 
-void NavaModemRos::OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg) {
+InputGuard::Verdict NavaModemRos::OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (msg->data.size() != static_cast<std::size_t>(nava_modem::kDataBytes)) {
-    ++counts_.rejected;
-    ROS_WARN_THROTTLE(5.0, "nava_modem: audio/tx: packet of %zu bytes rejected, expected %d (%lu rejected so far)",
-                      msg->data.size(), nava_modem::kDataBytes, static_cast<unsigned long>(counts_.rejected));
-    return;
+  // The audio thread empties the inbox every period; a flood faster than that must not grow it.
+  if (inbox_.size() >= options_.link.mac.queue_capacity) {
+    return InputGuard::Verdict::Drop("the transmit inbox is full (the audio thread has not caught up)");
   }
   inbox_.push_back(msg->data);
+  return InputGuard::Verdict::Accept();
 }
 
 void NavaModemRos::AudioLoop() {
@@ -278,7 +280,6 @@ void NavaModemRos::Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("playback underruns", c.underruns);
   status.add("packets cut by underruns", c.packets_cut);
   status.add("queue drops", c.queue_drops);
-  status.add("rejected (wrong size)", c.rejected);
   DiagnoseDevice(status);
 }
 

@@ -13,6 +13,7 @@
 #include <multirobot_audio/AudioPacket.h>
 #include <ros/ros.h>
 
+#include "input_guard.h"
 #include "nava_modem/alsa_device.h"
 #include "nava_modem/nava_link.h"
 
@@ -41,7 +42,7 @@ class NavaModemRos {
     std::string state;
     double threshold_db = 0.0, level_db = 0.0;
     std::uint64_t sent = 0, packets = 0, zero_byte = 0, one_byte = 0, bad_crc = 0, repaired = 0;
-    std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0, rejected = 0;
+    std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0;
   };
   // The sound card's health, as the link last reported it (guarded by mutex_).
   struct DeviceHealth {
@@ -52,7 +53,7 @@ class NavaModemRos {
     std::uint64_t catch_ups = 0;  // times the capture fell behind and the link caught up
     ros::WallTime down_since;
   };
-  void OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
+  InputGuard::Verdict OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
   void AudioLoop();
   void ReportDevice();  // logs and records a failure, a reopen or a catch-up of the device
   void DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -67,9 +68,10 @@ class NavaModemRos {
   ros::Publisher rx_pub_, carrier_pub_, direction_pub_;  // ~directions: an arrow per reception with a direction
   std::uint32_t direction_id_ = 0;
   diagnostic_updater::Updater updater_;
+  InputGuard guard_;  // audio/tx's checks and counts, on updater_
   ros::WallTimer diagnostics_timer_;
   std::mutex mutex_;  // guards inbox_, counts_ and health_
-  std::deque<std::vector<std::uint8_t>> inbox_;
+  std::deque<std::vector<std::uint8_t>> inbox_;  // audio/tx for the audio thread; at most the MAC queue's capacity
   Counts counts_;
   DeviceHealth health_;
   std::atomic<bool> running_{true};

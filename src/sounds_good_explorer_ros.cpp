@@ -11,6 +11,7 @@
 #include <visualization_msgs/Marker.h>
 
 #include "conversions.h"
+#include "input_checks.h"
 #include "navigation_conversions.h"
 #include "navigation_params.h"
 #include "params.h"
@@ -71,11 +72,19 @@ SoundsGoodExplorerRos::SoundsGoodExplorerRos(ros::NodeHandle nh, ros::NodeHandle
   map_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("local_map", 1);
   plan_pub_ = pnh_.advertise<nav_msgs::Path>("plan", 1);
   frontier_pub_ = pnh_.advertise<visualization_msgs::Marker>("frontier", 1);
-  odom_sub_ = lockstep_.Subscribe(nh_, "odom", 10, &SoundsGoodExplorerRos::OnOdometry, this);
-  scan_sub_ = lockstep_.Subscribe(nh_, "scan", 10, &SoundsGoodExplorerRos::OnScan, this);
-  fiducials_sub_ = lockstep_.Subscribe(nh_, "fiducials", 10, &SoundsGoodExplorerRos::OnFiducials, this);
+  odom_sub_ = guard_.Subscribe<nav_msgs::Odometry>(
+      lockstep_, nh_, "odom", 10, OdometryProblem,
+      [this](const nav_msgs::Odometry::ConstPtr& m) { OnOdometry(m); });
+  scan_sub_ = guard_.Subscribe<sensor_msgs::LaserScan>(
+      lockstep_, nh_, "scan", 10, ScanProblem,
+      [this](const sensor_msgs::LaserScan::ConstPtr& m) { OnScan(m); });
+  fiducials_sub_ = guard_.Subscribe<multirobot_audio::FiducialArray>(
+      lockstep_, nh_, "fiducials", 10, FiducialsProblem,
+      [this](const multirobot_audio::FiducialArray::ConstPtr& m) { OnFiducials(m); });
   // Announcements come in bursts from several robots; none may be lost to a short queue.
-  rx_sub_ = lockstep_.Subscribe(nh_, "audio/rx", 50, &SoundsGoodExplorerRos::OnRx, this);
+  rx_sub_ = guard_.Subscribe<multirobot_audio::AudioReception>(
+      lockstep_, nh_, "audio/rx", 50, ReceptionProblem,
+      [this](const multirobot_audio::AudioReception::ConstPtr& m) { OnRx(m); });
   control_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.control_rate), &SoundsGoodExplorerRos::OnControl, this);
   if (options_.map_rate > 0.0) {
     map_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.map_rate), &SoundsGoodExplorerRos::PublishLocalMap, this);
@@ -89,10 +98,10 @@ SoundsGoodExplorerRos::SoundsGoodExplorerRos(ros::NodeHandle nh, ros::NodeHandle
 SoundsGoodExplorerRos::~SoundsGoodExplorerRos() {
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("sounds_good_explorer summary: %s jobs %lu, packets sent %lu, heard %lu (foreign %lu), stuck %lu, "
-              "plans %lu, late updates %lu of %lu\n",
+              "plans %lu, late updates %lu of %lu; %s\n",
               nh_.getNamespace().c_str(), Count(jobs_), Count(sent_), Count(heard_),
               Count(explorer_.foreign_packets()), Count(explorer_.stuck_count()), Count(explorer_.plans()),
-              Count(late_), Count(updates_));
+              Count(late_), Count(updates_), guard_.Summary().c_str());
   std::fflush(stdout);
 }
 

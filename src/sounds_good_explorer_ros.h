@@ -13,6 +13,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 
+#include "input_guard.h"
 #include "lockstep_participant.h"
 #include "sounds_good_explorer/explorer.h"
 
@@ -55,6 +56,7 @@ class SoundsGoodExplorerRos {
 
   ros::NodeHandle nh_, pnh_;
   LockstepParticipant lockstep_;  // before what it hands messages and timers to
+  InputGuard guard_;              // before the subscriptions whose callbacks it checks
   SoundsGoodExplorerNodeOptions options_;
   sounds_good_explorer::Explorer explorer_;
   ros::Subscriber odom_sub_, scan_sub_, fiducials_sub_, rx_sub_;

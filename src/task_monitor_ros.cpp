@@ -5,6 +5,7 @@
 #include <numeric>
 #include <string>
 
+#include "input_checks.h"
 #include "params.h"
 
 namespace multirobot_audio {
@@ -27,19 +28,21 @@ TaskMonitorOptions ReadTaskMonitorOptions(const ros::NodeHandle& pnh) {
 TaskMonitorRos::TaskMonitorRos(ros::NodeHandle nh, const TaskMonitorOptions& options)
     : nh_(nh), options_(options), counts_(options.robots.size(), 0) {
   for (std::size_t k = 0; k < options_.robots.size(); ++k) {
-    subs_.push_back(nh_.subscribe<multirobot_audio::Job>(
-        "/" + options_.robots[k] + "/jobs", 10,
-        [this, k](const multirobot_audio::Job::ConstPtr& msg) { OnJob(k, msg); }));
+    subs_.push_back(guard_.Subscribe<multirobot_audio::Job>(
+        nh_, "/" + options_.robots[k] + "/jobs", 10, JobProblem,
+        [this, k](const multirobot_audio::Job::ConstPtr& msg) { return OnJob(k, msg); }));
   }
   // A wall timer: the team may come up before the simulated clock does.
   up_timer_ = nh_.createWallTimer(ros::WallDuration(kUpCheckPeriod), &TaskMonitorRos::CheckTeamUp, this);
 }
 
 TaskMonitorRos::~TaskMonitorRos() {
-  if (finished_) return;
   // Printed directly: the node's logging is already shut down when it is destroyed.
-  std::printf("task_monitor: team finished %d of %d jobs by %.1f s\n", TeamJobs(), options_.goal,
-              start_.isZero() ? 0.0 : Elapsed(ros::Time::now()));
+  if (!finished_) {
+    std::printf("task_monitor: team finished %d of %d jobs by %.1f s\n", TeamJobs(), options_.goal,
+                start_.isZero() ? 0.0 : Elapsed(ros::Time::now()));
+  }
+  std::printf("task_monitor summary: team jobs %d of %d; %s\n", TeamJobs(), options_.goal, guard_.Summary().c_str());
   std::fflush(stdout);
 }
 
@@ -60,8 +63,13 @@ int TaskMonitorRos::TeamJobs() const {
   return static_cast<int>(std::accumulate(counts_.begin(), counts_.end(), std::uint64_t{0}));
 }
 
-void TaskMonitorRos::OnJob(std::size_t robot, const multirobot_audio::Job::ConstPtr& msg) {
-  if (finished_) return;
+InputGuard::Verdict TaskMonitorRos::OnJob(std::size_t robot, const multirobot_audio::Job::ConstPtr& msg) {
+  const std::string& name = options_.robots[robot];
+  if (msg->count <= counts_[robot]) {
+    return InputGuard::Verdict::Reject("count " + std::to_string(msg->count) + ", not above " + name + "'s last, " +
+                                       std::to_string(counts_[robot]));
+  }
+  if (finished_) return InputGuard::Verdict::Accept();
   if (start_.isZero()) {
     // A robot finished a job before the check saw every controller up; count from now on.
     start_ = ros::Time::now();
@@ -69,21 +77,21 @@ void TaskMonitorRos::OnJob(std::size_t robot, const multirobot_audio::Job::Const
     ROS_WARN("task_monitor: a job arrived before every robot was seen up; team time counts from %.1f s",
              start_.toSec());
   }
-  const std::string& name = options_.robots[robot];
   if (msg->count != counts_[robot] + 1) {
     ROS_WARN("task_monitor: %s reports job %u after job %u", name.c_str(), msg->count, counts_[robot]);
   }
   // Each robot's own count is the truth: a lost message does not lose a job.
-  counts_[robot] = std::max(counts_[robot], msg->count);
+  counts_[robot] = msg->count;
   const int team = TeamJobs();
   const double t = Elapsed(msg->header.stamp);
   ROS_INFO("task_monitor: team jobs %d/%d at %.1f s: %s finished marker %u", team, options_.goal, t, name.c_str(),
            msg->marker);
-  if (team < options_.goal) return;
+  if (team < options_.goal) return InputGuard::Verdict::Accept();
   finished_ = true;
   std::printf("task_monitor: team finished %d jobs in %.1f s\n", options_.goal, t);
   std::fflush(stdout);
   ros::shutdown();
+  return InputGuard::Verdict::Accept();
 }
 
 }  // namespace multirobot_audio

@@ -7,6 +7,8 @@
 #include <multirobot_audio/Job.h>
 #include <ros/ros.h>
 
+#include "input_guard.h"
+
 namespace multirobot_audio {
 
 // Options of the task_monitor node, filled from its private parameters.
@@ -22,7 +24,9 @@ TaskMonitorOptions ReadTaskMonitorOptions(const ros::NodeHandle& pnh);
 // and the team's total, and when the total reaches the goal prints
 //   task_monitor: team finished G jobs in T s
 // and shuts ROS down (a launch file that marks it required then stops). A team that stops
-// short prints `task_monitor: team finished N of G jobs by T s` on exit.
+// short prints `task_monitor: team finished N of G jobs by T s` on exit. Either way it ends with
+// a `task_monitor summary:` line of its input counts. A job count that is not above the robot's
+// last is turned down (a repeat, or a peer gone wrong).
 // T is simulated time counted from the moment every robot's controller is up (each jobs topic
 // has a publisher), not from the clock's start: at high speed, controllers that take a wall
 // second longer to start than the simulator would otherwise cost the team a minute.
@@ -32,13 +36,14 @@ class TaskMonitorRos {
   ~TaskMonitorRos();
 
  private:
-  void OnJob(std::size_t robot, const multirobot_audio::Job::ConstPtr& msg);
+  InputGuard::Verdict OnJob(std::size_t robot, const multirobot_audio::Job::ConstPtr& msg);
   void CheckTeamUp(const ros::WallTimerEvent&);
   double Elapsed(const ros::Time& t) const;  // s since the team came up
   int TeamJobs() const;
 
   ros::NodeHandle nh_;
   TaskMonitorOptions options_;
+  InputGuard guard_;  // before the subscriptions whose callbacks it checks
   std::vector<ros::Subscriber> subs_;
   std::vector<std::uint32_t> counts_;  // each robot's latest job count
   ros::WallTimer up_timer_;

@@ -1,8 +1,11 @@
 #include "wanderer_ros.h"
 
+#include <cstdio>
+
 #include <geometry_msgs/Twist.h>
 #include <multirobot_audio/AudioPacket.h>
 
+#include "input_checks.h"
 #include "params.h"
 
 namespace multirobot_audio {
@@ -21,7 +24,9 @@ WandererRos::WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& opt
                          std::uint32_t seed, double announce_period)
     : nh_(nh), lockstep_(nh), wanderer_(options, seed), seed_(seed) {
   cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
-  scan_sub_ = lockstep_.Subscribe(nh_, "scan", 10, &WandererRos::OnScan, this);
+  scan_sub_ = guard_.Subscribe<sensor_msgs::LaserScan>(
+      lockstep_, nh_, "scan", 10, ScanProblem,
+      [this](const sensor_msgs::LaserScan::ConstPtr& m) { OnScan(m); });
   if (announce_period > 0.0) {
     audio_pub_ = lockstep_.Advertise<multirobot_audio::AudioPacket>(nh_, "audio/tx", 10);
     announce_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(announce_period), [this](const ros::TimerEvent&) {
@@ -34,6 +39,13 @@ WandererRos::WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& opt
   }
 }
 
+WandererRos::~WandererRos() {
+  // Printed directly: the node's logging is already shut down when it is destroyed.
+  std::printf("wanderer summary: %s commands %lu; %s\n", nh_.getNamespace().c_str(),
+              static_cast<unsigned long>(commands_), guard_.Summary().c_str());
+  std::fflush(stdout);
+}
+
 void WandererRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& scan) {
   // The behaviour wants ranger 0 ahead and an even ring, which is what world_sim publishes.
   const double dt = last_scan_.isZero() ? 0.1 : (scan->header.stamp - last_scan_).toSec();
@@ -43,6 +55,7 @@ void WandererRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& scan) {
   cmd.linear.x = c.v;
   cmd.angular.z = c.w;
   cmd_pub_.publish(cmd);
+  ++commands_;
 }
 
 }  // namespace multirobot_audio

@@ -5,6 +5,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 
+#include "input_guard.h"
 #include "lockstep_participant.h"
 #include "world_sim/wanderer.h"
 
@@ -22,18 +23,21 @@ class WandererRos {
   // time): 'W' and the three low bytes of `seed`, so listeners can tell robots apart.
   WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options, std::uint32_t seed,
               double announce_period = 0.0);
+  ~WandererRos();
 
  private:
   void OnScan(const sensor_msgs::LaserScan::ConstPtr& scan);
 
   ros::NodeHandle nh_;
   LockstepParticipant lockstep_;  // before what it hands messages and timers to
+  InputGuard guard_;              // before the subscriptions whose callbacks it checks
   world_sim::Wanderer wanderer_;
   ros::Subscriber scan_sub_;
   CountedPublisher cmd_pub_, audio_pub_;
   ros::Timer announce_timer_;
   std::uint32_t seed_;
   ros::Time last_scan_;
+  std::uint64_t commands_ = 0;
 };
 
 }  // namespace multirobot_audio

@@ -16,6 +16,7 @@
 #include <ros/callback_queue.h>
 
 #include "conversions.h"
+#include "input_checks.h"
 #include "params.h"
 #include "world_sim/world_file.h"
 
@@ -68,9 +69,14 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
     io.odom_frame = name + "/odom";
     io.base_frame = name + "/base_link";
     io.cmd_vel_topic = rnh.resolveName("cmd_vel");
+    auto checked = guard_.Checked<geometry_msgs::Twist>(
+        io.cmd_vel_topic, TwistProblem, [this, k](const geometry_msgs::Twist::ConstPtr& m) { OnCmdVel(k, *m); });
     io.cmd_vel = rnh.subscribe<geometry_msgs::Twist>("cmd_vel", 100,
                                boost::function<void(const ros::MessageEvent<geometry_msgs::Twist const>&)>(
-                                   [this, k](const ros::MessageEvent<geometry_msgs::Twist const>& e) { OnCmdVel(k, e); }));
+                                   [this, k, checked](const ros::MessageEvent<geometry_msgs::Twist const>& e) {
+                                     CountCommand(k, e);
+                                     checked(e);
+                                   }));
     io.scan = rnh.advertise<sensor_msgs::LaserScan>("scan", 10);
     io.odom = rnh.advertise<nav_msgs::Odometry>("odom", 10);
     io.ground_truth = rnh.advertise<nav_msgs::Odometry>("ground_truth", 10);
@@ -84,18 +90,14 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
            world_->map().height(), world_->map().resolution(), options_.world.step, options_.speed);
 }
 
-void WorldSimRos::OnCmdVel(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event) {
-  const geometry_msgs::Twist::ConstPtr& msg = event.getConstMessage();
-  if (lockstep_) {
-    const world_sim::StreamId stream{io_[index].cmd_vel_topic, event.getPublisherName()};
-    lockstep_->OwnReceived(stream, ++cmd_received_[stream]);
-  }
-  if (!std::isfinite(msg->linear.x) || !std::isfinite(msg->angular.z)) {
-    ROS_WARN_THROTTLE(5.0, "world_sim: %s/cmd_vel: ignoring a non-finite command",
-                      world_->robots()[index].name.c_str());
-    return;
-  }
-  world_->SetCommand(index, msg->linear.x, msg->angular.z);
+void WorldSimRos::CountCommand(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event) {
+  if (!lockstep_) return;
+  const world_sim::StreamId stream{io_[index].cmd_vel_topic, event.getPublisherName()};
+  lockstep_->OwnReceived(stream, ++cmd_received_[stream]);
+}
+
+void WorldSimRos::OnCmdVel(std::size_t index, const geometry_msgs::Twist& msg) {
+  world_->SetCommand(index, msg.linear.x, msg.angular.z);
   io_[index].last_cmd_time = world_->time();
 }
 
@@ -284,9 +286,10 @@ std::string WorldSimRos::Run() {
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   char line[512];
   std::snprintf(line, sizeof line,
-                "world_sim summary: robots %zu, simulated %.1f s, distance driven %.3f m, collisions %d\n"
+                "world_sim summary: robots %zu, simulated %.1f s, distance driven %.3f m, collisions %d; %s\n"
                 "world_sim timing: wall %.1f s, real-time factor %.1f",
-                io_.size(), world_->elapsed(), world_->TotalDistance(), world_->TotalCollisions(), wall,
+                io_.size(), world_->elapsed(), world_->TotalDistance(), world_->TotalCollisions(),
+                guard_.Summary().c_str(), wall,
                 wall > 0 ? world_->elapsed() / wall : 0.0);
   std::string summary = line;
   if (lockstep_) {

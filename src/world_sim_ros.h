@@ -13,6 +13,7 @@
 #include <multirobot_audio/LockstepAck.h>
 #include <multirobot_audio/LockstepHello.h>
 
+#include "input_guard.h"
 #include "world_sim/lockstep_coordinator.h"
 #include "world_sim/world.h"
 
@@ -58,7 +59,9 @@ class WorldSimRos {
     std::string odom_frame, base_frame;
   };
 
-  void OnCmdVel(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event);
+  // Lockstep: counts a command as received, whatever the guard makes of it.
+  void CountCommand(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event);
+  void OnCmdVel(std::size_t index, const geometry_msgs::Twist& msg);
   void Publish();
   void SetUpLockstep();
   // Lockstep: counts a message the world published on `topic`.
@@ -75,6 +78,7 @@ class WorldSimRos {
   std::vector<RobotIo> io_;
   ros::Publisher clock_pub_, map_pub_, markers_pub_;
   tf2_ros::TransformBroadcaster tf_;
+  InputGuard guard_;
   std::uint64_t markers_every_ = 1;
   std::uint64_t battery_every_ = 1;
   // Lockstep

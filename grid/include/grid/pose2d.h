@@ -15,6 +15,9 @@ struct Pose2D {
   Eigen::Vector2d position() const { return {x, y}; }
 };
 
+// Every number of the pose is finite: what a pose from a sensor, a file or a peer must be.
+inline bool IsFinite(const Pose2D& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.yaw); }
+
 // Wraps an angle into (-pi, pi].
 inline double NormalizeAngle(double a) {
   // Simulation steps overshoot by at most a turn; handle that without a library call.

@@ -1,0 +1,127 @@
+// The message checks every node's InputGuard runs: what world_sim and audio_propagation publish
+// passes; each kind of garbage a broken peer sends is named by field and value.
+#include "input_checks.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "conversions.h"
+
+namespace multirobot_audio {
+namespace {
+
+const float kNan = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+
+world_sim::RobotModel Model() { return world_sim::RobotModel{}; }
+
+// `msg` with `spoil` done to it.
+template <class M, class F>
+M Spoilt(M msg, F spoil) {
+  spoil(msg);
+  return msg;
+}
+
+TEST(InputChecksTest, TwistNeedsEveryNumberFinite) {
+  geometry_msgs::Twist t;
+  t.linear.x = 0.3;
+  t.angular.z = -1.0;
+  EXPECT_EQ(TwistProblem(t), "");
+  t.angular.z = kNan;
+  EXPECT_EQ(TwistProblem(t), "angular.z = nan");
+  t.angular.z = 0.0;
+  t.linear.y = -kInf;
+  EXPECT_EQ(TwistProblem(t), "linear.y = -inf");
+}
+
+TEST(InputChecksTest, OdometryNeedsAFinitePoseAndAUnitQuaternion) {
+  nav_msgs::Odometry o = ToOdometry({1.0, 2.0, 0.5}, 0.2, 0.1, "robot_0/odom", "robot_0/base_link", ros::Time(3.0));
+  EXPECT_EQ(OdometryProblem(o), "");
+  EXPECT_EQ(OdometryProblem(Spoilt(o, [](auto& m) { m.pose.pose.position.x = kNan; })), "pose.pose.position.x = nan");
+  // All zeros: a default-built message.
+  const std::string zero = OdometryProblem(Spoilt(o, [](auto& m) { m.pose.pose.orientation = geometry_msgs::Quaternion(); }));
+  EXPECT_NE(zero.find("unit quaternion"), std::string::npos) << zero;
+  EXPECT_NE(OdometryProblem(Spoilt(o, [](auto& m) { m.pose.pose.orientation.z = kInf; })).find("unit quaternion"),
+            std::string::npos);
+  EXPECT_EQ(OdometryProblem(Spoilt(o, [](auto& m) { m.twist.twist.angular.z = kNan; })), "twist.twist.angular.z = nan");
+}
+
+TEST(InputChecksTest, ScanTakesNanAndInfinityAsReadingsButNotNegativeRanges) {
+  std::vector<float> ranges(16, 1.0f);
+  ranges[3] = kInf;   // nothing in reach
+  ranges[4] = kNan;   // no reading
+  ranges[5] = -kInf;  // too close (REP 117)
+  const sensor_msgs::LaserScan scan = ToLaserScan(ranges, Model(), "robot_0/base_link", ros::Time(1.0));
+  EXPECT_EQ(ScanProblem(scan), "");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.ranges[7] = -0.5f; })), "ranges[7] = -0.5");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.angle_increment = kNan; })), "angle_increment = nan");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.range_max = 0.0f; })), "range_max = 0");
+  // More readings than the angles give; one short is float rounding in a driver's angles.
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.ranges.resize(40, 1.0f); })),
+            "ranges: 40 readings, angle_min to angle_max gives 16");
+  EXPECT_EQ(ScanProblem(Spoilt(scan, [](auto& m) { m.ranges.resize(15); })), "");
+  // A robot without rangers publishes an empty scan.
+  EXPECT_EQ(ScanProblem(ToLaserScan({}, Model(), "robot_0/base_link", ros::Time(1.0))), "");
+}
+
+TEST(InputChecksTest, FiducialsNeedFiniteRangeAndBearing) {
+  const FiducialArray seen = ToFiducialArray({{7, 1.5, 0.2}, {9, 2.0, -1.0}}, "robot_0/base_link", ros::Time(1.0));
+  EXPECT_EQ(FiducialsProblem(seen), "");
+  EXPECT_EQ(FiducialsProblem(Spoilt(seen, [](auto& m) { m.fiducials[1].bearing = kNan; })), "fiducials[1].bearing = nan");
+  EXPECT_EQ(FiducialsProblem(Spoilt(seen, [](auto& m) { m.fiducials[0].range = -1.0f; })), "fiducials[0].range = -1");
+}
+
+TEST(InputChecksTest, BatteryNeedsALevel) {
+  world_sim::BatteryModel model;
+  const sensor_msgs::BatteryState b = ToBatteryState(0.4, false, model, "robot_0/base_link", ros::Time(1.0));
+  EXPECT_EQ(BatteryProblem(b), "");
+  EXPECT_EQ(BatteryProblem(Spoilt(b, [](auto& m) { m.percentage = kNan; m.charge = kNan; })), "neither a percentage nor a charge and a positive capacity");
+  EXPECT_NE(BatteryProblem(Spoilt(b, [](auto& m) { m.percentage = -0.2f; })).find("= -0.2"), std::string::npos) << BatteryProblem(Spoilt(b, [](auto& m) { m.percentage = -0.2f; }));
+}
+
+TEST(InputChecksTest, ReceptionTakesAnUnknownDirectionButNotANanLevel) {
+  AudioReception r;
+  r.kind = AudioReception::PACKET;
+  r.data = {1, 2, 3, 4};
+  r.level_db = 55.0f;
+  r.direction = kNan;  // unknown: legitimate
+  r.direction_confidence = 0.0f;
+  r.quality = 1.0f;
+  r.path_length = kNan;  // a real link does not know it
+  EXPECT_EQ(ReceptionProblem(r), "");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.level_db = kNan; })), "level_db = nan");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.direction = kInf; })), "direction = inf");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.direction_confidence = kNan; })), "direction_confidence = nan");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.kind = 7; })), "kind = 7");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.path_length = -3.0f; })), "path_length = -3");
+}
+
+TEST(InputChecksTest, LockStatePacketAndJob) {
+  LockState s;
+  s.state = LockState::HELD;
+  EXPECT_EQ(LockStateProblem(s), "");
+  s.state = 9;
+  EXPECT_EQ(LockStateProblem(s), "state = 9");
+
+  AudioPacket p;
+  p.data = {1, 2, 3, 4};
+  EXPECT_EQ(PacketProblem(p, 4), "");
+  p.data.resize(300);
+  EXPECT_EQ(PacketProblem(p, 4), "data: 300 bytes, the link carries 4");
+
+  Job j;
+  j.count = 1;
+  EXPECT_EQ(JobProblem(j), "");
+  j.count = 0;
+  EXPECT_EQ(JobProblem(j), "count = 0 (the first job is 1)");
+}
+
+}  // namespace
+}  // namespace multirobot_audio
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
