@@ -58,9 +58,8 @@ Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
 
 ExperimentCommand ParseExperimentArgs(const std::vector<std::string>& words) {
   const ToolArgs args("charging_experiment", kUsage, words, {"--merge"});
-  ExperimentCommand command{BatchRun(args, {"--out", "--threads", "--timeline"}), std::nullopt};
-  if (!command.batch.merging()) command.protocol = ParseProtocol(args, command.batch);
-  return command;
+  return multirobot_audio::tools::ParseBatchCommand<Protocol>(args, {"--out", "--threads", "--timeline"},
+                                                               ParseProtocol);
 }
 
 }  // namespace charging_demo::tools

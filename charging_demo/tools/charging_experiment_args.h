@@ -24,12 +24,9 @@ struct Protocol {
   ChargingTrialOptions options;
 };
 
-// The command: a run (`protocol`), or the merge of shards (batch.merging(), no protocol: the
-// merge parses the shards' options with ParseProtocol).
-struct ExperimentCommand {
-  multirobot_audio::tools::BatchRun batch;
-  std::optional<Protocol> protocol;
-};
+// The command: a run (`run`), or the merge of shards (the merge parses the shards' options with
+// ParseProtocol).
+using ExperimentCommand = multirobot_audio::tools::BatchCommand<Protocol>;
 
 // Both throw multirobot_audio::tools::UsageError naming what they refuse (an option out of its
 // range in the options' own words, without the usage line), HelpRequested for -h.

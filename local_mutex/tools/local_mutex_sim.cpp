@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
     const BatchRun& batch = command.batch;
     try {
       if (batch.merging()) return Merge(batch);
-      const Request& r = *command.request;
+      const Request& r = *command.run;
       ValidateMutexOptions(r.options.mutex);
       if (!r.scenario.empty()) return RunScenario(r.scenario, r.options, r.timeline);
       if (!r.timeline.empty() && r.trial_count != 1) batch.command().Fail("--timeline goes with --scenario or --trials 1");

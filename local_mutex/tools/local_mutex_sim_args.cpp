@@ -68,9 +68,7 @@ SimRequest ParseSimRequest(const ToolArgs& args, const BatchRun& batch) {
 
 SimCommand ParseSimArgs(const std::vector<std::string>& words) {
   const ToolArgs args("local_mutex_sim", kUsage, words, {"--merge"});
-  SimCommand command{BatchRun(args, {"--out"}), std::nullopt};
-  if (!command.batch.merging()) command.request = ParseSimRequest(args, command.batch);
-  return command;
+  return multirobot_audio::tools::ParseBatchCommand<SimRequest>(args, {"--out"}, ParseSimRequest);
 }
 
 }  // namespace local_mutex::tools

@@ -21,12 +21,9 @@ struct SimRequest {
   TrialOptions trials;
 };
 
-// The command: a run (`request`), or the merge of shards (batch.merging(), no request: the merge
-// parses the shards' options with ParseSimRequest).
-struct SimCommand {
-  multirobot_audio::tools::BatchRun batch;
-  std::optional<SimRequest> request;
-};
+// The command: a run (`run`), or the merge of shards (the merge parses the shards' options with
+// ParseSimRequest).
+using SimCommand = multirobot_audio::tools::BatchCommand<SimRequest>;
 
 // Both throw multirobot_audio::tools::UsageError naming what they refuse, HelpRequested for -h.
 SimCommand ParseSimArgs(const std::vector<std::string>& words);

@@ -226,7 +226,7 @@ int main(int argc, char** argv) {
   return multirobot_audio::tools::RunTool([&] {
     const tools::ExperimentCommand command = tools::ParseExperimentArgs(multirobot_audio::tools::Words(argc, argv));
     try {
-      return command.batch.merging() ? Merge(command.batch) : Run(*command.protocol, command.batch);
+      return command.batch.merging() ? Merge(command.batch) : Run(*command.run, command.batch);
     } catch (const grid::InputError& e) {
       std::cerr << "sounds_good_experiment: " << e.what() << "\n";
     } catch (const std::exception& e) {

@@ -102,9 +102,8 @@ Protocol ParseProtocol(const ToolArgs& args) {
 
 ExperimentCommand ParseExperimentArgs(const std::vector<std::string>& words) {
   const ToolArgs args("sounds_good_experiment", kUsage, words, {"--quick", "--merge"});
-  ExperimentCommand command{BatchRun(args, {"--out", "--threads"}), std::nullopt};
-  if (!command.batch.merging()) command.protocol = ParseProtocol(args);
-  return command;
+  return multirobot_audio::tools::ParseBatchCommand<Protocol>(
+      args, {"--out", "--threads"}, [](const ToolArgs& a, const BatchRun&) { return ParseProtocol(a); });
 }
 
 }  // namespace sounds_good_explorer::tools

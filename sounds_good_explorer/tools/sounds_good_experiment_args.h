@@ -28,12 +28,9 @@ struct Protocol {
   std::string out_dir, channel, profile_name, table_file, acoustics_file;
 };
 
-// The command: a run (`protocol`), or the merge of shards (batch.merging(), no protocol: the
-// merge parses the shards' options with ParseProtocol).
-struct ExperimentCommand {
-  multirobot_audio::tools::BatchRun batch;
-  std::optional<Protocol> protocol;
-};
+// The command: a run (`run`), or the merge of shards (the merge parses the shards' options with
+// ParseProtocol).
+using ExperimentCommand = multirobot_audio::tools::BatchCommand<Protocol>;
 
 // Both throw multirobot_audio::tools::UsageError naming what they refuse, HelpRequested for -h.
 ExperimentCommand ParseExperimentArgs(const std::vector<std::string>& words);

@@ -99,4 +99,21 @@ class BatchRun {
   std::vector<std::string> dirs_;
 };
 
+// A batch tool's command: a run (`run`: what the tool parsed for it), or the merge of shards
+// (batch.merging(), no run: the merge parses the shards' options with the tool's own parser).
+template <class Run>
+struct BatchCommand {
+  BatchRun batch;
+  std::optional<Run> run;
+};
+
+// Reads a batch command from `args` (`local` as for BatchRun): `parse(args, batch)` gives the
+// run, unless the command is a merge.
+template <class Run, class Parse>
+BatchCommand<Run> ParseBatchCommand(const ToolArgs& args, std::set<std::string> local, Parse parse) {
+  BatchCommand<Run> command{BatchRun(args, std::move(local)), std::nullopt};
+  if (!command.batch.merging()) command.run = parse(args, command.batch);
+  return command;
+}
+
 }  // namespace multirobot_audio::tools
