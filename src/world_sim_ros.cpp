@@ -286,12 +286,13 @@ std::string WorldSimRos::Run() {
   const double wall = (ros::WallTime::now() - wall_start).toSec();
   char line[512];
   std::snprintf(line, sizeof line,
-                "world_sim summary: robots %zu, simulated %.1f s, distance driven %.3f m, collisions %d; %s\n"
-                "world_sim timing: wall %.1f s, real-time factor %.1f",
-                io_.size(), world_->elapsed(), world_->TotalDistance(), world_->TotalCollisions(),
-                guard_.Summary().c_str(), wall,
+                "world_sim summary: robots %zu, simulated %.1f s, distance driven %.3f m, collisions %d; ",
+                io_.size(), world_->elapsed(), world_->TotalDistance(), world_->TotalCollisions());
+  // The inputs' part names every robot with a rejection or a drop: no fixed length.
+  std::string summary = line + guard_.Summary();
+  std::snprintf(line, sizeof line, "\nworld_sim timing: wall %.1f s, real-time factor %.1f", wall,
                 wall > 0 ? world_->elapsed() / wall : 0.0);
-  std::string summary = line;
+  summary += line;
   if (lockstep_) {
     double slowest_s = 0.0;
     const std::string slowest = lockstep_->Slowest(&slowest_s);
