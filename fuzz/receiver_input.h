@@ -35,7 +35,8 @@ inline void FeedReceiver(nava_modem::Profile kind, const std::vector<double>& ra
   std::vector<float> samples;
   if (floats) {
     samples.resize(size / sizeof(float));
-    std::memcpy(samples.data(), data, samples.size() * sizeof(float));
+    // An empty vector's data() may be null, and memcpy's arguments must never be, even for 0 bytes.
+    if (!samples.empty()) std::memcpy(samples.data(), data, samples.size() * sizeof(float));
   } else {
     samples.resize(size / sizeof(std::int16_t));
     for (std::size_t k = 0; k < samples.size(); ++k) {

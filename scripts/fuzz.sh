@@ -9,8 +9,8 @@
 #
 # Each run starts from a copy of the target's seeds (fuzz/corpus/TARGET/, never written to) in a
 # scratch folder, with fuzz/dict/TARGET.dict when there is one, and fails on a crash, a sanitizer
-# report, a leak, an input that takes over 1 s (-timeout=1; the receivers: 10 s, see
-# input_timeout()) or more than 2 GB. Inputs that fail
+# report, a leak, an input that takes over 1 s (-timeout=1; a receiver's longest input, 64 KB of
+# samples plus its flush, takes about 0.25 s here) or more than 2 GB. Inputs that fail
 # are saved in build-fuzz/artifacts/TARGET/ (replay one: build-fuzz/fuzz/fuzz_TARGET FILE), the
 # whole log in build-fuzz/logs/TARGET.log. One line per target:
 #   fuzz TARGET: N executions in S s, no crash
@@ -39,17 +39,6 @@ max_len() {
   case "$1" in
     fsk_receiver | room_receiver) echo 65536 ;;
     *) echo 0 ;;
-  esac
-}
-
-# Seconds one input may take. A receiver's input holds up to a few seconds of audio (and the
-# room receiver's flush adds 2.9 s of silence), which the receivers decode in about 0.1 s when
-# built for speed but 1 to 4 s with the sanitizers and the fuzzer's coverage; 10 s still catches
-# a receiver that stalls. Every parser gets 1 s.
-input_timeout() {
-  case "$1" in
-    fsk_receiver | room_receiver) echo 10 ;;
-    *) echo 1 ;;
   esac
 }
 
@@ -92,7 +81,7 @@ for target in "${run[@]}"; do
   log="$build/logs/$target.log"
   mkdir -p "$corpus" "$artifacts"
   cp -r "$here/fuzz/corpus/$target/." "$corpus/"
-  options=(-max_total_time="$seconds" -timeout="$(input_timeout "$target")" -rss_limit_mb=2048 -print_final_stats=1
+  options=(-max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -print_final_stats=1
            -artifact_prefix="$artifacts/")
   [ "$(max_len "$target")" -gt 0 ] && options+=(-max_len="$(max_len "$target")")
   [ -f "$here/fuzz/dict/$target.dict" ] && options+=(-dict="$here/fuzz/dict/$target.dict")
