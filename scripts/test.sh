@@ -4,9 +4,8 @@
 #   1. the main suite: the components' gtests, the ROS conversions' gtests, the rostests and the
 #      launch-file checks, all through ctest, in build/;
 #   2. the sanitized suite: the ROS-free components and their tests built with AddressSanitizer
-#      and UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test).
-# The fuzz targets (scripts/fuzz.sh) run with --fuzz; they join the whole run once a clean clone
-# has shown that CI, with them, still finishes within its 45 minutes.
+#      and UndefinedBehaviorSanitizer in build-sanitize/ (any report fails the test);
+#   3. the fuzz targets (scripts/fuzz.sh), 20 s each, built with clang in build-fuzz/.
 #
 #   scripts/test.sh                     everything above
 #   scripts/test.sh CTEST_ARGS...       the main suite only, e.g. scripts/test.sh -R grid
@@ -62,6 +61,7 @@ case "${1:-}" in
     start=$SECONDS
     part "main suite"; main_suite
     part "sanitized suite"; sanitized_suite
+    part "fuzz targets, 20 s each"; "$here/scripts/fuzz.sh" all 20
     echo "test.sh: every part passed in $((SECONDS - start)) s"
     ;;
   *)
