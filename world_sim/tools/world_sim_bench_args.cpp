@@ -1,7 +1,8 @@
 #include "world_sim_bench_args.h"
 
-#include <cstdlib>
+#include <cstdint>
 
+#include "tool_args/tool_args.h"
 #include "tool_args/usage_error.h"
 
 namespace world_sim::tools {
@@ -16,28 +17,14 @@ void RefuseWorldSimBench(const std::string& problem) {
 }
 
 WorldSimBenchArgs ParseWorldSimBenchArgs(const std::vector<std::string>& words) {
+  const multirobot_audio::tools::ToolArgs args("world_sim_bench", kUsage, words);
   WorldSimBenchArgs a;
-  for (std::size_t i = 0; i < words.size(); ++i) {
-    const std::string& flag = words[i];
-    if (flag == "-h" || flag == "--help") throw multirobot_audio::tools::HelpRequested(kUsage);
-    if (i + 1 >= words.size()) RefuseWorldSimBench(flag + " needs a value");
-    const std::string& value = words[++i];
-    char* end = nullptr;
-    if (flag == "--map") {
-      a.map = value;
-    } else if (flag == "--robots") {
-      a.robots = static_cast<int>(std::strtol(value.c_str(), &end, 10));
-      if (*end || a.robots < 1) RefuseWorldSimBench("--robots: expected a whole number >= 1, got " + value);
-    } else if (flag == "--seconds") {
-      a.seconds = std::strtod(value.c_str(), &end);
-      if (*end || !(a.seconds > 0)) RefuseWorldSimBench("--seconds: expected a positive number, got " + value);
-    } else if (flag == "--seed") {
-      a.seed = static_cast<unsigned>(std::strtoul(value.c_str(), &end, 10));
-      if (*end) RefuseWorldSimBench("--seed: expected a whole number, got " + value);
-    } else {
-      RefuseWorldSimBench("unknown option " + flag);
-    }
-  }
+  a.map = args.String("--map", a.map);
+  a.robots = static_cast<int>(args.Int("--robots", a.robots, 1, 10000));
+  // A finite run: a bench that never ends measures nothing (a simulated year at most).
+  a.seconds = args.Double("--seconds", a.seconds, 0.001, 3.2e7);
+  a.seed = static_cast<unsigned>(args.Int("--seed", a.seed, 0, UINT32_MAX));
+  args.CheckAllUsed();
   return a;
 }
 
