@@ -11,6 +11,7 @@
 #include "failing_device.h"
 #include "nava_modem/fsk_receiver.h"
 #include "nava_modem/nava_link.h"
+#include "nava_modem/room_channel.h"
 
 namespace nava_modem {
 namespace {
@@ -166,43 +167,97 @@ TEST(DeviceFault, ReopensOnTheBackOffScheduleAndSendsOn) {
 // What the link had heard when its device failed is decoded to its end: a packet that had just
 // ended is reported once (the room receiver only reports a third of a second late), a packet
 // cut short is not reported as a packet, and one heard after the reopen is.
+// What a link hears: packets 7, 8 and 9 with 0.5 s of silence before each, 4 s after, and two
+// points to fail at: 10 ms after 7 ends, and halfway through 8.
+struct ThreeHeard {
+  std::vector<float> input;
+  std::size_t fail_1 = 0, fail_2 = 0;
+};
+
+ThreeHeard ThreePackets(const ModemProfile& modem) {
+  ThreeHeard h;
+  const std::vector<float> a = modem.ModulatePacket(Numbered(7)), b = modem.ModulatePacket(Numbered(8)),
+                           c = modem.ModulatePacket(Numbered(9));
+  h.input.assign(Samples(0.5), 0.0f);
+  h.input.insert(h.input.end(), a.begin(), a.end());
+  h.fail_1 = h.input.size() + Samples(0.01);
+  h.input.resize(h.input.size() + Samples(0.5), 0.0f);
+  h.fail_2 = h.input.size() + b.size() / 2;
+  h.input.insert(h.input.end(), b.begin(), b.end());
+  h.input.resize(h.input.size() + Samples(0.5), 0.0f);
+  h.input.insert(h.input.end(), c.begin(), c.end());
+  h.input.resize(h.input.size() + Samples(4.0), 0.0f);
+  return h;
+}
+
+struct Heard {
+  std::map<int, int> packets;  // by number, how often
+  std::uint64_t faults = 0;
+};
+
+// A link capturing `input` through a device that fails at `fail_at`: what it reports.
+Heard HearThrough(const LinkOptions& o, const std::vector<float>& input, const std::vector<std::size_t>& fail_at) {
+  ManualClock clock;
+  FailingDevice::Options d;
+  d.rate = kRate;
+  d.input = input;
+  d.fail_at = fail_at;
+  FailingDevice device(d, clock);
+  NavaLink link(o, device, clock);
+  std::vector<RxEvent> events;
+  Heard heard;
+  while (link.Tick(events)) {
+    for (const RxEvent& e : events) {
+      if (e.kind == RxEvent::Kind::kPacket) ++heard.packets[e.data[1]];
+      EXPECT_LE(e.end, link.time() + 1e-9);
+    }
+    events.clear();
+  }
+  heard.faults = link.device_faults();
+  return heard;
+}
+
 TEST(DeviceFault, WhatWasHeardBeforeAFailureIsStillReported) {
   for (const Profile profile : {Profile::kNava, Profile::kRoom}) {
     SCOPED_TRACE(ProfileName(profile));
     LinkOptions o = Sender();
     o.profile = profile;
-    const auto modem = MakeProfile(profile, o.modem);
-    std::vector<float> input(Samples(0.5), 0.0f);
-    const std::vector<float> a = modem->ModulatePacket(Numbered(7)), b = modem->ModulatePacket(Numbered(8)),
-                             c = modem->ModulatePacket(Numbered(9));
-    input.insert(input.end(), a.begin(), a.end());
-    const std::size_t fail_1 = input.size() + Samples(0.01);  // just after a ends
-    input.resize(input.size() + Samples(0.5), 0.0f);
-    const std::size_t b_start = input.size();
-    input.insert(input.end(), b.begin(), b.end());
-    const std::size_t fail_2 = b_start + b.size() / 2;  // halfway through b
-    input.resize(input.size() + Samples(0.5), 0.0f);
-    input.insert(input.end(), c.begin(), c.end());
-    input.resize(input.size() + Samples(4.0), 0.0f);
-    ManualClock clock;
-    FailingDevice::Options d;
-    d.rate = kRate;
-    d.input = input;
-    d.fail_at = {fail_1, fail_2};
-    FailingDevice device(d, clock);
-    NavaLink link(o, device, clock);
-    std::vector<RxEvent> events;
-    std::map<int, int> packets;
-    while (link.Tick(events)) {
-      for (const RxEvent& e : events) {
-        if (e.kind == RxEvent::Kind::kPacket) ++packets[e.data[1]];
-        EXPECT_LE(e.end, link.time() + 1e-9);
-      }
-      events.clear();
-    }
-    EXPECT_EQ(link.device_faults(), 2u);
-    EXPECT_EQ(packets, (std::map<int, int>{{7, 1}, {9, 1}}));
+    const ThreeHeard h = ThreePackets(*MakeProfile(profile, o.modem));
+    const Heard heard = HearThrough(o, h.input, {h.fail_1, h.fail_2});
+    EXPECT_EQ(heard.faults, 2u);
+    EXPECT_EQ(heard.packets, (std::map<int, int>{{7, 1}, {9, 1}}));
   }
+}
+
+// The same for the room profile in a room where the reverberation is louder than the direct
+// sound (DRR -5 dB, RT60 0.5 s), with pink noise, a motor whine, a speaker whose highs are 6 dB
+// weaker and the sender's clock 0.2 % fast: the failure keeps what was heard, loses only the
+// packet it cut, and the link hears the rest. Without failures it hears all three (so a packet
+// missing is the failure's doing, not the room's).
+TEST(DeviceFault, WhatWasHeardBeforeAFailureIsStillReportedInAReverberantRoom) {
+  LinkOptions o = Sender();
+  o.profile = Profile::kRoom;
+  const ThreeHeard h = ThreePackets(*MakeProfile(Profile::kRoom, o.modem));
+  RoomOptions room;
+  room.rt60 = 0.5;
+  room.drr_db = -5.0;
+  room.tilt_db = -6.0;
+  room.clock_offset = 0.002;
+  room.noise = RoomOptions::Noise::kPink;
+  room.snr_db = 15.0;
+  room.whine_hz = 1800.0;
+  room.whine_sir_db = 10.0;
+  room.seed = 3;
+  const std::vector<float> heard_in_room = RenderRoom(h.input, kRate, room);
+  // The clock offset shortens the sound by 1 / (1 + offset): the failure points move with it.
+  const auto shifted = [&](std::size_t at) {
+    return static_cast<std::size_t>(std::lround(static_cast<double>(at) / (1.0 + room.clock_offset)));
+  };
+  const Heard whole = HearThrough(o, heard_in_room, {});
+  EXPECT_EQ(whole.packets, (std::map<int, int>{{7, 1}, {8, 1}, {9, 1}}));
+  const Heard failing = HearThrough(o, heard_in_room, {shifted(h.fail_1), shifted(h.fail_2)});
+  EXPECT_EQ(failing.faults, 2u);
+  EXPECT_EQ(failing.packets, (std::map<int, int>{{7, 1}, {9, 1}}));
 }
 
 // The link's process stalls for 0.5 s while it is deaf after its first packet; its device
