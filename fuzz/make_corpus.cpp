@@ -5,6 +5,7 @@
 // writes fsk_receiver/, room_receiver/, frame/, wav_file/, map_file/ (the images; the YAML seeds
 // are written by hand) and decode_table/ under the folder. The seeds are small (a packet at a
 // low sample rate, a WAV of a few samples): libFuzzer mutates small inputs fastest.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@
 #include "nava_modem/frame.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/noise_sources.h"
+#include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 
 namespace {
@@ -42,17 +45,28 @@ Bytes ReadBytes(const fs::path& path) {
   return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// A packet between short silences, with faint white noise, as receiver_input.h's samples.
+// The fuzzer's largest receiver input (scripts/fuzz.sh's -max_len for the receivers).
+constexpr std::size_t kMaxReceiverInput = 65536;
+
+// A packet between short silences, as receiver_input.h's samples: with faint white noise
+// (`noise`, its RMS), or as a microphone in `room` hears it (room_channel.h: reverberation,
+// tilt, noise, whine, the sender's clock off), cut to fit the fuzzer's largest input.
 Bytes ReceiverSeed(nava_modem::Profile profile, double rate, std::uint8_t rate_index, bool floats,
-                   const std::vector<std::uint8_t>& data, double noise) {
+                   const std::vector<std::uint8_t>& data, double noise,
+                   const std::optional<nava_modem::RoomOptions>& room = std::nullopt) {
   nava_modem::ModemOptions modem;
   modem.sample_rate = rate;
   std::vector<float> samples(static_cast<std::size_t>(0.05 * rate), 0.0f);
   const std::vector<float> packet = nava_modem::MakeProfile(profile, modem)->ModulatePacket(data);
   samples.insert(samples.end(), packet.begin(), packet.end());
   samples.insert(samples.end(), static_cast<std::size_t>(0.05 * rate), 0.0f);
-  const std::vector<double> hiss = nava_modem::WhiteNoise(samples.size(), 7);
-  for (std::size_t k = 0; k < samples.size(); ++k) samples[k] += static_cast<float>(noise * hiss[k]);
+  if (room) {
+    samples = nava_modem::RenderRoom(samples, rate, *room);
+  } else {
+    const std::vector<double> hiss = nava_modem::WhiteNoise(samples.size(), 7);
+    for (std::size_t k = 0; k < samples.size(); ++k) samples[k] += static_cast<float>(noise * hiss[k]);
+  }
+  samples.resize(std::min(samples.size(), (kMaxReceiverInput - 3) / (floats ? 4 : 2)));
   Bytes out = {static_cast<std::uint8_t>(rate_index << 1 | (floats ? 1 : 0)), 20, 2 | 4};
   for (float s : samples) {
     if (floats) {
@@ -106,6 +120,26 @@ int main(int argc, char** argv) {
   Write(corpus / "fsk_receiver" / "packet_8k_float", ReceiverSeed(Profile::kNava, 8000.0, 3, true, {0xa0, 0x55, 0xff, 0}, 0.05));
   // room_receiver's rates: 12000, 16000, 48000.
   Write(corpus / "room_receiver" / "packet_12k_int16", ReceiverSeed(Profile::kRoom, 12000.0, 0, false, {9, 8, 7, 6}, 0.01));
+  // As a robot's microphone hears it: reverberation louder than the direct sound, pink noise, a
+  // motor whine, a speaker weak in the highs, the sender's clock 0.3 % fast.
+  nava_modem::RoomOptions office;
+  office.rt60 = 0.5;
+  office.drr_db = -5.0;
+  office.tilt_db = -6.0;
+  office.clock_offset = 0.003;
+  office.noise = nava_modem::RoomOptions::Noise::kPink;
+  office.snr_db = 15.0;
+  office.whine_hz = 1800.0;
+  office.whine_sir_db = 10.0;
+  Write(corpus / "room_receiver" / "office_12k_int16",
+        ReceiverSeed(Profile::kRoom, 12000.0, 0, false, {0x31, 0x41, 0x59, 0x26}, 0.0, office));
+  // The nava FSK profile in a milder room (it has no defence against strong echoes).
+  nava_modem::RoomOptions small_room = office;
+  small_room.rt60 = 0.3;
+  small_room.drr_db = 5.0;
+  small_room.snr_db = 25.0;
+  Write(corpus / "fsk_receiver" / "small_room_16k_int16",
+        ReceiverSeed(Profile::kNava, 16000.0, 0, false, {0x27, 0x18, 0x28, 0x18}, 0.0, small_room));
 
   using nava_modem::CrcVariant;
   Write(corpus / "frame" / "clean", FrameSeed(CrcVariant::kCcittFalse, 2, {1, 2, 3, 4}, {}));
