@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "nava_modem/power_of_two.h"
+#include "nava_modem/tone_classes.h"
 
 namespace nava_modem {
 namespace {
@@ -184,7 +185,17 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
   // How much the last w samples are MARK and the w before them SPACE, each from -1 to 1; the
   // step is the smaller, so that the edge of a burst (tones on one side only) is no step.
   const double floor = kSilence * w_;
-  const double step = std::min(after_ / std::max(after_power_, floor), -before_ / std::max(before_power_, floor));
+  const double mixed = std::min(after_ / std::max(after_power_, floor), -before_ / std::max(before_power_, floor));
+  // The same step seen by each tone on its own scale: how much MARK rose across the boundary
+  // and SPACE fell. A room and a speaker can leave MARK 10 dB or more below SPACE, and SPACE's
+  // reverberant tail then outweighs MARK's direct sound in the windows' sums above; each tone's
+  // own rise and fall do not depend on the other's level.
+  const double mark_after = (after_power_ + after_) / 2.0, mark_before = (before_power_ + before_) / 2.0;
+  const double space_after = (after_power_ - after_) / 2.0, space_before = (before_power_ - before_) / 2.0;
+  const double tone_floor = floor / 2.0;
+  const double per_tone = std::min((mark_after - mark_before) / std::max(mark_after + mark_before, tone_floor),
+                                   (space_before - space_after) / std::max(space_before + space_after, tone_floor));
+  const double step = std::max(mixed, per_tone);
 
   switch (state_) {
     case State::kSearching:
@@ -482,6 +493,10 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   ev.rate_error = per_bit_ / best_period - 1.0;
   std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, options_.max_fixed_bits);
   if (!repaired) repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+  if (!repaired) {
+    const ToneClassDecision learnt = ToneClassSoft(heard, hard);
+    if (learnt.misframed == 0) repaired = RepairFrame(learnt.soft, modem_.crc, options_.max_fixed_bits);
+  }
   if (repaired) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);

@@ -275,6 +275,10 @@ std::vector<std::vector<float>> RenderRoomArray(const std::vector<float>& clean,
                                                 const RoomOptions& options, const ArraySource& source,
                                                 const std::vector<float>& interferer, ArrayRenderInfo* info) {
   ValidateRoomOptions(options, sample_rate);
+  if (!options.response.empty()) {
+    // One measured response is one microphone's; an array's channels each need their own.
+    throw RoomOptionError("response", "response: a measured response is one microphone's: expected none for an array");
+  }
   ValidateArraySource(source);
   const std::size_t mics = source.mics.size();
   ArrayRenderInfo report;

@@ -7,6 +7,7 @@
 
 #include <samplerate.h>
 
+#include "nava_modem/measured_response.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/real_fft.h"
 #include "nava_modem/room_impulse_response.h"
@@ -54,6 +55,16 @@ void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
   Check(sample_rate > 0.0 && std::isfinite(sample_rate), "sample_rate", sample_rate, " Hz", "above 0");
   Check(Within(o.rt60, 0.0, 10.0), "rt60", o.rt60, " s", "0 (no reverberation) or above 0 and at most 10");
   Check(Within(o.drr_db, -40.0, 40.0), "drr_db", o.drr_db, " dB", "from -40 to 40");
+  if (!o.response.empty()) {
+    Check(o.rt60 == 0.0, "rt60", o.rt60, " s", "0 with a measured response (the response is the room)");
+    Check(o.drr_db == 0.0, "drr_db", o.drr_db, " dB", "0 with a measured response (the response is the room)");
+    const bool finite = std::all_of(o.response.begin(), o.response.end(), [](float v) { return std::isfinite(v); });
+    const bool silent = std::all_of(o.response.begin(), o.response.end(), [](float v) { return v == 0.0f; });
+    if (!finite || silent) {
+      throw RoomOptionError("response", std::string("response: ") + (finite ? "silent" : "not finite") +
+                                            ": expected an impulse response with a direct sound");
+    }
+  }
   Check(Within(o.tilt_db, -40.0, 40.0), "tilt_db", o.tilt_db, " dB", "from -40 to 40");
   Check(o.tilt_low_hz > 0.0 && std::isfinite(o.tilt_low_hz), "tilt_low_hz", o.tilt_low_hz, " Hz", "above 0");
   Check(o.tilt_high_hz > o.tilt_low_hz && std::isfinite(o.tilt_high_hz), "tilt_high_hz", o.tilt_high_hz, " Hz",
@@ -131,8 +142,20 @@ std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rat
   const std::vector<float> sent = options.clock_offset == 0.0 ? clean : Resample(clean, 1.0 / (1.0 + options.clock_offset));
 
   // 2-3. Tilt and room in one spectrum.
-  const std::vector<float> response = RoomImpulseResponse(options.rt60, options.drr_db, sample_rate, options.seed);
-  report.measured_drr_db = MeasureDrrDb(response);
+  const bool measured = !options.response.empty();
+  const std::vector<float>& response =
+      measured ? options.response : RoomImpulseResponse(options.rt60, options.drr_db, sample_rate, options.seed);
+  // Where the packet is heard: a measured response's delay to its largest peak (0 for ours).
+  std::size_t delay = 0;
+  if (measured) {
+    report.measured_drr_db = sample_rate >= 2.0 * kResponseBandHighHz ? MeasureResponse(response, sample_rate).drr_db
+                                                                      : MeasureDrrDb(response);
+    for (std::size_t k = 0; k < response.size(); ++k) {
+      if (std::fabs(response[k]) > std::fabs(response[delay])) delay = k;
+    }
+  } else {
+    report.measured_drr_db = MeasureDrrDb(response);
+  }
   const std::size_t length = sent.size() + response.size() - 1;
   const std::size_t size = FftSize(length + static_cast<std::size_t>(std::ceil(kTiltMarginS * sample_rate)));
   std::vector<std::complex<double>> spectrum = ForwardFft(std::vector<double>(sent.begin(), sent.end()), size);
@@ -155,7 +178,7 @@ std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rat
   std::size_t count = 0;
   for (std::size_t i = 0; i < sent.size(); ++i) {
     if (!sounding[i]) continue;
-    sum += mic[i] * mic[i];
+    sum += mic[i + delay] * mic[i + delay];
     ++count;
   }
   report.signal_power = count ? sum / static_cast<double>(count) : 0.0;

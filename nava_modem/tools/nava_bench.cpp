@@ -5,6 +5,7 @@
 //              [--dir DIR] [--minimodem minimodem|none] [modem options]
 //   nava_bench --rooms [--profile nava|room|both] [--packets 60] [--rooms-per-row 6] [--plot-packets 30]
 //              [--plot FILE.png] [--seed 1] [--rate 48000] [--dir DIR] [--minimodem minimodem|none]
+//              [--rir-dir DIR [--rir-packets 20] [--measured-only]]
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //
@@ -18,7 +19,10 @@
 // With --rooms: the same packets through nava_room's renderer under each room condition of
 // room_conditions.h (reverberation, speech, a motor whine, tilt, clock offset, an office, all at
 // once), for each profile, the packets of a row spread over several rooms (seeds), and a PNG of delivery against the direct-to-reverberant ratio for
-// RT60 0.3, 0.6 and 1.0 s. Either way each file is decoded by nava_decode (beside this program)
+// RT60 0.3, 0.6 and 1.0 s; with --rir-dir, also rows through measured impulse responses (every
+// channel of every audio file in DIR a room, its DRR and RT60 read in 600-5400 Hz), under white
+// noise at 20 and 0 dB and speech at SIR 0 dB, with the targets for the nava receiver in measured
+// rooms (--measured-only: those rows alone). Either way each file is decoded by nava_decode (beside this program)
 // and by minimodem as child processes, and the table gives the packets each decoded correctly,
 // those decoded wrong (CRC-passing but never sent), and each decoder's CPU time; it ends with
 // each decoder's speed (seconds of audio per CPU second) and the targets. With --doa: for each
@@ -31,6 +35,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -44,6 +49,7 @@
 #include "modem_args.h"
 #include "nava_bench_args.h"
 #include "nava_modem/array_decode.h"
+#include "nava_modem/measured_response.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
@@ -176,6 +182,9 @@ struct RoomRow {
   Decoded nava, minimodem, room;
 };
 
+void MeasuredRoomsTable(const RoomsRequest& request, const ToolUsage& usage, const std::string& dir,
+                        const std::vector<float>& speech);
+
 int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
   const int packets = request.packets, plot_packets = request.plot_packets, rooms_per_row = request.rooms_per_row;
   const unsigned seed = request.seed;
@@ -189,6 +198,10 @@ int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
   const bool has_room = std::count(profiles.begin(), profiles.end(), Profile::kRoom) > 0;
 
   const std::vector<float> speech = Speech(dir, options.sample_rate, seed);
+  if (request.measured_only) {
+    MeasuredRoomsTable(request, usage, dir, speech);
+    return 0;
+  }
   const std::vector<RoomCondition> conditions = RoomConditions();
   std::map<Profile, CleanSignal> clean;
   for (Profile p : profiles) {
@@ -287,6 +300,8 @@ int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
                 rows[0].nava.count.right, packets, 2 * rows[0].nava.count.right >= packets ? "yes" : "NO");
   }
 
+  if (!request.rir_dir.empty()) MeasuredRoomsTable(request, usage, dir, speech);
+
   if (plot_packets == 0) return 0;
   // Delivery against DRR for three reverberation times.
   LineChart chart;
@@ -347,6 +362,167 @@ int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
   }
   std::printf("plot: %s\n", plot.c_str());
   return 0;
+}
+
+
+// One measured room: a channel of a response file, with its figures in the modems' band.
+struct MeasuredRoom {
+  std::string name;  // file name, and ":K" for channel K of a file with several
+  std::string path;
+  int channel = 0;
+  ResponseMeasures figures;
+};
+
+// Every channel of every audio file in `dir` (sorted by name), each a room; other files (a
+// README) are passed over. A file that cannot serve fails the bench, naming it.
+std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const ToolUsage& usage) {
+  std::vector<std::string> files;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    std::string ext = entry.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (entry.is_regular_file() && (ext == ".wav" || ext == ".flac" || ext == ".aif" || ext == ".aiff")) {
+      files.push_back(entry.path().string());
+    }
+  }
+  if (error) usage.Fail("--rir-dir " + dir + ": " + error.message());
+  if (files.empty()) usage.Fail("--rir-dir " + dir + ": no audio files (.wav, .flac, .aif): expected impulse responses");
+  std::sort(files.begin(), files.end());
+  std::vector<MeasuredRoom> rooms;
+  for (const std::string& path : files) {
+    MultiAudio audio;
+    try {
+      audio = ReadAudioChannels(path);
+    } catch (const std::exception& e) {
+      usage.Fail(std::string("--rir-dir: ") + e.what());
+    }
+    const int channels = static_cast<int>(audio.channels.size());
+    for (int c = 0; c < channels; ++c) {
+      MeasuredRoom room;
+      room.path = path;
+      room.channel = c;
+      room.name = std::filesystem::path(path).filename().string() + (channels > 1 ? ":" + std::to_string(c) : "");
+      try {
+        room.figures = MeasureResponse(LoadImpulseResponse(path, c, audio.sample_rate), audio.sample_rate);
+      } catch (const std::exception& e) {
+        usage.Fail(std::string("--rir-dir: ") + path + " channel " + std::to_string(c) + ": " + e.what());
+      }
+      rooms.push_back(room);
+    }
+  }
+  return rooms;
+}
+
+// The conditions every measured room is heard under: white noise at full-band SNR 20 and 0 dB,
+// and speech at SIR 0 dB over the 20 dB noise.
+std::vector<RoomCondition> MeasuredConditions() {
+  std::vector<RoomCondition> conditions;
+  for (const double snr : {20.0, 0.0}) {
+    RoomCondition c{snr == 20.0 ? "white 20 dB" : "white 0 dB", {}, false};
+    c.room.noise = RoomOptions::Noise::kWhite;
+    c.room.snr_db = snr;
+    conditions.push_back(c);
+  }
+  RoomCondition speech{"speech 0 dB", {}, true};
+  speech.room.noise = RoomOptions::Noise::kWhite;
+  speech.room.snr_db = 20.0;
+  speech.room.sir_db = 0.0;
+  conditions.push_back(speech);
+  return conditions;
+}
+
+// The packets through every measured room of request.rir_dir under MeasuredConditions, each
+// decoded by the profiles' decoders (and minimodem), a line per room and condition, then the
+// targets of the issue on the thesis's FSK in measured rooms.
+void MeasuredRoomsTable(const RoomsRequest& request, const ToolUsage& usage, const std::string& dir,
+                        const std::vector<float>& speech) {
+  const ModemOptions& options = request.options;
+  const int packets = request.rir_packets;
+  Decoders decoders;
+  decoders.minimodem = request.minimodem;
+  const std::vector<MeasuredRoom> rooms = MeasuredRooms(request.rir_dir, usage);
+  const std::vector<RoomCondition> conditions = MeasuredConditions();
+  std::map<Profile, CleanSignal> clean;
+  for (Profile p : request.profiles) {
+    std::mt19937 rng(request.seed + 7);
+    clean[p] = RandomPackets(*MakeProfile(p, options), packets, 0.6, 0.4, rng);
+  }
+  std::printf("measured rooms (%s): %d packets per room and condition at %.0f Hz; DRR and RT60 in 600-5400 Hz\n",
+              request.rir_dir.c_str(), packets, options.sample_rate);
+  std::printf("%-44s %7s %6s %-12s %9s %5s %9s %5s %9s %5s\n", "room", "drr_dB", "rt60_s", "condition", "nava", "bad",
+              "minimodem", "bad", "room", "bad");
+  auto cell = [&](const Decoded& d) {
+    char text[32];
+    if (!d.ran) return std::string("        -     -");
+    std::snprintf(text, sizeof text, "%6d/%-2d %5d", d.count.right, packets, d.count.wrong);
+    return std::string(text);
+  };
+  // Per DRR class (>= +3, 0..+3, below 0): the worst condition's nava packets, in each room.
+  int worst_high = packets, worst_mid_pooled = 3 * packets, high_rooms = 0, mid_rooms = 0;
+  bool never_fewer = true;
+  int wrong[3] = {0, 0, 0}, right[3] = {0, 0, 0}, total[3] = {0, 0, 0};
+  for (std::size_t r = 0; r < rooms.size(); ++r) {
+    const MeasuredRoom& room = rooms[r];
+    const std::vector<float> response = LoadImpulseResponse(room.path, room.channel, options.sample_rate);
+    const double drr = room.figures.drr_db;
+    int worst = packets, pooled = 0;
+    for (std::size_t k = 0; k < conditions.size(); ++k) {
+      RoomRow row;
+      for (Profile p : request.profiles) {
+        RoomOptions o = conditions[k].room;
+        o.response = response;
+        o.seed = request.seed * 7919u + static_cast<unsigned>(r * 10 + k);
+        std::vector<float> talk;
+        if (conditions[k].speech) talk = SpeechFrom(speech, (r * 3 + k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10));
+        const std::vector<float> heard = RenderRoom(clean[p].samples, options.sample_rate, o, talk);
+        const std::string file = dir + "/measured_" + std::to_string(r) + "_" + std::to_string(k) + "_" + ProfileName(p) + ".wav";
+        WriteWavFile(file, heard, options.sample_rate);
+        if (p == Profile::kNava) {
+          row.nava = DecodeWithProject(decoders, p, options, file, clean[p].sent);
+          row.minimodem = DecodeWithMinimodem(decoders, options, file, clean[p].sent);
+        } else {
+          row.room = DecodeWithProject(decoders, p, options, file, clean[p].sent);
+        }
+      }
+      const Decoded* ds[3] = {&row.nava, &row.minimodem, &row.room};
+      for (int d = 0; d < 3; ++d) {
+        if (!ds[d]->ran) continue;
+        right[d] += ds[d]->count.right;
+        wrong[d] += ds[d]->count.wrong;
+        total[d] += packets;
+      }
+      if (row.nava.ran) {
+        worst = std::min(worst, row.nava.count.right);
+        pooled += row.nava.count.right;
+        if (row.minimodem.ran) never_fewer = never_fewer && row.nava.count.right >= row.minimodem.count.right;
+      }
+      std::printf("%-44s %+7.1f %6.2f %-12s %s %s %s\n", room.name.c_str(), drr, room.figures.rt60_s,
+                  conditions[k].name.c_str(), cell(row.nava).c_str(), cell(row.minimodem).c_str(), cell(row.room).c_str());
+      std::fflush(stdout);
+    }
+    if (drr >= 3.0) {
+      ++high_rooms;
+      worst_high = std::min(worst_high, worst);
+    } else if (drr >= 0.0) {
+      ++mid_rooms;
+      worst_mid_pooled = std::min(worst_mid_pooled, pooled);
+    }
+  }
+  const char* names[3] = {"nava", "minimodem", "room"};
+  std::printf("measured totals:");
+  for (int d = 0; d < 3; ++d) {
+    if (total[d] > 0) std::printf(" %s %d/%d (%.1f%%, %d wrong);", names[d], right[d], total[d], 100.0 * right[d] / total[d], wrong[d]);
+  }
+  std::printf("\n");
+  if (!clean.count(Profile::kNava)) return;
+  auto verdict = [](int rooms, bool ok) { return rooms == 0 ? "no such room" : ok ? "yes" : "NO"; };
+  const int need_high = (packets * 95 + 99) / 100, need_mid = (3 * packets * 70 + 99) / 100;
+  std::printf("targets measured nava: DRR >= +3 dB >= 95%% in every condition (%d rooms, worst %d/%d): %s; "
+              "DRR 0..+3 dB >= 70%% over the conditions (%d rooms, worst %d/%d): %s; never fewer than minimodem: %s; "
+              "wrong packets 0 (%d): %s\n",
+              high_rooms, high_rooms ? worst_high : 0, packets, verdict(high_rooms, worst_high >= need_high), mid_rooms,
+              mid_rooms ? worst_mid_pooled : 0, 3 * packets, verdict(mid_rooms, worst_mid_pooled >= need_mid),
+              decoders.minimodem.empty() ? "not run" : (never_fewer ? "yes" : "NO"), wrong[0], wrong[0] == 0 ? "yes" : "NO");
 }
 
 

@@ -37,8 +37,18 @@ RoomsRequest ParseRooms(const ToolArgs& args) {
   const std::string which = args.String("--profile", "both");
   const std::string minimodem = args.String("--minimodem", "minimodem");
   r.plot = args.String("--plot", "");
+  r.rir_dir = args.String("--rir-dir", "");
+  r.rir_packets = static_cast<int>(args.Int("--rir-packets", 20, 1, 100000));
+  r.measured_only = args.Switch("--measured-only");
   r.options = ModemArgs(args);
   args.CheckAllUsed();
+  if (r.rir_dir.empty()) {
+    for (const char* flag : {"--rir-packets", "--measured-only"}) {
+      if (args.Switch(flag)) {  // given at all
+        args.Fail(std::string(flag) + ": there are no measured rooms; add --rir-dir DIR");
+      }
+    }
+  }
   if (which == "both") {
     r.profiles = {Profile::kNava, Profile::kRoom};
   } else if (const auto p = ParseProfile(which)) {
@@ -101,9 +111,9 @@ DecodeTableRequest ParseTable(const ToolArgs& args) {
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms | --doa | --table nava|room [--out FILE] [--quick] [--threads 2] [--snr-db LIST]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --table nava|room [--out FILE] [--quick] [--threads 2] [--snr-db LIST]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--quick"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--quick", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
   if (!args.String("--table", "").empty()) {

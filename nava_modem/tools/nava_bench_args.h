@@ -20,9 +20,13 @@ struct WhiteNoiseRequest {
   ToolModem modem;
 };
 
-// nava_bench --rooms: packets under each room condition, and delivery against DRR.
+// nava_bench --rooms: packets under each room condition, and delivery against DRR; with
+// --rir-dir, also through each measured response in a folder (every file and channel a room).
 struct RoomsRequest {
   int packets = 60, plot_packets = 30, rooms_per_row = 6;
+  std::string rir_dir;       // "" for no measured rows
+  int rir_packets = 20;      // per measured room and condition
+  bool measured_only = false;  // --measured-only: no rendered rows, no plot
   unsigned seed = 1;
   std::string dir, minimodem, plot;  // dir "" for a new folder; minimodem "" for not run; plot "" for DIR/delivery_vs_drr.png
   std::vector<Profile> profiles;

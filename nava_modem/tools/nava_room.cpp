@@ -1,9 +1,12 @@
 // nava_room: what a robot's microphone in a real room hears of a clean modem WAV (clock offset,
 // spectral tilt, reverberation, noise, an interferer, a motor's whine); see room_channel.h for
 // the model and the level definitions. With --mics, what each microphone of an array hears of a
-// source at --bearing and --distance, one channel per microphone (room_array.h).
+// source at --bearing and --distance, one channel per microphone (room_array.h). With --rir,
+// through a measured impulse response instead of the statistical room (channel K of the file,
+// resampled to the input's rate, its own delay kept).
 //
-//   nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI]
+//   nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB | --rir FILE.wav [--channel K]]
+//             [--tilt DB] [--tilt-band LO,HI]
 //             [--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB]
 //             [--whine HZ] [--whine-sir DB] [--whine-am HZ] [--seed N]
 //             [--mics X1,Y1,X2,Y2,... [--bearing DEG] [--distance M]]
@@ -16,6 +19,7 @@
 #include <sstream>
 
 #include "nava_modem/direction_estimator.h"
+#include "nava_modem/measured_response.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
@@ -74,7 +78,7 @@ std::string ArraySummary(const nava_modem::Audio& clean, std::size_t frames, con
 // options is refused in the parser's words.
 int Run(const nava_modem::tools::NavaRoomOptions& r) {
   using namespace nava_modem;
-  const RoomOptions& o = r.room;
+  RoomOptions o = r.room;
   const ArraySource& source = r.source;
   const std::string& noise = r.noise;
   const std::string& interferer_path = r.interferer_path;
@@ -89,6 +93,13 @@ int Run(const nava_modem::tools::NavaRoomOptions& r) {
   };
   try {
     const Audio clean = read("--in", r.in);
+    if (!r.rir_path.empty()) {
+      try {
+        o.response = LoadImpulseResponse(r.rir_path, r.rir_channel, clean.sample_rate);
+      } catch (const ResponseFileError& e) {
+        r.usage.Fail(std::string("--rir ") + e.what());
+      }
+    }
     try {
       ValidateRoomOptions(o, clean.sample_rate);
     } catch (const RoomOptionError& e) {
@@ -121,6 +132,11 @@ int Run(const nava_modem::tools::NavaRoomOptions& r) {
     s << "nava_room: " << clean.samples.size() / clean.sample_rate << " s in, " << mic.size() / clean.sample_rate
       << " s out at " << std::lround(clean.sample_rate) << " Hz;";
     if (o.rt60 > 0.0) s << " room rt60 " << o.rt60 << " s, measured DRR " << Fixed(info.measured_drr_db) << " dB;";
+    if (!o.response.empty()) {
+      s << " measured response " << r.rir_path;
+      if (r.rir_channel) s << " channel " << *r.rir_channel;
+      s << " (" << o.response.size() << " samples), DRR " << Fixed(info.measured_drr_db) << " dB in 600-5400 Hz;";
+    }
     if (o.tilt_db != 0.0) s << " tilt " << o.tilt_db << " dB over " << o.tilt_low_hz << "-" << o.tilt_high_hz << " Hz;";
     if (o.clock_offset != 0.0) s << " clock " << 100.0 * o.clock_offset << " %;";
     s << " signal RMS " << std::sqrt(info.signal_power) << " over " << 100.0 * info.sounding_fraction << " % sounding;";

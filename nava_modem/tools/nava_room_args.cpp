@@ -30,13 +30,13 @@ const std::string& NavaRoomFlag(const std::string& field) {
       {"tilt_low_hz", "--tilt-band"}, {"tilt_high_hz", "--tilt-band"}, {"clock_offset", "--clock"},
       {"snr_db", "--snr"},         {"sir_db", "--sir"},        {"whine_hz", "--whine"},
       {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"},
-      {"bearing", "--bearing"},    {"distance", "--distance"}};
+      {"bearing", "--bearing"},    {"distance", "--distance"}, {"response", "--rir"}};
   return flags.at(field);
 }
 
 NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   const std::string usage =
-      "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB] [--tilt DB] [--tilt-band LO,HI] "
+      "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB | --rir FILE.wav [--channel K]] [--tilt DB] [--tilt-band LO,HI] "
       "[--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB] [--whine HZ] "
       "[--whine-sir DB] [--whine-am HZ] [--seed N] [--mics X1,Y1,X2,Y2,... [--bearing DEG] [--distance M]]";
   const ToolArgs args("nava_room", usage, words);
@@ -47,6 +47,8 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   RoomOptions& o = r.room;
   o.rt60 = Number(args, "--rt60", o.rt60);
   o.drr_db = Number(args, "--drr", o.drr_db);
+  r.rir_path = args.String("--rir", "");
+  if (!args.String("--channel", "").empty()) r.rir_channel = static_cast<int>(args.Int("--channel", 0, 0, 255));
   o.tilt_db = Number(args, "--tilt", o.tilt_db);
   const std::string band = args.String("--tilt-band", "");
   if (!band.empty()) {
@@ -89,6 +91,15 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
     } catch (const RoomOptionError& e) {
       args.Fail(e.field() == "mics" ? "--mics " + r.mics + ": " + e.what() : NavaRoomFlag(e.field()) + ": " + e.what());
     }
+  }
+  if (!r.rir_path.empty()) {
+    // A measured response is the whole room: a statistical one beside it, or an array's
+    // microphones that one response cannot serve, would be a mistake in the command.
+    for (const char* flag : {"--rt60", "--drr", "--mics"}) {
+      if (!args.String(flag, "").empty()) args.Fail(std::string(flag) + ": the room is the measured response of --rir; drop one of them");
+    }
+  } else if (r.rir_channel) {
+    args.Fail("--channel: there is no response to take a channel of; add --rir FILE.wav");
   }
   for (const char* flag : {"--bearing", "--distance"}) {
     if (!args.String(flag, "").empty() && r.mics.empty()) {

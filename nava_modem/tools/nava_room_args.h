@@ -2,6 +2,7 @@
 
 // nava_room's command line (nava_room.cpp), parsed apart from the tool so that tests and the
 // fuzzer can call it.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@ struct NavaRoomOptions {
   RoomOptions room;
   std::string noise;            // --noise as given ("white", "pink" or "")
   std::string interferer_path;  // "" for none
+  std::string rir_path;         // --rir: a measured impulse response ("" for the statistical room)
+  std::optional<int> rir_channel;  // --channel: which of its channels (none: it must have one)
   ArraySource source;           // no microphones: one channel, no array
   std::string mics;             // --mics as given
   multirobot_audio::tools::ToolUsage usage;  // to refuse options the input file contradicts

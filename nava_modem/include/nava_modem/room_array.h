@@ -77,7 +77,8 @@ struct ArrayRenderInfo {
 };
 
 // Channel m is microphone m's signal for `clean` at `sample_rate` (the model above); all
-// channels have the same length. Throws RoomOptionError for bad options or source, and
+// channels have the same length. Throws RoomOptionError for bad options or source (a measured
+// response among them: it is one microphone's), and
 // std::invalid_argument as RenderRoom does. An empty `clean` gives empty channels.
 std::vector<std::vector<float>> RenderRoomArray(const std::vector<float>& clean, double sample_rate,
                                                 const RoomOptions& options, const ArraySource& source,

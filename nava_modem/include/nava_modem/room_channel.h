@@ -8,9 +8,9 @@
 //  1. clock offset: the sender's sound card runs fast or slow, so everything it plays is
 //     resampled (libsamplerate) by 1 / (1 + clock_offset): +1 % moves 3000 Hz to 3030 Hz and
 //     shortens the sound by 1/1.01;
-//  2. spectral tilt (TiltGainDb) and 3. the room's impulse response (room_impulse_response.h),
-//     both applied as one product of spectra in one FFT; the output is longer than the input
-//     by the impulse response (its reverberation tail);
+//  2. spectral tilt (TiltGainDb) and 3. the room's impulse response (room_impulse_response.h,
+//     or a measured one: measured_response.h), both applied as one product of spectra in one
+//     FFT; the output is longer than the input by the impulse response (its reverberation tail);
 //  4. noise (white or pink), the interferer (looped to cover the output, not reverberated: it
 //     stands for whatever the microphone picks up besides the modem, room and all) and the
 //     motor whine, each scaled to its ratio to the modem signal's level (below);
@@ -18,7 +18,8 @@
 //
 // Levels: the signal power is the mean of the squared rendered modem signal (after steps 1-3)
 // over the samples where the clean signal sounds (SoundingSamples of the clock-shifted clean
-// signal: its 10 ms RMS envelope at least a tenth, -20 dB, of the envelope's peak), so that the
+// signal: its 10 ms RMS envelope at least a tenth, -20 dB, of the envelope's peak; moved by a
+// measured response's delay to its largest peak, where the packet is heard), so that the
 // silences between packets do not count and the reverberation during a packet does. The noise,
 // interferer and whine powers are their mean squares over the whole output. Then
 // SNR = 10 log10(signal power / noise power), likewise SIR and the whine's SIR.
@@ -32,6 +33,9 @@ namespace nava_modem {
 struct RoomOptions {
   double rt60 = 0.0;    // s, mid-frequency reverberation time; 0 = no reverberation (the direct sound only)
   double drr_db = 0.0;  // direct-to-reverberant energy ratio of the impulse response, dB
+  // A measured impulse response at the render's sample rate (LoadImpulseResponse), used as given
+  // in place of the statistical room: rt60 and drr_db must then be 0. Its own delay is kept.
+  std::vector<float> response;
   // Gain at tilt_high_hz minus gain at tilt_low_hz (negative: highs weaker): 0 dB up to
   // tilt_low_hz, tilt_db from tilt_high_hz up, linear in log-frequency between.
   double tilt_db = 0.0;
@@ -64,14 +68,16 @@ class RoomOptionError : public std::invalid_argument {
 };
 
 // Throws RoomOptionError (a std::invalid_argument) for: sample_rate not above 0; rt60 < 0 or
-// > 10 s; |drr_db| > 40; |tilt_db| > 40; tilt_low_hz <= 0 or >= tilt_high_hz; |clock_offset| >
-// 0.05; snr_db, sir_db or whine_sir_db outside -60..100; whine_hz < 0 or whose 1 % wander would
+// > 10 s; |drr_db| > 40; a response that is silent or not finite, or given with rt60 or
+// drr_db; |tilt_db| > 40; tilt_low_hz <= 0 or >= tilt_high_hz; |clock_offset| > 0.05; snr_db, sir_db or whine_sir_db outside -60..100; whine_hz < 0 or whose 1 % wander would
 // reach Nyquist (whine_hz >= Nyquist / 1.01); whine_am_hz < 0 or > 100; an unknown noise kind.
 void ValidateRoomOptions(const RoomOptions& o, double sample_rate);
 
 // What RenderRoom did, for reports (nava_room's summary line).
 struct RoomRenderInfo {
-  double measured_drr_db = 0.0;    // of the impulse response used (+inf without a room)
+  // Of the impulse response used (+inf without a room): the statistical response's DRR
+  // (MeasureDrrDb), a measured one's in the modems' band (MeasureResponse).
+  double measured_drr_db = 0.0;
   double signal_power = 0.0;       // the level definition's signal power, before output_gain
   double sounding_fraction = 0.0;  // of the clean (clock-shifted) samples that count as sounding
   double noise_rms = 0.0;          // RMS of the added noise, before output_gain (0 = none)

@@ -1,0 +1,51 @@
+#pragma once
+
+// Room impulse responses measured in real rooms (a loudspeaker's sweep or a clap, recorded by a
+// microphone): read from a file to render through them (nava_room --rir, nava_bench --rir-dir),
+// and the two figures rooms are told apart by (RT60 and the direct-to-reverberant ratio), read in
+// the modems' band. No ROS.
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace nava_modem {
+
+// A response file that cannot serve: unreadable, silent, or with more channels than asked for.
+// what() is one line naming the file and what was expected.
+class ResponseFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Channel `channel` (0-based) of the response in `path`, resampled (libsamplerate) to
+// `sample_rate`. The response's own delay (the samples before its direct sound) is kept, so a
+// rendering through it is as late as the measurement was. With no channel asked for, the file
+// must have one. Throws ResponseFileError naming the file when it cannot be read, has more
+// channels than asked for (no channel given and more than one) or fewer (the channel is not
+// there), or when the channel is silent; std::invalid_argument for a sample rate not above 0.
+std::vector<float> LoadImpulseResponse(const std::string& path, std::optional<int> channel, double sample_rate);
+
+// The band the figures are read in: the modems' (600-5400 Hz).
+constexpr double kResponseBandLowHz = 600.0;
+constexpr double kResponseBandHighHz = 5400.0;
+// The direct sound: the response within this long of its main peak, either side.
+constexpr double kDirectHalfWidthS = 0.0025;
+
+struct ResponseMeasures {
+  std::size_t peak = 0;  // sample of the main (largest in-band) peak: the direct sound's arrival
+  // T30 by Schroeder's backward integration (the decay from -5 to -35 dB, line-fitted and
+  // extended to 60 dB); T20 (-5 to -25 dB) when the response's end or noise floor stops the
+  // decay before -35 dB; NaN when it does not even reach -25 dB.
+  double rt60_s = 0.0;
+  // Energy within kDirectHalfWidthS of the peak over the energy after it, dB (+inf with
+  // nothing after it).
+  double drr_db = 0.0;
+};
+
+// Both figures in 600-5400 Hz (the response band-passed by FFT). Throws std::invalid_argument for
+// an empty or silent response or a sample rate below 2 x kResponseBandHighHz.
+ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate);
+
+}  // namespace nava_modem
