@@ -53,6 +53,11 @@ constexpr double kMaxDecay = 0.985;  // per bit: RT60 about 4 s at 300 bits/s
 // leakage from neighbouring bits, which the break does not show, is about this large.
 constexpr double kMinNoise = 0.01;
 
+// Bit repairs (FrameRepair) are allowed only on clocks within this of the nominal rate: the
+// receiver searches max_rate_error (3.5 %) for robustness, but sound cards are within a few
+// tenths of a percent, and the far clocks are where wrong fits to echoes or noise land.
+constexpr double kRepairRateLimit = 0.015;
+
 // ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
 // 9.8.2), for x >= 0.
 double LogBesselI0(double x) {
@@ -491,11 +496,16 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   ev.level_db = 10.0 * std::log10(power / kFrameBits + kTiny);
   ev.quality = quality / kFrameBits;
   ev.rate_error = per_bit_ / best_period - 1.0;
-  std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, options_.max_fixed_bits);
-  if (!repaired) repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+  // A clock fitted this far off is rarer in a sound card than a wrong fit to a room's echoes or
+  // to noise, whose reading the CRC must then pass unrepaired.
+  const int max_fixed = std::abs(ev.rate_error) > kRepairRateLimit ? 0 : options_.max_fixed_bits;
+  std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, max_fixed);
+  if (!repaired) repaired = RepairFrame(soft, modem_.crc, max_fixed);
   if (!repaired) {
+    // Each tone's two kinds of bit as the frame itself shows them (tone_classes.h), read only
+    // when its framing agrees.
     const ToneClassDecision learnt = ToneClassSoft(heard, hard);
-    if (learnt.misframed == 0) repaired = RepairFrame(learnt.soft, modem_.crc, options_.max_fixed_bits);
+    if (learnt.misframed == 0) repaired = RepairFrame(learnt.soft, modem_.crc, max_fixed);
   }
   if (repaired) {
     ev.kind = RxEvent::Kind::kPacket;

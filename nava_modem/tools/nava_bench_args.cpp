@@ -29,7 +29,8 @@ RoomsRequest ParseRooms(const ToolArgs& args) {
   r.packets = static_cast<int>(args.Int("--packets", 60, 1, 100000));
   r.plot_packets = static_cast<int>(args.Int("--plot-packets", 30, 0, 100000));
   r.rooms_per_row = static_cast<int>(args.Int("--rooms-per-row", 6, 1, 1000));
-  if (r.rooms_per_row > std::min(r.packets, std::max(1, r.plot_packets))) {
+  // --plot-packets 0 draws no plot, so it does not bound the rooms.
+  if (r.rooms_per_row > r.packets || (r.plot_packets > 0 && r.rooms_per_row > r.plot_packets)) {
     args.Fail("--rooms-per-row: expected at most the packets per row and per plot point");
   }
   r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
