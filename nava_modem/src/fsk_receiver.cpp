@@ -36,6 +36,10 @@ constexpr double kPeriodGain = 0.002;
 // Phases searched either side of the detector's estimate of the break, in bits: a room's tail
 // of the SPACE half delays the step the detector sees by a bit or two.
 constexpr double kPhaseSpanBits = 2.5;
+// The break is also looked for this many bits before the detector's estimate (DecodeFrame), and
+// moved there when its clock explains the known bits by this factor better than any near one.
+constexpr double kWideEarlyBits = 12.0;
+constexpr double kFarBreakGain = 1.1;
 // Bit clocks tried per packet (see DecodeFrame).
 constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
@@ -191,16 +195,17 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
   // step is the smaller, so that the edge of a burst (tones on one side only) is no step.
   const double floor = kSilence * w_;
   const double mixed = std::min(after_ / std::max(after_power_, floor), -before_ / std::max(before_power_, floor));
-  // The same step seen by each tone on its own scale: how much MARK rose across the boundary
-  // and SPACE fell. A room and a speaker can leave MARK 10 dB or more below SPACE, and SPACE's
-  // reverberant tail then outweighs MARK's direct sound in the windows' sums above; each tone's
-  // own rise and fall do not depend on the other's level.
+  // The same step with each tone on its own scale (its larger window's power): a room and a
+  // speaker can leave MARK 10 dB or more below SPACE, and SPACE's reverberant tail then
+  // outweighs MARK's direct sound in the sums above, so that the break goes unseen. Balanced,
+  // the step peaks where the sums' one would with the tones equal: at the break.
   const double mark_after = (after_power_ + after_) / 2.0, mark_before = (before_power_ + before_) / 2.0;
   const double space_after = (after_power_ - after_) / 2.0, space_before = (before_power_ - before_) / 2.0;
-  const double tone_floor = floor / 2.0;
-  const double per_tone = std::min((mark_after - mark_before) / std::max(mark_after + mark_before, tone_floor),
-                                   (space_before - space_after) / std::max(space_before + space_after, tone_floor));
-  const double step = std::max(mixed, per_tone);
+  const double mark_scale = std::max({mark_after, mark_before, floor}), space_scale = std::max({space_after, space_before, floor});
+  const double ma = mark_after / mark_scale, mb = mark_before / mark_scale;
+  const double sa = space_after / space_scale, sb = space_before / space_scale;
+  const double balanced = std::min((ma - sa) / std::max(ma + sa, kTiny), (sb - mb) / std::max(sb + mb, kTiny));
+  const double step = std::max(mixed, balanced);
 
   switch (state_) {
     case State::kSearching:
@@ -327,18 +332,23 @@ FskReceiver::ToneModel FskReceiver::FitToneModel(double break_step) const {
   return model;
 }
 
-RxEvent FskReceiver::DecodeFrame(double break_step) {
-  // Each tone on its own scale, so that a tone weaker than the other (the speaker's, the
-  // room's and the microphone's responses tilt the spectrum) weighs as much in the clock fit.
-  model_ = FitToneModel(break_step);
+void FskReceiver::Normalize(double earliest_break, double latest_break) {
   const double margin = (1.0 + options_.max_rate_error) * per_bit_;
-  normalized_start_ = static_cast<std::int64_t>(std::floor(break_step + (kFirstBit - 2) * margin));
-  const std::int64_t normalized_end = static_cast<std::int64_t>(std::ceil(break_step + (kEndBit + 2) * margin));
+  normalized_start_ = static_cast<std::int64_t>(std::floor(earliest_break + (kFirstBit - 2) * margin));
+  const std::int64_t normalized_end = static_cast<std::int64_t>(std::ceil(latest_break + (kEndBit + 2) * margin));
   normalized_.resize(static_cast<std::size_t>(std::max<std::int64_t>(0, normalized_end - normalized_start_)));
   for (std::size_t k = 0; k < normalized_.size(); ++k) {
     const std::int64_t n = normalized_start_ + static_cast<std::int64_t>(k);
     normalized_[k] = static_cast<float>((M(n) - model_.floor[0]) / model_.level[0] - (S(n) - model_.floor[1]) / model_.level[1]);
   }
+}
+
+std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent& first,
+                                                                    std::int64_t* first_at, std::uint8_t* first_hard) {
+  // Each tone on its own scale, so that a tone weaker than the other (the speaker's, the
+  // room's and the microphone's responses tilt the spectrum) weighs as much in the clock fit.
+  model_ = FitToneModel(break_step);
+  Normalize(break_step, break_step);
   // The bit clock that best explains the packet's known bits and the strength of its unknown
   // ones, over a grid of phases for each rate. In deep noise the best fit can be a wrong one,
   // so the best few rates that are local optima are each refined on a finer grid and read in
@@ -357,23 +367,60 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   }
   std::sort(candidates.begin(), candidates.end(), [](const ClockFit& a, const ClockFit& b) { return a.metric > b.metric; });
   if (candidates.size() > kClockHypotheses) candidates.resize(kClockHypotheses);
-  RxEvent first;
-  std::int64_t first_at[kPacketBits];
-  std::uint8_t first_hard[kFrameBits];
+  ClockFit best{break_step, per_bit_, -1e300};
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ClockFit fine = BestFit(candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, rate_step, 0.0005);
     RxEvent ev = ReadFrame(fine.start, fine.period);
-    if (ev.kind == RxEvent::Kind::kPacket) return ev;
+    if (ev.kind == RxEvent::Kind::kPacket) {
+      first = ev;
+      return std::nullopt;
+    }
     if (k == 0) {
+      best = fine;
       first = ev;
       std::copy(read_at_, read_at_ + kPacketBits, first_at);
       std::copy(read_hard_, read_hard_ + kFrameBits, first_hard);
     }
   }
+  return best;
+}
+
+RxEvent FskReceiver::DecodeFrame(double break_step) {
+  {
+    // In a reverberant room or deep noise the detector's peak can lie up to a window late (a
+    // faint MARK's rise, or SPACE's tail falling, is as clear whether or not the windows
+    // straddle the break), beyond the clock search's reach. The clock that best explains the
+    // packet's known bits at the nominal rate, from kWideEarlyBits early to kPhaseSpanBits
+    // late, moves the break there when it explains them clearly better than any within reach;
+    // else the detector's estimate stands (the tone model is read best there).
+    model_ = FitToneModel(break_step);
+    Normalize(break_step - kWideEarlyBits * per_bit_, break_step);
+    const double span = (kWideEarlyBits + kPhaseSpanBits) / 2.0 * per_bit_;
+    const ClockFit wide = BestFit(break_step + kPhaseSpanBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
+    const ClockFit near = BestFit(break_step, per_bit_, kPhaseSpanBits * per_bit_, per_bit_ / 4.0, 0.0, 1.0);
+    if (std::abs(wide.start - break_step) > kPhaseSpanBits * per_bit_ && wide.metric > kFarBreakGain * near.metric) {
+      break_step = wide.start;
+    }
+  }
+  RxEvent first;
+  std::int64_t first_at[kPacketBits];
+  std::uint8_t first_hard[kFrameBits];
+  bool any_clock = false;
+  // The tone model is read at the detector's break; where the best clock puts the break a
+  // quarter bit or more from it (a room's tail can move the detector's peak by a bit), the model
+  // is read again there and the clocks searched again, once.
+  for (int round = 0; round < 2; ++round) {
+    const std::optional<ClockFit> best = ReadOnBestClocks(break_step, first, first_at, first_hard);
+    if (!best) return first;  // a packet
+    any_clock = any_clock || best->metric > -1e300;
+    if (round == 1 || !(best->metric > -1e300) || std::abs(best->start - break_step) < per_bit_ / 4.0) break;
+    break_step = best->start;
+  }
+  if (!any_clock) return first;
   // No clock read a frame: the room's echoes, perhaps. The equaliser models them on the best
   // clock's readings (it is rarely another clock that an equalised packet needs, and the
   // equaliser costs more than a read).
-  if (!candidates.empty()) {
+  {
     std::complex<double> heard[2][kPacketBits];
     double at[kPacketBits];
     for (int k = 0; k < kPacketBits; ++k) {

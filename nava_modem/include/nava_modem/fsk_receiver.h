@@ -15,17 +15,25 @@
 
 namespace nava_modem {
 
-// The Nava demodulator. Samples pass the two tone filters (ToneFilters); the break before each
-// packet is found by its SPACE-to-MARK step; each tone's level and floor (and a room's tail)
+// The Nava demodulator. Samples pass the two tone filters (ToneFilters). The break before each
+// packet is found by its SPACE-to-MARK step, seen both in the tones' sum and tone by tone (a
+// room can leave one tone 10 dB or more below the other, and the strong tone's tail then hides
+// the step in the sum), and moved to where the clock that best explains the packet's known bits
+// puts it when that lies beyond the clock search's reach (a faint tone or a room's tail can make
+// the detector's estimate up to a window late). Each tone's level and floor (and a room's tail)
 // are read from the break, so that a tone weaker than the other counts as much; the bit clock
 // is fitted to the break, the start and stop bits and the header (bit rate and phase, by
 // maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
 // against their levels and floors (read again from the frame itself, as a room colours the
 // break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
-// repairs up to two unsure bits. When no clock's reading passes, the equaliser (FskEqualizer)
-// reads the packet again from the filters' complex outputs on the best clock, with a model of
-// the room's echoes fitted to the packet itself.
+// repairs up to two unsure bits (only on clocks within 1.5 % of the nominal rate: the far ones
+// are where wrong fits land). Failing that, each tone's two kinds of bit are learnt from the
+// frame itself (ToneClassSoft: a discriminant of the log powers, which weighs each filter by
+// what it tells in this room). When no clock's reading passes, the break is placed where the
+// best clock put it, the tone model read there and the clocks searched once more; then the
+// equaliser (FskEqualizer) reads the packet again from the filters' complex outputs on the best
+// clock, with a model of the room's echoes fitted to the packet itself.
 class FskReceiver : public PacketReceiver {
  public:
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
@@ -74,6 +82,14 @@ class FskReceiver : public PacketReceiver {
   ClockFit BestFit(double start0, double period0, double phase_span, double phase_step, double rate_span,
                    double rate_step) const;
   RxEvent DecodeFrame(double break_step);
+  // The tone filters' normalised difference (Normalized) over a packet whose break lies from
+  // earliest_break to latest_break.
+  void Normalize(double earliest_break, double latest_break);
+  // The tone model read at break_step, the clocks searched around it and read in turn: nullopt
+  // when one reads a packet (then in `first`); else the best clock's fine fit (metric -1e300
+  // when there was none), its reading in `first`, where its bits were read and its first
+  // decisions on the frame.
+  std::optional<ClockFit> ReadOnBestClocks(double break_step, RxEvent& first, std::int64_t* first_at, std::uint8_t* first_hard);
   // Reads the frame with the bit clock starting there (the first MARK bit of the break).
   RxEvent ReadFrame(double first_mark, double period);
   double FitMetric(double first_mark, double period) const;
