@@ -28,9 +28,7 @@ namespace nava_modem {
 // against their levels and floors (read again from the frame itself, as a room colours the
 // break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
 // repairs up to two unsure bits (only on clocks within 1.5 % of the nominal rate: the far ones
-// are where wrong fits land). Failing that, each tone's two kinds of bit are learnt from the
-// frame itself (ToneClassSoft: a discriminant of the log powers, which weighs each filter by
-// what it tells in this room). When no clock's reading passes, the break is placed where the
+// are where wrong fits land). When no clock's reading passes, the break is placed where the
 // best clock put it, the tone model read there and the clocks searched once more; then the
 // equaliser (FskEqualizer) reads the packet again from the filters' complex outputs on the best
 // clock, with a model of the room's echoes fitted to the packet itself.
