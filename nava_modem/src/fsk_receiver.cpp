@@ -65,6 +65,8 @@ constexpr double kMinNoise = 0.01;
 // receiver searches max_rate_error (3.5 %) for robustness, but sound cards are within a few
 // tenths of a percent, and the far clocks are where wrong fits to echoes or noise land.
 constexpr double kRepairRateLimit = 0.015;
+// Bits a repair may flip in a reading decided on the break's model of the tones (ReadFrame).
+constexpr int kMaxBreakModelRepairs = 1;
 
 // ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
 // 9.8.2), for x >= 0.
@@ -552,7 +554,11 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   // to noise, whose reading the CRC must then pass unrepaired.
   const int max_fixed = std::abs(ev.rate_error) > kRepairRateLimit ? 0 : options_.max_fixed_bits;
   std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, max_fixed);
-  if (!repaired) repaired = RepairFrame(soft, modem_.crc, max_fixed);
+  // The break's model of the tones is blind to a room's early echoes, and its log-likelihoods
+  // can then be sure of three or more wrong bits; a two-bit repair of such a reading once passed
+  // the CRC with a wrong packet (FskRobustness.DiscreteEarlyReflectionsAFewBitsLate), so it
+  // gets one.
+  if (!repaired) repaired = RepairFrame(soft, modem_.crc, std::min(max_fixed, kMaxBreakModelRepairs));
   if (repaired) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);

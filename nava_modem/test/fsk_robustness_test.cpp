@@ -189,5 +189,29 @@ TEST(FskRobustness, AToneCancelledByAReflectionWithinABitAndAReverberantTail) {
   }
 }
 
+// The other mechanism of the measured rooms that failed (a teaching room's near ear, DRR 0 to
+// +2 dB): discrete early reflections a few bits late (1.3 to 23 ms, 6 to 16 dB below the direct
+// sound), as a wall, a table and the floor give. They pulled the clock fit one or two bits late
+// and left the equaliser's first fit, on the break and the header alone, overfitted: 0 of 12
+// packets before (every SNR), all 12 now.
+TEST(FskRobustness, DiscreteEarlyReflectionsAFewBitsLate) {
+  ModemOptions o;
+  const auto payloads = RandomPayloads(12, 78);
+  const std::vector<float> clean = PacketTrain(o, payloads, 0.5);
+  std::vector<float> h(static_cast<std::size_t>(0.1 * o.sample_rate), 0.0f);
+  const std::size_t direct = static_cast<std::size_t>(0.02 * o.sample_rate);
+  h[direct] = 1.0f;
+  const double reflections[][2] = {{1.3, -0.5}, {4.1, 0.35}, {7.6, -0.3}, {11.2, 0.25}, {16.5, -0.2}, {23.0, 0.15}};
+  for (const auto& r : reflections) h[direct + static_cast<std::size_t>(std::lround(r[0] * 1e-3 * o.sample_rate))] += static_cast<float>(r[1]);
+  for (const double snr : {20.0, 3.0}) {
+    RoomOptions room;
+    room.response = h;
+    room.noise = RoomOptions::Noise::kWhite;
+    room.snr_db = snr;
+    room.seed = 11;
+    EXPECT_GE(DecodedRight(o, RenderRoom(clean, o.sample_rate, room), payloads), 11) << "white noise at SNR " << snr << " dB";
+  }
+}
+
 }  // namespace
 }  // namespace nava_modem

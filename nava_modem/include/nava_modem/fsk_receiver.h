@@ -26,10 +26,11 @@ namespace nava_modem {
 // maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
 // against their levels and floors (read again from the frame itself, as a room colours the
-// break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC
-// repairs up to two unsure bits (only on clocks within 1.5 % of the nominal rate: the far ones
-// are where wrong fits land). When no clock's reading passes, the break is placed where the
-// best clock put it, the tone model read there and the clocks searched once more; then the
+// break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC repairs
+// up to two unsure bits (one in a reading on the break's own model, which a room's echoes can
+// make sure of wrong bits; none on a clock more than 1.5 % off the nominal rate, where wrong
+// fits land). When no clock's reading passes, the break is placed where the best clock put
+// it, the tone model read there and the clocks searched once more; then the
 // equaliser (FskEqualizer) reads the packet again from the filters' complex outputs on the best
 // clock, with a model of the room's echoes fitted to the packet itself.
 class FskReceiver : public PacketReceiver {
