@@ -1,6 +1,7 @@
 #include "nava_modem/fsk_receiver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "nava_modem/power_of_two.h"
@@ -265,12 +266,26 @@ void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
 }
 
 double FskReceiver::FitMetric(double first_mark, double period) const {
+  // The clock search calls this some two thousand times a packet: the bits' weights are made
+  // once, and the rounding is done inline (std::llround is a library call).
+  static const std::array<int, kEndBit - kFirstBit> weight = [] {
+    std::array<int, kEndBit - kFirstBit> w{};
+    for (int k = kFirstBit; k < kEndBit; ++k) {
+      const int known = KnownBit(k);
+      // 1: counts for MARK; -1: for SPACE; 2: either way (an unknown bit's strength); 0: not at all.
+      w[static_cast<std::size_t>(k - kFirstBit)] = k >= 0 && k < kMarkSettleBits ? 0 : known < 0 ? 2 : known ? 1 : -1;
+    }
+    return w;
+  }();
   double sum = 0.0;
   for (int k = kFirstBit; k < kEndBit; ++k) {
-    if (k >= 0 && k < kMarkSettleBits) continue;
-    const double v = Normalized(std::llround(first_mark + (k + 1) * period - 1.0));
-    const int known = KnownBit(k);
-    sum += known < 0 ? std::abs(v) : (known ? v : -v);
+    const int w = weight[static_cast<std::size_t>(k - kFirstBit)];
+    if (w == 0) continue;
+    const double at = first_mark + (k + 1) * period - 0.5;  // rounded: floor(x - 1 + 0.5)
+    std::int64_t n = static_cast<std::int64_t>(at);
+    if (static_cast<double>(n) > at) --n;
+    const double v = Normalized(n);
+    sum += w == 2 ? std::abs(v) : w * v;
   }
   return sum;
 }
