@@ -14,6 +14,8 @@ namespace {
 constexpr double kNegligibleSnrDb = -30.0;
 // Acoustic model: how often (s) the noise at each robot is worked out again.
 constexpr double kNoiseUpdateSeconds = 0.05;
+// Packets stamped for later that one robot may have waiting (far more than a step brings).
+constexpr std::size_t kMaxPendingSends = 1000;
 
 }  // namespace
 
@@ -48,6 +50,7 @@ AudioChannel::AudioChannel(const PropagationModel& model,
   arrivals_.resize(n);
   sending_.resize(n);
   noise_powers_.assign(n, 0.0);
+  pending_per_robot_.assign(n, 0);
   noise_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(kNoiseUpdateSeconds / (16.0 * tick_)));
 }
 
@@ -69,6 +72,54 @@ void AudioChannel::UpdateNoise() {
 
 bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
   return macs_.at(robot).Enqueue(std::move(data));
+}
+
+std::int64_t AudioChannel::TickAt(double time) const {
+  return std::max(ticks_, static_cast<std::int64_t>(std::ceil(time / tick_ - 1e-9)));
+}
+
+void AudioChannel::SetPoseAt(std::size_t robot, const grid::Pose2D& pose, double time) {
+  if (robot >= poses_.size()) throw std::out_of_range("audio channel: no robot " + std::to_string(robot));
+  PendingPose p{TickAt(time), robot, pose};
+  const auto at = std::upper_bound(pending_poses_.begin(), pending_poses_.end(), p.tick,
+                                   [](std::int64_t t, const PendingPose& q) { return t < q.tick; });
+  pending_poses_.insert(at, std::move(p));
+}
+
+bool AudioChannel::SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time) {
+  if (robot >= macs_.size()) throw std::out_of_range("audio channel: no robot " + std::to_string(robot));
+  // The queue's own limit is applied when the packet enters it (how full the queue is then does
+  // not depend on how far the caller has advanced the channel); this one only bounds memory.
+  if (pending_per_robot_[robot] >= kMaxPendingSends) {
+    ++send_overflows_;
+    return false;
+  }
+  PendingSend p{TickAt(time), robot, std::move(data)};
+  const auto at = std::upper_bound(pending_sends_.begin(), pending_sends_.end(), p.tick,
+                                   [](std::int64_t t, const PendingSend& q) { return t < q.tick; });
+  pending_sends_.insert(at, std::move(p));
+  ++pending_per_robot_[robot];
+  return true;
+}
+
+void AudioChannel::ApplyPending() {
+  while (!pending_poses_.empty() && pending_poses_.front().tick <= ticks_) {
+    poses_[pending_poses_.front().robot] = pending_poses_.front().pose;
+    pending_poses_.pop_front();
+  }
+  while (!pending_sends_.empty() && pending_sends_.front().tick <= ticks_) {
+    PendingSend& p = pending_sends_.front();
+    --pending_per_robot_[p.robot];
+    if (!macs_[p.robot].Enqueue(std::move(p.data))) ++send_overflows_;
+    pending_sends_.pop_front();
+  }
+}
+
+std::int64_t AudioChannel::NextWake(std::int64_t target) const {
+  std::int64_t wake = target;
+  if (!pending_sends_.empty()) wake = std::min(wake, pending_sends_.front().tick);
+  if (acoustic_) wake = std::min(wake, (ticks_ / noise_ticks_ + 1) * noise_ticks_);
+  return wake;
 }
 
 std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
@@ -218,15 +269,19 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
   const std::int64_t target = static_cast<std::int64_t>(std::floor(time / tick_ + 1e-9));
   const std::size_t n = macs_.size();
   while (ticks_ < target) {
-    // Long silences (robots that say something every few seconds) are skipped in one go; the
-    // check runs once a bit, so at most a bit of silence is ticked through.
+    ApplyPending();
     // The noise changes as robots move a cell or a source turns on or off: every 50 ms is often
     // enough, and the check for quiet below runs on the same bit boundaries.
     if (acoustic_ && ticks_ % noise_ticks_ == 0) UpdateNoise();
+    // Long silences (robots that say something every few seconds) are skipped in one go, up to
+    // the next moment something is due (a stamped send, the noise's update); the check runs
+    // once a bit, so at most a bit of silence is ticked through. A silent tick of an idle MAC
+    // changes nothing but its count, so how the silence is cut up does not change the run.
     if (ticks_ % 16 == 0 && Quiet()) {
-      for (nava_modem::CsmaMac& mac : macs_) mac.SkipIdle(static_cast<std::uint64_t>(target - ticks_));
-      ticks_ = target;
-      break;
+      const std::int64_t wake = NextWake(target);
+      for (nava_modem::CsmaMac& mac : macs_) mac.SkipIdle(static_cast<std::uint64_t>(wake - ticks_));
+      ticks_ = wake;
+      continue;
     }
     ++ticks_;
     for (std::size_t r = 0; r < n; ++r) {

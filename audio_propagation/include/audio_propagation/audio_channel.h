@@ -86,6 +86,18 @@ class AudioChannel {
   // Queues a packet to send; false (and counted by the MAC) when its queue is full.
   bool Send(std::size_t robot, std::vector<std::uint8_t> data);
 
+  // The same, taking effect at simulated `time` (s), or at once if that has passed. A caller
+  // that hands over everything stamped up to t before AdvanceTo(t) gets the same run however
+  // often it calls AdvanceTo: the outcome depends on the stamps, not on the calls.
+  void SetPoseAt(std::size_t robot, const grid::Pose2D& pose, double time);
+  // A packet that finds the robot's queue full when it is to enter it is dropped and counted
+  // in send_overflows(); false only when a robot has an absurd number waiting to enter.
+  bool SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time);
+  // Nothing in the air or on its way, every MAC idle, nothing stamped still to take effect:
+  // until a new SendAt() or Send(), AdvanceTo() produces no events (the acoustic model's noise
+  // may still move a carrier, which AdvanceTo() then works out as it goes).
+  bool Idle() const { return pending_sends_.empty() && Quiet(); }
+
   struct Events {
     std::vector<Transmission> started;
     std::vector<Reception> received;
@@ -99,6 +111,7 @@ class AudioChannel {
   bool Carrier(std::size_t robot) const { return macs_.at(robot).carrier(); }
   const nava_modem::CsmaMac& mac(std::size_t robot) const { return macs_.at(robot); }
   std::uint64_t missed_while_sending() const { return missed_while_sending_; }
+  std::uint64_t send_overflows() const { return send_overflows_; }
   // Acoustic model: arrivals the receiver would not have noticed at all.
   std::uint64_t unheard() const { return unheard_; }
   const AcousticModel* acoustic() const { return acoustic_; }
@@ -115,6 +128,23 @@ class AudioChannel {
     LinkLevels levels;  // acoustic model
     bool done = false;  // finished, kept a while to judge overlaps with later arrivals
   };
+  struct PendingPose {
+    std::int64_t tick;
+    std::size_t robot;
+    grid::Pose2D pose;
+  };
+  struct PendingSend {
+    std::int64_t tick;
+    std::size_t robot;
+    std::vector<std::uint8_t> data;
+  };
+  // The first tick at or after `time`, never before the next one.
+  std::int64_t TickAt(double time) const;
+  // Puts into effect what was stamped up to the current tick.
+  void ApplyPending();
+  // The first tick after the current one at which something must be looked at even in quiet:
+  // a stamped send, or (acoustic model) the next update of the noise.
+  std::int64_t NextWake(std::int64_t target) const;
   void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
   void Finish(std::size_t receiver, const Arrival& a, Events& events);
   // Nothing in the air, nothing on its way, nobody with anything to send: ticks change nothing.
@@ -138,12 +168,16 @@ class AudioChannel {
   std::vector<double> powers_;  // linear power behind each level
   std::vector<std::deque<Arrival>> arrivals_;  // per receiver: pending and recently finished
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> sending_;  // per robot, recent
+  std::deque<PendingPose> pending_poses_;  // in stamp order
+  std::deque<PendingSend> pending_sends_;  // in stamp order
+  std::vector<std::size_t> pending_per_robot_;  // sends not yet in each robot's queue
   PathCache cache_;
   std::mt19937 rng_;
   double tick_;
   std::int64_t ticks_ = 0;
   std::uint64_t missed_while_sending_ = 0;
   std::uint64_t unheard_ = 0;
+  std::uint64_t send_overflows_ = 0;
 };
 
 }  // namespace audio_propagation
