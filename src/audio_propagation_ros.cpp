@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
 
 #include <multirobot_audio/AudioReception.h>
 #include <multirobot_audio/CarrierSense.h>
@@ -49,6 +51,12 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
     throw ParamError(pnh.resolveName("microphones") + ": expected a list of omni, bidirectional or none");
   }
   o.update_rate = NumberParam(pnh, "update_rate", o.update_rate, 1.0, 10000.0);
+  const std::string update = StringParam(pnh, "update", "events");
+  if (update != "events" && update != "every_step") {
+    throw ParamError(pnh.resolveName("update") + ": expected events or every_step, got '" + update + "'");
+  }
+  o.every_step = update == "every_step";
+  o.carrier_refresh = NumberParam(pnh, "carrier_refresh", o.carrier_refresh, 0.01, 3600.0);
   o.path_display_time = NumberParam(pnh, "path_display_time", o.path_display_time, 0.0, 3600.0);
   o.packet_bytes = IntParam(pnh, "packet_bytes", o.packet_bytes, 1, 1024);
   auto& m = o.model;
@@ -111,7 +119,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
 AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh,
                                          const AudioPropagationOptions& options)
     : nh_(nh), pnh_(pnh), lockstep_(nh), updater_(nh, pnh), guard_(updater_), options_(options),
-      tf_listener_(tf_buffer_) {
+      tf_listener_(lockstep_.enabled() ? nullptr : std::make_unique<tf2_ros::TransformListener>(tf_buffer_)) {
   grid::OccupancyMap map;
   std::vector<world_sim::RobotSpec> specs;
   std::optional<world_sim::Acoustics> acoustics;
@@ -192,6 +200,7 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
 
   const std::size_t n = options_.robots.size();
   last_carrier_.assign(n, false);
+  carrier_published_.assign(n, -std::numeric_limits<double>::infinity());
   have_pose_.assign(n, false);
   missing_poses_.assign(n, 0);
   pose_stamps_.assign(n, ros::Time());
@@ -202,21 +211,25 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
         lockstep_, rnh, "audio/tx", 10,
         [packet_bytes](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, packet_bytes); },
         [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { return OnTx(k, m); }));
+    // (What is already in the air is settled at the next update: sleeping through silence, the
+    // node is called to a step by a packet, not by the robots' poses.)
     rx_pubs_.push_back(lockstep_.Advertise<multirobot_audio::AudioReception>(rnh, "audio/rx", 50));
     carrier_pubs_.push_back(lockstep_.Advertise<multirobot_audio::CarrierSense>(rnh, "audio/carrier", 10));
-    truth_.emplace_back();
     if (lockstep_.enabled()) {
       truth_subs_.push_back(guard_.Subscribe<nav_msgs::Odometry>(
-          lockstep_, rnh, "ground_truth", 10, OdometryProblem, [this, k](const nav_msgs::Odometry::ConstPtr& m) {
-            truth_[k] = std::make_unique<grid::Pose2D>(FromPose(m->pose.pose));
-          }));
+          lockstep_, rnh, "ground_truth", 10, OdometryProblem,
+          [this, k](const nav_msgs::Odometry::ConstPtr& m) { OnTruth(k, *m); }));
+      lockstep_.Passive(rnh, "ground_truth");
     }
     channel_->SetPose(k, {kUnknown, kUnknown, 0.0});
   }
   paths_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("paths", 10);
   points_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("diffraction_points", 1, true);
   PublishDiffractionPoints();
-  timer_ = lockstep_.CreateTimer(nh_, ros::Duration(1.0 / options_.update_rate), &AudioPropagationRos::OnTimer, this);
+  std::function<double()> rest;
+  if (!options_.every_step) rest = [this] { return RestUntil(); };
+  timer_ = lockstep_.CreateTimer(
+      nh_, ros::Duration(1.0 / options_.update_rate), [this](const ros::TimerEvent& e) { OnTimer(e); }, rest);
   updater_.setHardwareID("none");
   updater_.add("poses", this, &AudioPropagationRos::DiagnosePoses);
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
@@ -226,10 +239,13 @@ AudioPropagationRos::~AudioPropagationRos() {
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::uint64_t missing = 0;
   for (const std::uint64_t m : missing_poses_) missing += m;
-  std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; %s; %lu pose look-ups "
-              "failed; path cache %lu hits, %lu misses; %lu arrivals unheard (acoustic model)\n",
+  std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; %s; %lu packets found "
+              "their robot's queue full; %lu pose look-ups failed; updates %lu (%lu of them resting); "
+              "path cache %lu hits, %lu misses; %lu arrivals unheard (acoustic model)\n",
               static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
-              static_cast<unsigned long>(noise_heard_), guard_.Summary().c_str(), static_cast<unsigned long>(missing),
+              static_cast<unsigned long>(noise_heard_), guard_.Summary().c_str(),
+              static_cast<unsigned long>(channel_ ? channel_->send_overflows() : 0), static_cast<unsigned long>(missing),
+              static_cast<unsigned long>(updates_), static_cast<unsigned long>(idle_updates_),
               static_cast<unsigned long>(channel_ ? channel_->cache().hits() : 0),
               static_cast<unsigned long>(channel_ ? channel_->cache().misses() : 0),
               static_cast<unsigned long>(channel_ ? channel_->unheard() : 0));
@@ -237,7 +253,15 @@ AudioPropagationRos::~AudioPropagationRos() {
 }
 
 InputGuard::Verdict AudioPropagationRos::OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg) {
-  if (!channel_->Send(robot, msg->data)) return InputGuard::Verdict::Drop("the robot's transmit queue is full");
+  // Without the lockstep the poses are not read while the node rests: read them now, so that
+  // the packet leaves from where the robots are.
+  if (!lockstep_.enabled() && !options_.every_step && RestUntil() > ros::Time::now().toSec()) {
+    UpdatePoses(ros::Time::now());
+  }
+  // Stamped with the time it came: in lockstep, the step it was sent in.
+  if (!channel_->SendAt(robot, msg->data, ChannelTime(ros::Time::now()))) {
+    return InputGuard::Verdict::Drop("the robot has too many packets waiting to enter its queue");
+  }
   return InputGuard::Verdict::Accept();
 }
 
@@ -262,25 +286,39 @@ void AudioPropagationRos::DiagnosePoses(diagnostic_updater::DiagnosticStatusWrap
   }
 }
 
-void AudioPropagationRos::UpdatePoses() {
+double AudioPropagationRos::ChannelTime(const ros::Time& t) {
+  if (start_.isZero()) start_ = ros::Time::now();
+  return (t - start_).toSec();
+}
+
+void AudioPropagationRos::CheckInside(std::size_t robot, const grid::Pose2D& pose) const {
+  if (!model_->map().IsFreeAt(pose.position())) {
+    ROS_WARN_THROTTLE(5.0, "audio_propagation: %s is inside a wall or off the map at (%.2f, %.2f): it neither hears nor is heard",
+                      options_.robots[robot].c_str(), pose.x, pose.y);
+  }
+}
+
+void AudioPropagationRos::OnTruth(std::size_t robot, const nav_msgs::Odometry& msg) {
+  const grid::Pose2D pose = FromPose(msg.pose.pose);
+  CheckInside(robot, pose);
+  // Stamped when the world took it (never later than now: a stamp from the future would hold
+  // the robot back).
+  const ros::Time now = ros::Time::now();
+  const ros::Time stamp = msg.header.stamp.isZero() ? now : std::min(msg.header.stamp, now);
+  channel_->SetPoseAt(robot, pose, ChannelTime(stamp));
+  pose_stamps_[robot] = stamp;
+  have_pose_[robot] = true;
+}
+
+void AudioPropagationRos::UpdatePoses(const ros::Time& now) {
   for (std::size_t k = 0; k < options_.robots.size(); ++k) {
     const std::string frame = options_.robots[k] + "/base_link";
     try {
-      grid::Pose2D pose;
-      if (lockstep_.enabled()) {
-        if (!truth_[k]) throw tf2::LookupException("no " + options_.robots[k] + "/ground_truth yet");
-        pose = *truth_[k];
-        pose_stamps_[k] = ros::Time::now();
-      } else {
-        const auto t = tf_buffer_.lookupTransform("map", frame, ros::Time(0));
-        pose = grid::Pose2D{t.transform.translation.x, t.transform.translation.y, FromQuaternionYaw(t.transform.rotation)};
-        pose_stamps_[k] = t.header.stamp;
-      }
-      if (!model_->map().IsFreeAt(pose.position())) {
-        ROS_WARN_THROTTLE(5.0, "audio_propagation: %s is inside a wall or off the map at (%.2f, %.2f): it neither hears nor is heard",
-                          options_.robots[k].c_str(), pose.x, pose.y);
-      }
-      channel_->SetPose(k, pose);
+      const auto t = tf_buffer_.lookupTransform("map", frame, ros::Time(0));
+      const grid::Pose2D pose{t.transform.translation.x, t.transform.translation.y, FromQuaternionYaw(t.transform.rotation)};
+      pose_stamps_[k] = t.header.stamp;
+      CheckInside(k, pose);
+      channel_->SetPoseAt(k, pose, ChannelTime(now));
       have_pose_[k] = true;
     } catch (const tf2::TransformException& e) {
       ++missing_poses_[k];
@@ -291,11 +329,34 @@ void AudioPropagationRos::UpdatePoses() {
   }
 }
 
+double AudioPropagationRos::RestUntil() const {
+  if (start_.isZero()) return 0.0;
+  // Until the channel may have something to publish, or a carrier is to be repeated.
+  double next = channel_->NextEventTime();
+  for (const double t : carrier_published_) next = std::min(next, t + options_.carrier_refresh);
+  if (delivery_pub_) next = std::min(next, next_delivery_map_);
+  // (A hair early rather than a step late: the step's time and the channel's ticks are rounded
+  // differently.)
+  return start_.toSec() + next - 1e-6;
+}
+
 void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
   const ros::Time now = event.current_real;
-  if (start_.isZero()) start_ = now;
-  UpdatePoses();
-  const auto events = channel_->AdvanceTo((now - start_).toSec());
+  const double t = ChannelTime(now);
+  ++updates_;
+  if (!lockstep_.enabled()) {
+    // Poses are only read when they matter: with nothing to report before the next update, an
+    // update is a few comparisons (a team of a hundred robots at 100 Hz would otherwise cost
+    // 10^4 look-ups a second for nothing).
+    const bool due = RestUntil() <= now.toSec();
+    if (!options_.every_step && !due) {
+      ++idle_updates_;
+      channel_->AdvanceTo(t);
+      return;
+    }
+    UpdatePoses(now);
+  }
+  const auto events = channel_->AdvanceTo(t);
 
   visualization_msgs::MarkerArray paths;
   for (const auto& tx : events.started) {
@@ -349,12 +410,17 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
     rx_pubs_[rx.receiver].publish(msg);
   }
 
-  // Carrier: on every change, and every tenth update so late subscribers learn the state.
-  ++updates_;
+  PublishCarriers(now);
+}
+
+void AudioPropagationRos::PublishCarriers(const ros::Time& now) {
+  // On every change, and again every ~carrier_refresh s so that late subscribers learn the state.
+  const double t = channel_->time();
   for (std::size_t k = 0; k < options_.robots.size(); ++k) {
     const bool carrier = channel_->Carrier(k);
-    if (carrier == last_carrier_[k] && updates_ % 10 != 0) continue;
+    if (carrier == last_carrier_[k] && t < carrier_published_[k] + options_.carrier_refresh) continue;
     last_carrier_[k] = carrier;
+    carrier_published_[k] = t;
     multirobot_audio::CarrierSense msg;
     msg.header.stamp = now;
     msg.header.frame_id = options_.robots[k] + "/base_link";

@@ -28,6 +28,11 @@ struct AudioPropagationOptions {
   std::vector<std::string> robots;  // ~robots: which robots to serve (default: all in the world)
   std::vector<std::string> microphones;  // ~microphones: per robot, overriding the world file
   double update_rate = 100.0;    // ~update_rate: Hz (simulated) of pose reads and channel steps
+  // ~update: events (the channel is worked out only while something is in the air or about to
+  // be: in lockstep the world does not wait for this node through silences) or every_step (at
+  // every update, as before; the same run for the same seed, only slower).
+  bool every_step = false;
+  double carrier_refresh = 1.0;  // ~carrier_refresh: s (simulated) between repeats of an unchanged carrier
   // ~path_display_time: s (simulated) each sound path stays drawn, at least; 0 = the
   // transmission's own length (a 4-byte packet is about 0.4 s: a flicker in a sped-up run)
   double path_display_time = 0.0;
@@ -60,7 +65,15 @@ class AudioPropagationRos {
  private:
   InputGuard::Verdict OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg);
   void OnTimer(const ros::TimerEvent& event);
-  void UpdatePoses();
+  void OnTruth(std::size_t robot, const nav_msgs::Odometry& msg);
+  // Channel time (s) of a ROS time; the first one seen starts the clock.
+  double ChannelTime(const ros::Time& t);
+  // In lockstep with ~update events: the ROS time (s) before which the timer has nothing to do
+  // unless a packet comes (+inf: nothing until then); 0 while the air is busy.
+  double RestUntil() const;
+  void PublishCarriers(const ros::Time& now);
+  void UpdatePoses(const ros::Time& now);
+  void CheckInside(std::size_t robot, const grid::Pose2D& pose) const;
   void PublishDiffractionPoints();
   void PublishDeliveryMap(const ros::Time& now);
   // Whose pose is known, and how many look-ups failed for each robot (a robot missing from TF).
@@ -77,13 +90,14 @@ class AudioPropagationRos {
   std::unique_ptr<audio_propagation::AcousticModel> acoustic_;
   std::unique_ptr<audio_propagation::AudioChannel> channel_;
   tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  // not in lockstep (poses come on ground_truth)
   std::vector<ros::Subscriber> tx_subs_, truth_subs_;
   std::vector<CountedPublisher> rx_pubs_, carrier_pubs_;
   // In lockstep the poses come from <robot>/ground_truth (the same poses world_sim sends on /tf),
-  // counted like every other message, rather than from the TF listener's own thread.
-  std::vector<std::unique_ptr<grid::Pose2D>> truth_;
+  // counted like every other message, rather than from the TF listener's own thread; each is
+  // handed to the channel with its stamp.
   std::vector<bool> last_carrier_, have_pose_;
+  std::vector<double> carrier_published_;     // channel time of each robot's last carrier message
   std::vector<std::uint64_t> missing_poses_;  // per robot
   std::vector<ros::Time> pose_stamps_;        // of each robot's latest pose
   ros::Publisher paths_pub_, points_pub_, delivery_pub_;
@@ -91,7 +105,7 @@ class AudioPropagationRos {
   double next_delivery_map_ = 0.0;  // s of channel time
   ros::Timer timer_;
   ros::Time start_;
-  std::uint64_t updates_ = 0;
+  std::uint64_t updates_ = 0, idle_updates_ = 0;
   int marker_id_ = 0;
   // Reported at shutdown.
   std::uint64_t sent_ = 0, packets_heard_ = 0, noise_heard_ = 0;

@@ -31,12 +31,18 @@ void LockstepParticipant::SayHello() {
     hello.connected.push_back(static_cast<std::int32_t>(sub.getNumPublishers()));
   }
   for (const auto& [topic, count] : published_) hello.advertised.push_back(topic);
+  hello.passive = passive_;
   hello.order_connected = order_sub_.getNumPublishers() > 0;
   hello_pub_.publish(hello);
 }
 
+void LockstepParticipant::Passive(ros::NodeHandle& nh, const std::string& topic) {
+  if (enabled_) passive_.push_back(nh.resolveName(topic));
+}
+
 ros::Timer LockstepParticipant::CreateTimer(ros::NodeHandle& nh, ros::Duration period,
-                                            std::function<void(const ros::TimerEvent&)> callback) {
+                                            std::function<void(const ros::TimerEvent&)> callback,
+                                            std::function<double()> rest_until) {
   if (!enabled_) return nh.createTimer(period, [callback](const ros::TimerEvent& e) { callback(e); });
   auto last = std::make_shared<ros::Time>();
   inbox_.AddTimer(period.toSec(), ros::Time::now().toSec(), [callback, last](double expected, double now) {
@@ -47,7 +53,7 @@ ros::Timer LockstepParticipant::CreateTimer(ros::NodeHandle& nh, ros::Duration p
     e.last_real = *last;
     *last = e.current_real;
     callback(e);
-  });
+  }, std::move(rest_until));
   return ros::Timer();
 }
 

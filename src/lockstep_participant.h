@@ -58,9 +58,17 @@ class LockstepParticipant {
                                   std::function<void(const ros::MessageEvent<M const>&)> callback);
   template <class M>
   CountedPublisher Advertise(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue, bool latch = false);
+  // Messages on `topic` (subscribed through this object) do not by themselves call the node to
+  // a step: it gets them whenever it takes part for another reason (a timer due, a message on
+  // another topic). For what a node only reads when it works anyway (robots' poses).
+  void Passive(ros::NodeHandle& nh, const std::string& topic);
   // A periodic timer on ROS time. In lockstep the returned ros::Timer is empty: the inbox runs it.
+  // With `rest_until`, in lockstep the timer need not run before the simulated time it returns
+  // (+inf: until a message comes), and the world does not wait for the node meanwhile; without
+  // the lockstep it runs every period (the callback must then return quickly when idle).
   ros::Timer CreateTimer(ros::NodeHandle& nh, ros::Duration period,
-                         std::function<void(const ros::TimerEvent&)> callback);
+                         std::function<void(const ros::TimerEvent&)> callback,
+                         std::function<double()> rest_until = {});
   template <class T>
   ros::Timer CreateTimer(ros::NodeHandle& nh, ros::Duration period, void (T::*method)(const ros::TimerEvent&), T* object) {
     return CreateTimer(nh, period, [object, method](const ros::TimerEvent& e) { (object->*method)(e); });
@@ -84,6 +92,7 @@ class LockstepParticipant {
   bool ordered_ = false;
   // Counted subscriptions (topic -> subscriber) and publications (topic -> count).
   std::vector<std::pair<std::string, ros::Subscriber>> subscriptions_;
+  std::vector<std::string> passive_;
   std::map<std::string, std::shared_ptr<std::uint64_t>> published_;
   std::map<std::string, std::uint64_t> reported_;
 };

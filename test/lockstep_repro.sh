@@ -3,15 +3,25 @@
 # (lockstep on), recording every robot's audio traffic, and checks that the two runs give the
 # same `world_sim summary` line and the same bag, topic by topic and message for message.
 #
-#   test/lockstep_repro.sh [ROBOTS=3] [DURATION=30] [LAUNCH ARGS...]
+#   test/lockstep_repro.sh [ROBOTS=3] [DURATION=30] [LAUNCH ARGS...] [-- FIRST RUN'S ARGS -- SECOND RUN'S ARGS]
 #
-# (lockstep:=false as a launch argument shows what the lockstep prevents: the runs differ.)
+# (lockstep:=false as a launch argument shows what the lockstep prevents: the runs differ.
+# `-- update:=every_step -- update:=events` checks that audio_propagation working only while
+# something is in the air gives the same run as working at every step.)
 # Starts a roscore of its own on a free port and stops it (and the recorders) by PID.
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 robots=${1:-3}
 duration=${2:-30}
 shift $(($# < 2 ? $# : 2))
+common=() first=() second=()
+while [ $# -gt 0 ] && [ "$1" != "--" ]; do common+=("$1"); shift; done
+if [ $# -gt 0 ]; then
+  shift
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do first+=("$1"); shift; done
+  [ $# -gt 0 ] && shift
+  second=("$@")
+fi
 
 dir=$(mktemp -d /tmp/lockstep_repro.XXXXXX)
 core=""
@@ -32,6 +42,7 @@ for ((k = 0; k < robots; ++k)); do
 done
 
 for run in 1 2; do
+  if [ "$run" = 1 ]; then own=("${first[@]}"); else own=("${second[@]}"); fi
   # The recorder subscribes before the team starts, so it is connected before the first step.
   # rosrun starts rosbag's recorder itself (not the `rosbag record` wrapper), so that waiting
   # for its PID after SIGINT waits until the bag is closed.
@@ -39,7 +50,7 @@ for run in 1 2; do
   recorder=$!
   sleep 2
   roslaunch multirobot_audio sim_team.launch robots:="$robots" duration:="$duration" speed:=0 seed:=1 \
-    announce_period:=2 "$@" >"$dir/run$run.log" 2>&1
+    announce_period:=2 "${common[@]}" "${own[@]}" >"$dir/run$run.log" 2>&1
   kill -INT "$recorder"
   wait "$recorder" || true
   recorder=""
@@ -51,6 +62,7 @@ for run in 1 2; do
   }
 done
 
+grep -h '^audio_propagation summary:' "$dir/run1.log" "$dir/run2.log" | sed 's/^/  /' || true
 echo "run 1: $(cat "$dir/summary1")"
 echo "run 2: $(cat "$dir/summary2")"
 if ! cmp -s "$dir/summary1" "$dir/summary2"; then

@@ -115,6 +115,35 @@ void AudioChannel::ApplyPending() {
   }
 }
 
+double AudioChannel::LevelOf(double power) const {
+  if (!(power > 0.0)) return options_.noise_floor_db;
+  return acoustic_ ? 10.0 * std::log10(power) : std::max(options_.noise_floor_db, 10.0 * std::log10(power));
+}
+
+double AudioChannel::NextEventTime() const {
+  if (Idle()) return std::numeric_limits<double>::infinity();
+  std::int64_t next = std::numeric_limits<std::int64_t>::max();
+  if (!pending_sends_.empty()) next = pending_sends_.front().tick;
+  for (std::size_t r = 0; r < macs_.size(); ++r) {
+    // The level changes only where an arrival starts or ends; until then it is what the next
+    // tick hears.
+    double power = acoustic_ ? noise_powers_[r] : 0.0;
+    for (const Arrival& a : arrivals_[r]) {
+      if (a.start > ticks_) next = std::min(next, a.start);
+      if (!a.done) next = std::min(next, a.end);
+      if (a.start <= ticks_ + 1 && ticks_ + 1 < a.end) power += a.power;
+    }
+    if (const std::optional<int> change = macs_[r].TicksToNextChange(LevelOf(power))) {
+      next = std::min(next, ticks_ + *change);
+    }
+  }
+  // The noise may move a carrier at its next update (and a carrier coming and going starts a
+  // fresh back-off): with the air busy, every update is looked at.
+  if (acoustic_) next = std::min(next, (ticks_ / noise_ticks_ + 1) * noise_ticks_);
+  if (next == std::numeric_limits<std::int64_t>::max()) return std::numeric_limits<double>::infinity();
+  return static_cast<double>(next) * tick_;
+}
+
 std::int64_t AudioChannel::NextWake(std::int64_t target) const {
   std::int64_t wake = target;
   if (!pending_sends_.empty()) wake = std::min(wake, pending_sends_.front().tick);
@@ -291,9 +320,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
       }
       if (power != powers_[r]) {  // the level only changes when an arrival starts or ends
         powers_[r] = power;
-        levels_[r] = power > 0.0 ? (acoustic_ ? 10.0 * std::log10(power)
-                                              : std::max(options_.noise_floor_db, 10.0 * std::log10(power)))
-                                 : options_.noise_floor_db;
+        levels_[r] = LevelOf(power);
       }
       if (auto packet = macs_[r].Tick(levels_[r])) StartTransmission(r, std::move(*packet), events);
     }

@@ -1,5 +1,6 @@
 #include "nava_modem/csma_mac.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -89,6 +90,25 @@ void CsmaMac::EnterWaiting() {
   std::uniform_int_distribution<int> backoff(static_cast<int>(std::lround(options_.backoff_min_bits * 16)),
                                              static_cast<int>(std::lround(options_.backoff_max_bits * 16)));
   remaining_ = backoff(rng_);
+}
+
+std::optional<int> CsmaMac::TicksToNextChange(double level_db) const {
+  const bool heard = level_db > threshold_db_;
+  switch (state_) {
+    case MacState::kWaiting:  // a carrier makes it receive; the back-off counts down only with something to send
+      if (heard) return 1;
+      if (queue_.empty()) return std::nullopt;
+      break;
+    case MacState::kReceiving:  // the release counts down only once the carrier has gone
+      if (heard != carrier_) return 1;
+      if (carrier_) return std::nullopt;
+      break;
+    case MacState::kCalibrating:
+    case MacState::kSending:
+    case MacState::kDeaf:
+      break;
+  }
+  return std::max(remaining_, 1);
 }
 
 std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db, bool may_send) {

@@ -45,6 +45,7 @@ bool LockstepCoordinator::Hello(const ParticipantHello& hello) {
   p.said_hello = true;
   p.hello = hello;
   p.subscribed = std::set<std::string>(hello.subscribed.begin(), hello.subscribed.end());
+  p.passive = std::set<std::string>(hello.passive.begin(), hello.passive.end());
   for (const std::string& topic : p.subscribed) listeners_[topic].insert(hello.node);
   return true;
 }
@@ -122,6 +123,10 @@ std::vector<StepOrder> LockstepCoordinator::BeginStep(std::uint64_t step, double
     for (const std::string& name : listeners->second) {
       Participant& p = participants_.at(name);
       if (p.dropped || stream.publisher == name) continue;  // listeners_ holds only subscribers
+      if (p.passive.count(stream.topic) > 0) {
+        p.carried.insert(stream);
+        continue;
+      }
       std::uint64_t& told = p.told[stream];
       if (total <= told) continue;
       told = total;
@@ -136,6 +141,14 @@ std::vector<StepOrder> LockstepCoordinator::BeginStep(std::uint64_t step, double
     if (g == grown_for.end() && p.next_due > time + 1e-9) continue;
     StepOrder order{name, step, time, {}};
     if (g != grown_for.end()) order.totals = std::move(g->second);
+    for (const StreamId& stream : p.carried) {
+      std::uint64_t& told = p.told[stream];
+      const std::uint64_t total = totals_[stream];
+      if (total <= told) continue;
+      told = total;
+      order.totals.push_back(StreamCount{stream, total});
+    }
+    p.carried.clear();
     p.waiting = true;
     orders.push_back(std::move(order));
   }

@@ -79,8 +79,8 @@ void LockstepInbox::Run() {
   RunTimers(order_.time);
 }
 
-void LockstepInbox::AddTimer(double period, double start, TimerCallback callback) {
-  timers_.push_back(Timer{period, start, 1, start + period, start > 0.0, std::move(callback)});
+void LockstepInbox::AddTimer(double period, double start, TimerCallback callback, std::function<double()> rest_until) {
+  timers_.push_back(Timer{period, start, 1, start + period, start > 0.0, std::move(callback), std::move(rest_until)});
 }
 
 void LockstepInbox::RunTimers(double now) {
@@ -117,7 +117,7 @@ double LockstepInbox::NextDue() const {
   double next = std::numeric_limits<double>::infinity();
   for (const Timer& t : timers_) {
     if (!t.anchored) return 0.0;
-    next = std::min(next, t.due);
+    next = std::min(next, t.rest_until ? std::max(t.due, t.rest_until()) : t.due);
   }
   return next;
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,8 +16,8 @@ namespace {
 LockstepCoordinator TwoRobots() {
   LockstepCoordinator c(LockstepOptions{"/world_sim", {"/robot_0/ctl", "/audio"}, 2.0});
   c.SetOwnStreams({"/robot_0/cmd_vel"}, {"/robot_0/scan"});
-  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan", "/robot_0/rx"}, {1, 1}, {"/robot_0/cmd_vel", "/robot_0/tx"}, true});
-  c.Hello(ParticipantHello{"/audio", {"/robot_0/tx"}, {1}, {"/robot_0/rx"}, true});
+  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan", "/robot_0/rx"}, {1, 1}, {"/robot_0/cmd_vel", "/robot_0/tx"}, true, {}});
+  c.Hello(ParticipantHello{"/audio", {"/robot_0/tx"}, {1}, {"/robot_0/rx"}, true, {}});
   return c;
 }
 
@@ -30,20 +32,20 @@ TEST(LockstepCoordinator, IsReadyOnlyWhenEveryParticipantHearsEveryPublisher) {
   std::string why;
   EXPECT_FALSE(c.Ready({}, &why));
   EXPECT_NE(why.find("/audio has not said hello"), std::string::npos) << why;
-  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan"}, {0}, {"/robot_0/cmd_vel"}, true});
-  c.Hello(ParticipantHello{"/audio", {}, {}, {}, true});
+  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan"}, {0}, {"/robot_0/cmd_vel"}, true, {}});
+  c.Hello(ParticipantHello{"/audio", {}, {}, {}, true, {}});
   EXPECT_FALSE(c.Ready({{"/robot_0/cmd_vel", 1}}, &why));
   EXPECT_NE(why.find("hears 0 of the 1 publishers of /robot_0/scan"), std::string::npos) << why;
-  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan"}, {1}, {"/robot_0/cmd_vel"}, true});
+  c.Hello(ParticipantHello{"/robot_0/ctl", {"/robot_0/scan"}, {1}, {"/robot_0/cmd_vel"}, true, {}});
   EXPECT_FALSE(c.Ready({}, &why));
   EXPECT_NE(why.find("the world hears 0 of the 1 publishers of /robot_0/cmd_vel"), std::string::npos) << why;
   EXPECT_TRUE(c.Ready({{"/robot_0/cmd_vel", 1}}, &why)) << why;
-  EXPECT_FALSE(c.Hello(ParticipantHello{"/stranger", {}, {}, {}, true}));
+  EXPECT_FALSE(c.Hello(ParticipantHello{"/stranger", {}, {}, {}, true, {}}));
 }
 
 TEST(LockstepCoordinator, DropsWhoeverIsNotReadyAtTheStart) {
   LockstepCoordinator c(LockstepOptions{"/world_sim", {"/a", "/b"}, 2.0});
-  c.Hello(ParticipantHello{"/a", {}, {}, {}, true});
+  c.Hello(ParticipantHello{"/a", {}, {}, {}, true, {}});
   EXPECT_EQ(c.DropUnready({}), std::vector<std::string>{"/b"});
   EXPECT_TRUE(c.Ready({}, nullptr));
   EXPECT_EQ(c.dropped(), std::vector<std::string>{"/b"});
@@ -88,6 +90,45 @@ TEST(LockstepCoordinator, OrdersTheStreamsThatGrewAndWaitsOnlyForWhoTakesPart) {
   EXPECT_EQ(c.Slowest(&slowest), "/audio");
   EXPECT_NEAR(slowest, 0.002 + 0.02, 1e-12);
   EXPECT_NEAR(c.waiting_wall(), 0.002 + 0.02, 1e-12);
+}
+
+// The audio node reads the robots' poses only when it works: a pose alone does not call it to a
+// step, but the first step it takes part in covers every pose published meanwhile.
+TEST(LockstepCoordinator, APassiveStreamDoesNotCallItsListenerButTheNextOrderCoversIt) {
+  LockstepCoordinator c(LockstepOptions{"/world_sim", {"/robot_0/ctl", "/audio"}, 2.0});
+  c.SetOwnStreams({}, {"/robot_0/ground_truth"});
+  c.Hello(ParticipantHello{"/robot_0/ctl", {}, {}, {"/robot_0/tx"}, true, {}});
+  ParticipantHello audio{"/audio", {"/robot_0/ground_truth", "/robot_0/tx"}, {1, 1}, {}, true, {}};
+  audio.passive = {"/robot_0/ground_truth"};
+  c.Hello(audio);
+  ASSERT_TRUE(c.Ready({}, nullptr));
+  c.BeginStep(1, 1.02, 0.0);
+  c.Ack("/robot_0/ctl", 1, {}, 1e9, 0.0);
+  c.Ack("/audio", 1, {}, std::numeric_limits<double>::infinity(), 0.0);  // resting until a message
+  c.EndStep(0.0);
+  const StreamId pose{"/robot_0/ground_truth", "/world_sim"};
+  for (std::uint64_t step = 2; step <= 4; ++step) {
+    c.OwnPublished("/robot_0/ground_truth", step - 1);
+    EXPECT_TRUE(c.BeginStep(step, 1.0 + 0.02 * step, 0.0).empty()) << "step " << step;
+    c.EndStep(0.0);
+  }
+  // The controller sends a packet: the audio node takes part, with the three poses.
+  c.BeginStep(5, 1.1, 0.0);
+  c.EndStep(0.0);
+  c.OwnPublished("/robot_0/ground_truth", 4);
+  c.Ack("/robot_0/ctl", 5, {{{"/robot_0/tx", "/robot_0/ctl"}, 1}}, 1e9, 0.0);
+  const auto orders = c.BeginStep(6, 1.12, 0.0);
+  ASSERT_EQ(orders.size(), 1u);
+  EXPECT_EQ(orders[0].node, "/audio");
+  std::map<StreamId, std::uint64_t> totals;
+  for (const StreamCount& t : orders[0].totals) totals[t.stream] = t.total;
+  EXPECT_EQ(totals.size(), 2u);
+  EXPECT_EQ(totals[pose], 4u);
+  EXPECT_EQ(totals[(StreamId{"/robot_0/tx", "/robot_0/ctl"})], 1u);
+  c.Ack("/audio", 6, {}, std::numeric_limits<double>::infinity(), 0.0);
+  c.EndStep(0.0);
+  // Nothing new: no order carries the poses again.
+  EXPECT_TRUE(c.BeginStep(7, 1.14, 0.0).empty());
 }
 
 TEST(LockstepCoordinator, DropsAParticipantThatKeepsTheStepWaitingPastTheTimeout) {
@@ -147,6 +188,30 @@ TEST(LockstepInbox, RunsTimersAtTheStepsTimeOnceEachEarliestFirst) {
   EXPECT_EQ(log[0], "fast 1.100000");  // due at 1.03, fires once for the jump
   EXPECT_EQ(log[1], "slow 1.100000 1.100000");
   EXPECT_NEAR(inbox.NextDue(), 1.11, 1e-9);
+}
+
+// A timer may rest while its node has nothing to do: the world is told it is not due, and it
+// runs at the next step the node takes part in.
+TEST(LockstepInbox, ARestingTimerIsNotDueButRunsWhenAMessageCallsItsNode) {
+  LockstepInbox inbox;
+  std::vector<double> fired;
+  double rest = 0.0;
+  inbox.AddTimer(0.01, 0.0, [&](double, double now) { fired.push_back(now); }, [&] { return rest; });
+  inbox.Order(StepOrder{"/n", 1, 1.0, {}}, {"/world"});
+  inbox.Run();
+  EXPECT_NEAR(inbox.NextDue(), 1.01, 1e-9);  // not resting: due next period
+  rest = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(inbox.NextDue(), rest);
+  rest = 1.5;
+  EXPECT_NEAR(inbox.NextDue(), 1.5, 1e-9);
+  // Called to a step at 1.2 by a message: the timer runs, once.
+  const StreamId tx{"/r/tx", "/world"};
+  inbox.Arrive(tx, [] {});
+  inbox.Order(StepOrder{"/n", 2, 1.2, {{tx, 1}}}, {});
+  ASSERT_TRUE(inbox.Ready());
+  inbox.Run();
+  ASSERT_EQ(fired.size(), 1u);
+  EXPECT_NEAR(fired[0], 1.2, 1e-9);
 }
 
 // A day of 0.02 s steps as a participant sees them (world_sim's start + step x 0.02, through a

@@ -97,6 +97,11 @@ class AudioChannel {
   // until a new SendAt() or Send(), AdvanceTo() produces no events (the acoustic model's noise
   // may still move a carrier, which AdvanceTo() then works out as it goes).
   bool Idle() const { return pending_sends_.empty() && Quiet(); }
+  // The earliest simulated time (s) after now at which AdvanceTo() may have something to
+  // report (a transmission starting, a reception, a carrier changing), unless something new
+  // is sent before: a caller may sleep until then and lose nothing (+inf when Idle(); with an
+  // acoustic model, a carrier moved by the noise alone while Idle() is not foreseen).
+  double NextEventTime() const;
 
   struct Events {
     std::vector<Transmission> started;
@@ -138,7 +143,9 @@ class AudioChannel {
     std::size_t robot;
     std::vector<std::uint8_t> data;
   };
-  // The first tick at or after `time`, never before the next one.
+  // The level (dB) behind a linear power.
+  double LevelOf(double power) const;
+  // The first tick at or after `time`, never before the current one.
   std::int64_t TickAt(double time) const;
   // Puts into effect what was stamped up to the current tick.
   void ApplyPending();

@@ -61,6 +61,10 @@ class CsmaMac {
   // Counts `ticks` silent ticks while Idle() without running them.
   void SkipIdle(std::uint64_t ticks) { ticks_ += ticks; }
 
+  // Ticks until the state or the carrier can next change if every tick from the next on hears
+  // `level_db` and nothing is queued (nullopt: not before one of those changes).
+  std::optional<int> TicksToNextChange(double level_db) const;
+
   MacState state() const { return state_; }
   double threshold_db() const { return threshold_db_; }
   bool carrier() const { return carrier_; }

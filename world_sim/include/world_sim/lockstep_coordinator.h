@@ -18,7 +18,8 @@ namespace world_sim {
 // each participant, with each step, how many messages each stream it listens to holds by then,
 // so the participant knows when it has them all and hands them to its callbacks in one fixed
 // order. A participant takes part in a step when a timer of its falls due or a message reached
-// one of its streams; otherwise the world does not wait for it.
+// one of its streams (but for the streams it calls passive); otherwise the world does not wait
+// for it.
 
 struct StreamId {
   std::string topic;      // resolved topic name
@@ -41,6 +42,10 @@ struct ParticipantHello {
   std::vector<int> connected;           // publishers its subscription to each is connected to
   std::vector<std::string> advertised;  // resolved topics it publishes and counts
   bool step_connected = false;          // its step-order subscription is connected to the world
+  // Of `subscribed`, the topics whose messages do not by themselves make it take part in a step
+  // (poses it only needs when it works for another reason); whenever it takes part, its order
+  // covers them too.
+  std::vector<std::string> passive;
 };
 
 // One step order for one participant: the step, its time, and the totals of the streams it
@@ -108,6 +113,8 @@ class LockstepCoordinator {
     bool dropped = false;
     ParticipantHello hello;
     std::set<std::string> subscribed;
+    std::set<std::string> passive;
+    std::set<StreamId> carried;              // passive streams grown since its last order
     std::map<StreamId, std::uint64_t> told;  // totals sent to it so far
     double next_due = 0.0;                   // sim s of its next timer (0: the first step)
     bool waiting = false;                    // the current step waits for its answer

@@ -40,8 +40,11 @@ class LockstepInbox {
   void Run();
 
   // A timer firing every `period` s of simulated time from `start` (first at start + period);
-  // a start of 0 (no clock yet) means from the first step's time.
-  void AddTimer(double period, double start, TimerCallback callback);
+  // a start of 0 (no clock yet) means from the first step's time. With `rest_until`, the timer
+  // need not run before the time it returns (asked after every step it takes part in; +inf:
+  // until a message comes): NextDue() tells the world so. Whenever the participant takes part
+  // in a step for another reason, a timer due runs as usual.
+  void AddTimer(double period, double start, TimerCallback callback, std::function<double()> rest_until = {});
   // The simulated time the next timer falls due (+inf with none).
   double NextDue() const;
 
@@ -58,6 +61,7 @@ class LockstepInbox {
     double due;
     bool anchored;          // `anchor` is known (else it is the first step's time)
     TimerCallback callback;
+    std::function<double()> rest_until;
   };
   struct Stream {
     std::deque<Delivery> held;
