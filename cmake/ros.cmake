@@ -94,6 +94,13 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_dependencies(lockstep_rostest world_sim_node wanderer_node)
   # Two lockstep runs of the same team and seed: the same summary and the same audio traffic.
   add_test(NAME lockstep_reproducible COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 3 30)
+  # audio_propagation resting through what it can foresee gives the same run as working every
+  # step: the same world_sim summary and the same bag, on a busy team of 20.
+  add_test(NAME lockstep_update_modes COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 20 20
+           world:=${PROJECT_SOURCE_DIR}/maps/office_team20_world.yaml -- update:=every_step -- update:=events)
+  # The lockstep bench runs and prints its figures (no timing is asserted).
+  add_test(NAME lockstep_bench_quick COMMAND ${PROJECT_SOURCE_DIR}/scripts/lockstep_bench.sh 20 5)
+  set_tests_properties(lockstep_bench_quick PROPERTIES PASS_REGULAR_EXPRESSION "real_time_factor [0-9.]+")
   add_dependencies(tests world_sim_node wanderer_node audio_propagation_node)
 
   # scripts/soak.sh's short forms: its arguments, a soak of 3 simulated minutes of the charging

@@ -5,6 +5,8 @@
 
 office:    34 x 14 m floor of an office or hospital wing: a long corridor with rooms on both
            sides, 1 m doorways, a few rooms joined by inner doors, and pillars.
+campus:    68 x 28 m: four office wings side by side and back to back, their corridors joined
+           end to end and stairwell doors between the rows, for teams of 60 to 100 robots.
 test_room: 6 x 4 m room split by a wall with a 1.5 m gap at one end, for tests.
 
 Walls are 0.15 m thick (from the named line up or right), drawn at 0.05 m per pixel. Uses only the Python standard library.
@@ -61,32 +63,55 @@ class Plan:
                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n" % (comment, name, RES))
 
 
+def office_wing(p, ox=0.0, oy=0.0):
+    """The office's walls, doors and pillars with its lower left corner at (ox, oy)."""
+    low, high = oy + 5.5, oy + 8.0  # the corridor runs the whole length between these walls
+    p.hwall(low, ox, ox + 34)
+    p.hwall(high, ox, ox + 34)
+    # Lower rooms, doors into the corridor.
+    for x in (6.0, 12.0, 18.0, 24.0, 30.0):
+        p.vwall(ox + x, oy, low)
+    for x in (2.5, 8.0, 14.5, 20.0, 27.0, 31.5):
+        p.door(ox + x, low - 0.2, ox + x + 1.0, low + 0.2)
+    # Upper rooms, doors into the corridor.
+    for x in (5.0, 10.5, 17.0, 23.0, 28.5):
+        p.vwall(ox + x, high, oy + 14)
+    for x in (1.5, 7.0, 13.0, 19.5, 25.0, 30.5):
+        p.door(ox + x, high - 0.2, ox + x + 1.0, high + 0.2)
+    # Inner doors joining neighbouring rooms, so some rooms have two ways out.
+    for x, y in ((12.0, 1.5), (24.0, 3.0), (10.5, 11.0), (23.0, 9.5)):
+        p.door(ox + x - 0.2, oy + y, ox + x + 0.2, oy + y + 1.0)
+    # A partition inside one lower room and pillars in the corridor and a hall.
+    p.hwall(oy + 2.75, ox + 18.0, ox + 21.5)
+    for x in (9.0, 21.0):
+        p.wall(ox + x, oy + 6.5, ox + x + 0.4, oy + 6.9)
+    p.wall(ox + 14.0, oy + 10.8, ox + 14.6, oy + 11.4)
+
+
 def office():
     p = Plan(34.0, 14.0)
     p.border()
-    low, high = 5.5, 8.0  # the corridor runs the whole length between these walls
-    p.hwall(low, 0, 34)
-    p.hwall(high, 0, 34)
-    # Lower rooms, doors into the corridor.
-    for x in (6.0, 12.0, 18.0, 24.0, 30.0):
-        p.vwall(x, 0, low)
-    for x in (2.5, 8.0, 14.5, 20.0, 27.0, 31.5):
-        p.door(x, low - 0.2, x + 1.0, low + 0.2)
-    # Upper rooms, doors into the corridor.
-    for x in (5.0, 10.5, 17.0, 23.0, 28.5):
-        p.vwall(x, high, 14)
-    for x in (1.5, 7.0, 13.0, 19.5, 25.0, 30.5):
-        p.door(x, high - 0.2, x + 1.0, high + 0.2)
-    # Inner doors joining neighbouring rooms, so some rooms have two ways out.
-    for x, y in ((12.0, 1.5), (24.0, 3.0), (10.5, 11.0), (23.0, 9.5)):
-        p.door(x - 0.2, y, x + 0.2, y + 1.0)
-    # A partition inside one lower room and pillars in the corridor and a hall.
-    p.hwall(2.75, 18.0, 21.5)
-    for x in (9.0, 21.0):
-        p.wall(x, 6.5, x + 0.4, 6.9)
-    p.wall(14.0, 10.8, 14.6, 11.4)
+    office_wing(p)
     p.save(sys.argv[1] if len(sys.argv) > 1 else "maps", "office",
            "office: a 34 x 14 m office or hospital wing with a corridor and 12 rooms")
+
+
+def campus():
+    p = Plan(68.0, 28.0)
+    p.border()
+    for ox in (0.0, 34.0):
+        for oy in (0.0, 14.0):
+            office_wing(p, ox, oy)
+    # Where the wings meet: the rooms are walled off, the corridors run on into each other.
+    for oy in (0.0, 14.0):
+        p.vwall(34.0, oy, oy + 5.5)
+        p.vwall(34.0, oy + 8.0, oy + 14.0)
+    # Between the rows a wall with two stairwell doors.
+    p.hwall(14.0, 0.0, 68.0)
+    for x in (3.0, 45.0):
+        p.door(x, 13.8, x + 1.2, 14.4)
+    p.save(sys.argv[1] if len(sys.argv) > 1 else "maps", "campus",
+           "campus: 68 x 28 m, four office wings with joined corridors and two stairwells")
 
 
 def test_room():
@@ -99,4 +124,5 @@ def test_room():
 
 if __name__ == "__main__":
     office()
+    campus()
     test_room()

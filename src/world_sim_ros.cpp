@@ -300,6 +300,12 @@ std::string WorldSimRos::Run() {
                   lockstep_->waiting_wall(), slowest.empty() ? "none" : slowest.c_str(), slowest_s,
                   lockstep_->dropped().size());
     summary += line;
+    // What each participant kept the world waiting (from an order to its answer), for benches.
+    summary += "\nworld_sim lockstep waits (wall s):";
+    for (const auto& [name, seconds] : lockstep_->AnswerTimes()) {
+      std::snprintf(line, sizeof line, " %s %.2f", name.c_str(), seconds);
+      summary += line;
+    }
   }
   return summary;
 }

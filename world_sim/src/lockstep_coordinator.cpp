@@ -1,5 +1,6 @@
 #include "world_sim/lockstep_coordinator.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace world_sim {
@@ -223,6 +224,13 @@ std::string LockstepCoordinator::Slowest(double* seconds) const {
   }
   if (seconds) *seconds = slowest.empty() ? 0.0 : most;
   return slowest;
+}
+
+std::vector<std::pair<std::string, double>> LockstepCoordinator::AnswerTimes() const {
+  std::vector<std::pair<std::string, double>> times;
+  for (const auto& [name, p] : participants_) times.emplace_back(name, p.answer_wall);
+  std::stable_sort(times.begin(), times.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  return times;
 }
 
 std::vector<std::string> LockstepCoordinator::dropped() const {

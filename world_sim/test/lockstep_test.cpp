@@ -89,6 +89,11 @@ TEST(LockstepCoordinator, OrdersTheStreamsThatGrewAndWaitsOnlyForWhoTakesPart) {
   double slowest = 0.0;
   EXPECT_EQ(c.Slowest(&slowest), "/audio");
   EXPECT_NEAR(slowest, 0.002 + 0.02, 1e-12);
+  const auto times = c.AnswerTimes();
+  ASSERT_EQ(times.size(), 2u);
+  EXPECT_EQ(times[0].first, "/audio");
+  EXPECT_EQ(times[1].first, "/robot_0/ctl");
+  EXPECT_NEAR(times[1].second, 0.001 + 0.01, 1e-12);
   EXPECT_NEAR(c.waiting_wall(), 0.002 + 0.02, 1e-12);
 }
 

@@ -104,6 +104,8 @@ class LockstepCoordinator {
   double waiting_wall() const { return waiting_wall_; }  // wall s spent waiting for answers
   // The participant with the longest total answer time (empty if none), and that time.
   std::string Slowest(double* seconds) const;
+  // Every participant with its total answer time (wall s), longest first.
+  std::vector<std::pair<std::string, double>> AnswerTimes() const;
   std::vector<std::string> dropped() const;
   bool IsParticipant(const std::string& node) const { return participants_.count(node) > 0; }
 
