@@ -12,6 +12,7 @@ add_message_files(DIRECTORY msg FILES
   LockstepHello.msg
   LockstepOrder.msg
   LockstepAck.msg
+  RobotPoses.msg
 )
 add_action_files(DIRECTORY action FILES AcquireLock.action)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs actionlib_msgs)

@@ -84,6 +84,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
     throw ParamError(pnh.resolveName("channel_model") + ": expected threshold or acoustic, got '" + o.channel_model + "'");
   }
   o.decode_table = StringParam(pnh, "decode_table", "");
+  o.robot_poses = StringParam(pnh, "robot_poses", o.robot_poses);
   o.delivery_map_robot = StringParam(pnh, "delivery_map_robot", "");
   o.delivery_map_period = NumberParam(pnh, "delivery_map_period", o.delivery_map_period, 0.1, 1e6);
   o.delivery_map_resolution = NumberParam(pnh, "delivery_map_resolution", o.delivery_map_resolution, 0.01, 100.0);
@@ -215,13 +216,17 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
     // node is called to a step by a packet, not by the robots' poses.)
     rx_pubs_.push_back(lockstep_.Advertise<multirobot_audio::AudioReception>(rnh, "audio/rx", 50));
     carrier_pubs_.push_back(lockstep_.Advertise<multirobot_audio::CarrierSense>(rnh, "audio/carrier", 10));
-    if (lockstep_.enabled()) {
-      truth_subs_.push_back(guard_.Subscribe<nav_msgs::Odometry>(
-          lockstep_, rnh, "ground_truth", 10, OdometryProblem,
-          [this, k](const nav_msgs::Odometry::ConstPtr& m) { OnTruth(k, *m); }));
-      lockstep_.Passive(rnh, "ground_truth");
-    }
+
     channel_->SetPose(k, {kUnknown, kUnknown, 0.0});
+  }
+  if (lockstep_.enabled()) {
+    // The whole team's poses in one message a step (a hundred robots' ground_truth would be a
+    // hundred); passive: they alone do not call the node to a step.
+    for (std::size_t k = 0; k < n; ++k) robot_index_[options_.robots[k]] = k;
+    truth_sub_ = guard_.Subscribe<multirobot_audio::RobotPoses>(
+        lockstep_, nh_, options_.robot_poses, 10, RobotPosesProblem,
+        [this](const multirobot_audio::RobotPoses::ConstPtr& m) { OnRobotPoses(*m); });
+    lockstep_.Passive(nh_, options_.robot_poses);
   }
   paths_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("paths", 10);
   points_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("diffraction_points", 1, true);
@@ -298,16 +303,22 @@ void AudioPropagationRos::CheckInside(std::size_t robot, const grid::Pose2D& pos
   }
 }
 
-void AudioPropagationRos::OnTruth(std::size_t robot, const nav_msgs::Odometry& msg) {
-  const grid::Pose2D pose = FromPose(msg.pose.pose);
-  CheckInside(robot, pose);
-  // Stamped when the world took it (never later than now: a stamp from the future would hold
-  // the robot back).
+void AudioPropagationRos::OnRobotPoses(const multirobot_audio::RobotPoses& msg) {
+  // Stamped when the world took them (never later than now: a stamp from the future would hold
+  // the robots back).
   const ros::Time now = ros::Time::now();
   const ros::Time stamp = msg.header.stamp.isZero() ? now : std::min(msg.header.stamp, now);
-  channel_->SetPoseAt(robot, pose, ChannelTime(stamp));
-  pose_stamps_[robot] = stamp;
-  have_pose_[robot] = true;
+  const double t = ChannelTime(stamp);
+  for (std::size_t i = 0; i < msg.names.size(); ++i) {
+    const auto it = robot_index_.find(msg.names[i]);
+    if (it == robot_index_.end()) continue;  // a robot of the world this node does not serve
+    const std::size_t k = it->second;
+    const grid::Pose2D pose{msg.poses[i].x, msg.poses[i].y, msg.poses[i].theta};
+    CheckInside(k, pose);
+    channel_->SetPoseAt(k, pose, t);
+    pose_stamps_[k] = stamp;
+    have_pose_[k] = true;
+  }
 }
 
 void AudioPropagationRos::UpdatePoses(const ros::Time& now) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -10,7 +11,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
-#include <nav_msgs/Odometry.h>
+#include <multirobot_audio/RobotPoses.h>
 
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/audio_channel.h"
@@ -42,6 +43,8 @@ struct AudioPropagationOptions {
   // acoustics and the profile's decode table decide each packet)
   std::string channel_model = "threshold";
   std::string decode_table;      // ~decode_table: acoustic model's table (default: the profile's shipped one)
+  // ~robot_poses: in lockstep, world_sim's topic of every robot's true pose
+  std::string robot_poses = "/world_sim/robot_poses";
   // ~delivery_map_robot: publish ~delivery_map (nav_msgs/OccupancyGrid, 0-100 = percent chance
   // a listener there decodes this robot) every ~delivery_map_period s (simulated) on cells of
   // ~delivery_map_resolution m; empty = no map. Acoustic model only.
@@ -65,7 +68,7 @@ class AudioPropagationRos {
  private:
   InputGuard::Verdict OnTx(std::size_t robot, const multirobot_audio::AudioPacket::ConstPtr& msg);
   void OnTimer(const ros::TimerEvent& event);
-  void OnTruth(std::size_t robot, const nav_msgs::Odometry& msg);
+  void OnRobotPoses(const multirobot_audio::RobotPoses& msg);
   // Channel time (s) of a ROS time; the first one seen starts the clock.
   double ChannelTime(const ros::Time& t);
   // In lockstep with ~update events: the ROS time (s) before which the timer has nothing to do
@@ -91,9 +94,11 @@ class AudioPropagationRos {
   std::unique_ptr<audio_propagation::AudioChannel> channel_;
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  // not in lockstep (poses come on ground_truth)
-  std::vector<ros::Subscriber> tx_subs_, truth_subs_;
+  std::vector<ros::Subscriber> tx_subs_;
+  ros::Subscriber truth_sub_;
+  std::map<std::string, std::size_t> robot_index_;
   std::vector<CountedPublisher> rx_pubs_, carrier_pubs_;
-  // In lockstep the poses come from <robot>/ground_truth (the same poses world_sim sends on /tf),
+  // In lockstep the poses come from world_sim's ~robot_poses (the same poses it sends on /tf),
   // counted like every other message, rather than from the TF listener's own thread; each is
   // handed to the channel with its stamp.
   std::vector<bool> last_carrier_, have_pose_;

@@ -45,6 +45,21 @@ std::string OdometryProblem(const nav_msgs::Odometry& msg) {
   return TwistFields("twist.twist.", msg.twist.twist);
 }
 
+std::string RobotPosesProblem(const multirobot_audio::RobotPoses& msg) {
+  if (msg.names.size() != msg.poses.size()) {
+    return "names and poses: one pose per name expected, got " + std::to_string(msg.names.size()) + " names and " +
+           std::to_string(msg.poses.size()) + " poses";
+  }
+  for (std::size_t k = 0; k < msg.poses.size(); ++k) {
+    const geometry_msgs::Pose2D& p = msg.poses[k];
+    const std::string at = "poses[" + std::to_string(k) + "]";
+    if (!std::isfinite(p.x)) return Is(at + ".x", p.x);
+    if (!std::isfinite(p.y)) return Is(at + ".y", p.y);
+    if (!std::isfinite(p.theta)) return Is(at + ".theta", p.theta);
+  }
+  return "";
+}
+
 std::string ScanProblem(const sensor_msgs::LaserScan& msg) {
   const std::pair<const char*, float> fields[] = {{"angle_min", msg.angle_min},
                                                   {"angle_max", msg.angle_max},

@@ -9,6 +9,7 @@
 #include <multirobot_audio/FiducialArray.h>
 #include <multirobot_audio/Job.h>
 #include <multirobot_audio/LockState.h>
+#include <multirobot_audio/RobotPoses.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/LaserScan.h>
@@ -23,6 +24,7 @@ namespace multirobot_audio {
 std::string TwistProblem(const geometry_msgs::Twist& msg);
 // A finite position, a finite orientation of unit length (to 1 %), a finite twist.
 std::string OdometryProblem(const nav_msgs::Odometry& msg);
+std::string RobotPosesProblem(const multirobot_audio::RobotPoses& msg);
 // Finite angles and range limits, range_max > 0, as many ranges as angle_min..angle_max at
 // angle_increment gives (to one either way), and no range negative: NaN and +-inf are readings
 // (REP 117: nothing in reach, too close).

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <multirobot_audio/LockstepOrder.h>
+#include <multirobot_audio/RobotPoses.h>
 
 #include <multirobot_audio/FiducialArray.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -21,6 +22,11 @@
 #include "world_sim/world_file.h"
 
 namespace multirobot_audio {
+namespace {
+
+constexpr std::uint64_t kClockSteps = 5;
+
+}  // namespace
 WorldSimOptions ReadWorldSimOptions(const ros::NodeHandle& pnh) {
   WorldSimOptions o;
   o.world_file = RequiredStringParam(pnh, "world");
@@ -60,6 +66,7 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  robot_poses_pub_ = pnh_.advertise<multirobot_audio::RobotPoses>("robot_poses", 10);
 
   io_.resize(world_->robots().size());
   for (std::size_t k = 0; k < io_.size(); ++k) {
@@ -129,6 +136,7 @@ void WorldSimRos::SetUpLockstep() {
       advertised.push_back(p->getTopic());
     }
   }
+  advertised.push_back(robot_poses_pub_.getTopic());
   lockstep_->SetOwnStreams(subscribed, advertised);
   nh_.setParam("/lockstep", true);
   hello_sub_ = nh_.subscribe("/lockstep/hello", 100, &WorldSimRos::OnHello, this);
@@ -190,9 +198,19 @@ void WorldSimRos::StartLockstep() {
   ROS_INFO("world_sim: lockstep with %zu participants", options_.participants.size() - lockstep_->dropped().size());
 }
 
+void WorldSimRos::PublishClock(const ros::Time& now) {
+  rosgraph_msgs::Clock clock;
+  clock.clock = now;
+  clock_pub_.publish(clock);
+}
+
 void WorldSimRos::RunStepWithParticipants() {
   const double wall_start = ros::WallTime::now().toSec();
   const auto orders = lockstep_->BeginStep(++lockstep_step_, world_->time(), wall_start);
+  // /clock goes to every node of the team: in lockstep it is sent when someone takes part in the
+  // step (a participant's callbacks run at the step's time) and at least every kClockSteps
+  // steps for the nodes outside the lockstep (rviz, rosbag).
+  if (!orders.empty() || world_->steps() % kClockSteps == 0) PublishClock(ros::Time(world_->time()));
   for (const world_sim::StepOrder& o : orders) {
     multirobot_audio::LockstepOrder msg;
     msg.step = o.step;
@@ -225,11 +243,10 @@ void WorldSimRos::RunStepWithParticipants() {
 void WorldSimRos::Publish() {
   const world_sim::World& w = *world_;
   const ros::Time now(w.time());
-  rosgraph_msgs::Clock clock;
-  clock.clock = now;
-  clock_pub_.publish(clock);
+  if (!lockstep_) PublishClock(now);
 
   std::vector<geometry_msgs::TransformStamped> transforms;
+  multirobot_audio::RobotPoses poses;
   for (std::size_t k = 0; k < io_.size(); ++k) {
     const world_sim::RobotState& r = w.robots()[k];
     RobotIo& io = io_[k];
@@ -242,6 +259,12 @@ void WorldSimRos::Publish() {
       Count(io.odom);
       io.ground_truth.publish(ToOdometry(r.pose, r.v, r.w, "map", io.base_frame, now));
       Count(io.ground_truth);
+      poses.names.push_back(r.name);
+      geometry_msgs::Pose2D p;
+      p.x = r.pose.x;
+      p.y = r.pose.y;
+      p.theta = r.pose.yaw;
+      poses.poses.push_back(p);
     }
     if (r.scan_step == w.steps()) {
       io.scan.publish(ToLaserScan(r.scan, w.config().model, io.base_frame, now));
@@ -257,6 +280,12 @@ void WorldSimRos::Publish() {
     }
   }
   if (!transforms.empty()) tf_.sendTransform(transforms);
+  if (!poses.names.empty()) {
+    poses.header.stamp = now;
+    poses.header.frame_id = "map";
+    robot_poses_pub_.publish(poses);
+    Count(robot_poses_pub_);
+  }
   if (w.steps() % markers_every_ == 0 && markers_pub_.getNumSubscribers() > 0) {
     markers_pub_.publish(ToWorldMarkers(w, "map", now));
   }

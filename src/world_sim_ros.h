@@ -70,13 +70,14 @@ class WorldSimRos {
   void OnAck(const multirobot_audio::LockstepAck::ConstPtr& msg);
   std::map<std::string, int> OwnConnected() const;
   void StartLockstep();          // waits until every participant is ready (or dropped)
-  void RunStepWithParticipants(); // sends the step's orders, waits for the answers
+  void RunStepWithParticipants();
+  void PublishClock(const ros::Time& now); // sends the step's orders, waits for the answers
 
   ros::NodeHandle nh_, pnh_;
   WorldSimOptions options_;
   std::unique_ptr<world_sim::World> world_;
   std::vector<RobotIo> io_;
-  ros::Publisher clock_pub_, map_pub_, markers_pub_;
+  ros::Publisher clock_pub_, map_pub_, markers_pub_, robot_poses_pub_;
   tf2_ros::TransformBroadcaster tf_;
   InputGuard guard_;
   std::uint64_t markers_every_ = 1;
