@@ -51,6 +51,8 @@ AudioChannel::AudioChannel(const PropagationModel& model,
   sending_.resize(n);
   noise_powers_.assign(n, 0.0);
   pending_per_robot_.assign(n, 0);
+  level_edge_.assign(n, 0);
+  finish_edge_.assign(n, 0);
   noise_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(kNoiseUpdateSeconds / (16.0 * tick_)));
 }
 
@@ -67,6 +69,7 @@ void AudioChannel::UpdateNoise() {
     double power = 0.0;
     for (const Disturbance& d : acoustic_->NoiseAt(at[r], time(), at)) power += d.power;
     noise_powers_[r] = power;
+    level_edge_[r] = 0;  // the level is summed again at the next tick
   }
 }
 
@@ -183,7 +186,11 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
   const std::size_t n = macs_.size();
   const std::int64_t duration = macs_[sender].packet_ticks();
   std::vector<SoundPath> paths = PathsFrom(sender);
-  sending_[sender].emplace_back(ticks_, ticks_ + duration);
+  // Its past sends, but for those that can no longer overlap anything still to come.
+  auto& sent = sending_[sender];
+  const std::int64_t horizon = ticks_ - 4 * duration;
+  sent.erase(std::remove_if(sent.begin(), sent.end(), [&](const auto& s) { return s.second < horizon; }), sent.end());
+  sent.emplace_back(ticks_, ticks_ + duration);
   std::vector<double> probability;
   std::vector<Eigen::Vector2d> at;
   if (acoustic_) {
@@ -197,6 +204,7 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
       if (!paths[r].audible) continue;
       arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db,
                               std::pow(10.0, paths[r].level_db / 10.0), data, paths[r], {}});
+      NoteArrival(r, start, start + duration);
       continue;
     }
     if (!paths[r].reachable) continue;
@@ -206,9 +214,15 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
     if (p.snr_db < kNegligibleSnrDb) continue;
     arrivals_[r].push_back({sender, start, start + duration, p.signal.total_db,
                             std::pow(10.0, p.signal.total_db / 10.0), data, paths[r], p.signal});
+    NoteArrival(r, start, start + duration);
   }
   events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths),
                             std::move(probability)});
+}
+
+void AudioChannel::NoteArrival(std::size_t receiver, std::int64_t start, std::int64_t end) {
+  level_edge_[receiver] = std::min(level_edge_[receiver], start);
+  finish_edge_[receiver] = std::min(finish_edge_[receiver], end);
 }
 
 void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events) {
@@ -314,31 +328,40 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
     }
     ++ticks_;
     for (std::size_t r = 0; r < n; ++r) {
-      double power = acoustic_ ? noise_powers_[r] : 0.0;  // linear sum of what is arriving now
-      for (const Arrival& a : arrivals_[r]) {
-        if (a.start <= ticks_ && ticks_ < a.end) power += a.power;
-      }
-      if (power != powers_[r]) {  // the level only changes when an arrival starts or ends
-        powers_[r] = power;
-        levels_[r] = LevelOf(power);
+      // The level only changes where an arrival starts or ends (or the noise is updated): the
+      // sum is taken again there, and only there (a big team hears dozens of arrivals).
+      if (ticks_ >= level_edge_[r]) {
+        double power = acoustic_ ? noise_powers_[r] : 0.0;  // linear sum of what is arriving now
+        std::int64_t edge = std::numeric_limits<std::int64_t>::max();
+        for (const Arrival& a : arrivals_[r]) {
+          if (a.start <= ticks_ && ticks_ < a.end) power += a.power;
+          if (a.start > ticks_) edge = std::min(edge, a.start);
+          else if (a.end > ticks_) edge = std::min(edge, a.end);
+        }
+        level_edge_[r] = edge;
+        if (power != powers_[r]) {
+          powers_[r] = power;
+          levels_[r] = LevelOf(power);
+        }
       }
       if (auto packet = macs_[r].Tick(levels_[r])) StartTransmission(r, std::move(*packet), events);
     }
     for (std::size_t r = 0; r < n; ++r) {
+      if (ticks_ < finish_edge_[r]) continue;
+      std::int64_t edge = std::numeric_limits<std::int64_t>::max();
       for (Arrival& a : arrivals_[r]) {
         if (!a.done && a.end <= ticks_) {
           Finish(r, a, events);
           a.done = true;
         }
+        if (!a.done) edge = std::min(edge, a.end);
       }
+      finish_edge_[r] = edge;
       // Forget what can no longer overlap anything still to come.
       const std::int64_t horizon = ticks_ - 4 * macs_[r].packet_ticks();
       while (!arrivals_[r].empty() && arrivals_[r].front().done && arrivals_[r].front().end < horizon) {
         arrivals_[r].pop_front();
       }
-      auto& sent = sending_[r];
-      sent.erase(std::remove_if(sent.begin(), sent.end(), [&](const auto& s) { return s.second < horizon; }),
-                 sent.end());
     }
   }
   return events;

@@ -153,6 +153,8 @@ class AudioChannel {
   // a stamped send, or (acoustic model) the next update of the noise.
   std::int64_t NextWake(std::int64_t target) const;
   void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
+  // A new arrival at `receiver`: its level and its finishing are looked at then.
+  void NoteArrival(std::size_t receiver, std::int64_t start, std::int64_t end);
   void Finish(std::size_t receiver, const Arrival& a, Events& events);
   // Nothing in the air, nothing on its way, nobody with anything to send: ticks change nothing.
   bool Quiet() const;
@@ -178,6 +180,9 @@ class AudioChannel {
   std::deque<PendingPose> pending_poses_;  // in stamp order
   std::deque<PendingSend> pending_sends_;  // in stamp order
   std::vector<std::size_t> pending_per_robot_;  // sends not yet in each robot's queue
+  // Per robot, the next tick its level may change (an arrival starts or ends) and the next tick
+  // an arrival of its finishes: between them a tick need not look at its arrivals.
+  std::vector<std::int64_t> level_edge_, finish_edge_;
   PathCache cache_;
   std::mt19937 rng_;
   double tick_;
