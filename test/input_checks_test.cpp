@@ -48,6 +48,19 @@ TEST(InputChecksTest, OdometryNeedsAFinitePoseAndAUnitQuaternion) {
   EXPECT_EQ(OdometryProblem(Spoilt(o, [](auto& m) { m.twist.twist.angular.z = kNan; })), "twist.twist.angular.z = nan");
 }
 
+TEST(InputChecksTest, RobotPosesNeedAFinitePoseForEachName) {
+  multirobot_audio::RobotPoses m;
+  m.names = {"robot_0", "robot_1"};
+  m.poses.resize(2);
+  m.poses[1].x = 3.0;
+  m.poses[1].theta = -1.0;
+  EXPECT_EQ(RobotPosesProblem(m), "");
+  EXPECT_EQ(RobotPosesProblem(Spoilt(m, [](auto& r) { r.poses[1].theta = kNan; })), "poses[1].theta = nan");
+  EXPECT_EQ(RobotPosesProblem(Spoilt(m, [](auto& r) { r.poses[0].y = kInf; })), "poses[0].y = inf");
+  EXPECT_EQ(RobotPosesProblem(Spoilt(m, [](auto& r) { r.poses.pop_back(); })),
+            "names and poses: one pose per name expected, got 2 names and 1 poses");
+}
+
 TEST(InputChecksTest, ScanTakesNanAndInfinityAsReadingsButNotNegativeRanges) {
   std::vector<float> ranges(16, 1.0f);
   ranges[3] = kInf;   // nothing in reach
