@@ -359,13 +359,11 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
     // Poses are only read when they matter: with nothing to report before the next update, an
     // update is a few comparisons (a team of a hundred robots at 100 Hz would otherwise cost
     // 10^4 look-ups a second for nothing).
-    const bool due = RestUntil() <= now.toSec();
-    if (!options_.every_step && !due) {
+    if (options_.every_step || RestUntil() <= now.toSec()) {
+      UpdatePoses(now);
+    } else {
       ++idle_updates_;
-      channel_->AdvanceTo(t);
-      return;
     }
-    UpdatePoses(now);
   }
   const auto events = channel_->AdvanceTo(t);
 
