@@ -150,7 +150,7 @@ void WorldSimRos::Count(const ros::Publisher& pub) {
 }
 
 void WorldSimRos::OnHello(const multirobot_audio::LockstepHello::ConstPtr& msg) {
-  world_sim::ParticipantHello hello{msg->node, msg->subscribed, {}, msg->advertised, msg->order_connected, msg->passive};
+  world_sim::ParticipantHello hello{msg->node, msg->subscribed, {}, msg->advertised, msg->order_connected != 0, msg->passive};
   hello.connected.assign(msg->connected.begin(), msg->connected.end());
   if (!lockstep_->Hello(hello)) {
     if (!lockstep_->IsParticipant(msg->node) && strangers_.insert(msg->node).second) {
