@@ -37,7 +37,7 @@ add_library(multirobot_audio_ros STATIC
 )
 target_include_directories(multirobot_audio_ros PUBLIC ${PROJECT_SOURCE_DIR}/src)
 target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem local_mutex world_sim grid
+target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem local_mutex world_sim behaviours grid
                       ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 # The local-map navigation's bridges (its ~params, range and map conversions), for every node

@@ -82,7 +82,7 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   ReadNavigationParams(pnh, n.map, n.clear_sectors, n.planner, n.motion);
 
   // The duty: wandering, with the wanderer node's names.
-  world_sim::WanderOptions& w = c.wander;
+  behaviours::WanderOptions& w = c.wander;
   w.cruise_speed = PositiveParam(pnh, "cruise_speed", w.cruise_speed, 100.0);
   w.turn_rate = PositiveParam(pnh, "turn_rate", w.turn_rate, 100.0);
   w.avoid_range = PositiveParam(pnh, "avoid_range", w.avoid_range, 100.0);

@@ -10,8 +10,8 @@
 
 namespace multirobot_audio {
 
-world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
-  world_sim::WanderOptions o;
+behaviours::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
+  behaviours::WanderOptions o;
   o.cruise_speed = NumberParam(pnh, "cruise_speed", o.cruise_speed, 0.0, 10.0);
   o.turn_rate = NumberParam(pnh, "turn_rate", o.turn_rate, 0.0, 20.0);
   o.avoid_range = NumberParam(pnh, "avoid_range", o.avoid_range, 0.0, 100.0);
@@ -20,7 +20,7 @@ world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
   return o;
 }
 
-WandererRos::WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options,
+WandererRos::WandererRos(ros::NodeHandle nh, const behaviours::WanderOptions& options,
                          std::uint32_t seed, double announce_period)
     : nh_(nh), lockstep_(nh), wanderer_(options, seed), seed_(seed) {
   cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
@@ -50,7 +50,7 @@ void WandererRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& scan) {
   // The behaviour wants ranger 0 ahead and an even ring, which is what world_sim publishes.
   const double dt = last_scan_.isZero() ? 0.1 : (scan->header.stamp - last_scan_).toSec();
   last_scan_ = scan->header.stamp;
-  const world_sim::VelocityCommand c = wanderer_.Update(scan->ranges, std::max(dt, 0.0));
+  const behaviours::VelocityCommand c = wanderer_.Update(scan->ranges, std::max(dt, 0.0));
   geometry_msgs::Twist cmd;
   cmd.linear.x = c.v;
   cmd.angular.z = c.w;

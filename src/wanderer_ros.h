@@ -7,13 +7,13 @@
 
 #include "input_guard.h"
 #include "lockstep_participant.h"
-#include "world_sim/wanderer.h"
+#include "behaviours/wanderer.h"
 
 namespace multirobot_audio {
 
 // Fills WanderOptions from ~cruise_speed, ~turn_rate, ~avoid_range, ~slow_range; throws
 // ParamError on impossible values.
-world_sim::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh);
+behaviours::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh);
 
 // One robot's wandering controller: a cmd_vel for every scan. Runs in the robot's namespace,
 // so it works the same on world_sim and on a robot whose driver publishes scan.
@@ -21,7 +21,7 @@ class WandererRos {
  public:
   // With `announce_period` > 0 s it also sends a packet on audio/tx that often (simulated
   // time): 'W' and the three low bytes of `seed`, so listeners can tell robots apart.
-  WandererRos(ros::NodeHandle nh, const world_sim::WanderOptions& options, std::uint32_t seed,
+  WandererRos(ros::NodeHandle nh, const behaviours::WanderOptions& options, std::uint32_t seed,
               double announce_period = 0.0);
   ~WandererRos();
 
@@ -31,7 +31,7 @@ class WandererRos {
   ros::NodeHandle nh_;
   LockstepParticipant lockstep_;  // before what it hands messages and timers to
   InputGuard guard_;              // before the subscriptions whose callbacks it checks
-  world_sim::Wanderer wanderer_;
+  behaviours::Wanderer wanderer_;
   ros::Subscriber scan_sub_;
   CountedPublisher cmd_pub_, audio_pub_;
   ros::Timer announce_timer_;

@@ -240,7 +240,7 @@ local_navigation::Velocity ChargingController::Wander(double dt) {
   std::vector<float> ring(seen.size());
   std::transform(seen.begin(), seen.end(), ring.begin(),
                  [](const local_navigation::RangeReading& r) { return static_cast<float>(r.range); });
-  const world_sim::VelocityCommand c = wanderer_.Update(ring, dt);
+  const behaviours::VelocityCommand c = wanderer_.Update(ring, dt);
   return {c.v, c.w};
 }
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "grid/input_error.h"
-#include "world_sim/wanderer.h"
+#include "behaviours/wanderer.h"
 #include "world_sim/world_file.h"
 
 namespace world_sim {
@@ -153,12 +153,12 @@ std::vector<std::vector<grid::Pose2D>> Wander(std::uint32_t seed) {
   WorldConfig config = loaded.config;
   config.seed = seed;
   World w(loaded.map, config);
-  std::vector<Wanderer> brains;
-  for (std::size_t k = 0; k < w.robots().size(); ++k) brains.emplace_back(WanderOptions{}, seed + k);
+  std::vector<behaviours::Wanderer> brains;
+  for (std::size_t k = 0; k < w.robots().size(); ++k) brains.emplace_back(behaviours::WanderOptions{}, seed + k);
   std::vector<std::vector<grid::Pose2D>> paths(w.robots().size());
   for (int step = 0; step < 3000; ++step) {
     for (std::size_t k = 0; k < w.robots().size(); ++k) {
-      const VelocityCommand cmd = brains[k].Update(w.robots()[k].scan, w.options().step);
+      const behaviours::VelocityCommand cmd = brains[k].Update(w.robots()[k].scan, w.options().step);
       w.SetCommand(k, cmd.v, cmd.w);
       paths[k].push_back(w.robots()[k].odom);
     }

@@ -14,7 +14,7 @@
 
 #include "grid/input_error.h"
 #include "grid/map_file.h"
-#include "world_sim/wanderer.h"
+#include "behaviours/wanderer.h"
 #include "world_sim/world.h"
 #include "tool_args/usage_error.h"
 #include "world_sim/world_file.h"
@@ -55,8 +55,8 @@ int Run(const world_sim::tools::WorldSimBenchArgs& args) {
   try {
     const grid::OccupancyMap map = grid::LoadMapFile(args.map);
     world_sim::World world(map, RandomTeam(map, args));
-    std::vector<world_sim::Wanderer> brains;
-    for (int k = 0; k < args.robots; ++k) brains.emplace_back(world_sim::WanderOptions{}, args.seed + k);
+    std::vector<behaviours::Wanderer> brains;
+    for (int k = 0; k < args.robots; ++k) brains.emplace_back(behaviours::WanderOptions{}, args.seed + k);
 
     const auto steps = static_cast<std::uint64_t>(std::llround(args.seconds / world.options().step));
     const auto start = std::chrono::steady_clock::now();

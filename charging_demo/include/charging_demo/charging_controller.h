@@ -14,7 +14,7 @@
 #include "grid/pose2d.h"
 #include "local_mutex/local_mutex.h"
 #include "local_navigation/local_navigator.h"
-#include "world_sim/wanderer.h"
+#include "behaviours/wanderer.h"
 
 namespace charging_demo {
 
@@ -24,7 +24,7 @@ struct ControllerOptions {
   // of thesis section 3.3 (local_navigation/, which the Sounds Good explorer drives with too).
   local_navigation::NavigatorOptions navigation;
   // The normal duty: random wandering.
-  world_sim::WanderOptions wander;
+  behaviours::WanderOptions wander;
   // The search for a charger when none is known: towards the least visited surroundings.
   SearchOptions search;
   // m: robots not docking keep this far from every charger they know, so that wandering never
@@ -100,7 +100,7 @@ class ChargingController {
   ControllerOptions options_;
   ChargingBehaviour behaviour_;
   local_navigation::LocalNavigator nav_;
-  world_sim::Wanderer wanderer_;
+  behaviours::Wanderer wanderer_;
   std::mt19937 rng_;
   std::vector<local_navigation::RangeReading> ranges_;
   std::vector<ChargerSighting> sightings_;  // since the last update

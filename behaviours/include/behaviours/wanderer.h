@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-namespace world_sim {
+namespace behaviours {
 
 struct WanderOptions {
   double cruise_speed = 0.25;     // m/s in open space
@@ -38,4 +38,4 @@ class Wanderer {
   int avoid_direction_ = 0;  // +1 left, -1 right, 0 not avoiding
 };
 
-}  // namespace world_sim
+}  // namespace behaviours

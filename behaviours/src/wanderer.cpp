@@ -1,10 +1,10 @@
-#include "world_sim/wanderer.h"
+#include "behaviours/wanderer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace world_sim {
+namespace behaviours {
 
 Wanderer::Wanderer(const WanderOptions& options, std::uint32_t seed)
     : options_(options), rng_(seed) {}
@@ -44,4 +44,4 @@ VelocityCommand Wanderer::Update(const std::vector<float>& ranges, double dt) {
   return {options_.cruise_speed * slow, cruise_turn_};
 }
 
-}  // namespace world_sim
+}  // namespace behaviours
