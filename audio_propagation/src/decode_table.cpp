@@ -13,6 +13,7 @@
 #include "grid/input_error.h"
 #include "grid/yaml_fields.h"
 #include "nava_modem/modem_profile.h"
+#include "package_data/package_data.h"
 
 namespace audio_propagation {
 namespace {
@@ -289,7 +290,7 @@ void SaveDecodeTable(const std::string& path, const DecodeTable& table) {
 }
 
 std::string ShippedDecodeTable(const std::string& profile) {
-  return std::string(MULTIROBOT_AUDIO_TABLES_DIR) + "/" + profile + ".yaml";
+  return package_data::DataFile("tables/" + profile + ".yaml");
 }
 
 }  // namespace audio_propagation

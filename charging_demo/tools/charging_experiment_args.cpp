@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "package_data/package_data.h"
+
 namespace charging_demo::tools {
 namespace {
 
@@ -19,7 +21,7 @@ const char* kUsage =
 Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
   Protocol p;
   p.world_file = args.String("--world", "");
-  p.map_file = args.String("--map", MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml");
+  p.map_file = args.String("--map", package_data::DataFile("maps/office.yaml"));
   ChargingWorldOptions& placement = p.placement;
   placement.robots = static_cast<int>(args.Int("--robots", placement.robots, 1, 255));
   placement.chargers = static_cast<int>(args.Int("--chargers", placement.chargers, 1, 1000));

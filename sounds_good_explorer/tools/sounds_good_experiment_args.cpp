@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "nava_modem/modem_profile.h"
+#include "package_data/package_data.h"
 
 namespace sounds_good_explorer::tools {
 namespace {
@@ -36,7 +37,7 @@ Protocol ParseProtocol(const ToolArgs& args) {
   TrialOptions& trial = options.trial;
   ExplorerOptions& explorer = trial.explorer;
   const std::string worlds = args.String("--worlds", "");
-  p.map_file = args.String("--map", quick ? MULTIROBOT_AUDIO_MAPS_DIR "/office.yaml" : "");
+  p.map_file = args.String("--map", quick ? package_data::DataFile("maps/office.yaml") : "");
   if (worlds.empty() && p.map_file.empty()) args.Fail("give --map, --worlds or --quick");
   if (!worlds.empty() && !args.String("--map", "").empty()) args.Fail("give --map or --worlds, not both");
   if (!worlds.empty() && Split(worlds).empty()) args.Fail("--worlds: expected world files separated by commas, got '" + worlds + "'");

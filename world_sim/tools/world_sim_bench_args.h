@@ -5,10 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "package_data/package_data.h"
+
 namespace world_sim::tools {
 
 struct WorldSimBenchArgs {
-  std::string map = std::string(MULTIROBOT_AUDIO_MAPS_DIR) + "/office.yaml";
+  std::string map = package_data::DataFile("maps/office.yaml");
   int robots = 20;
   double seconds = 600.0;
   unsigned seed = 1;

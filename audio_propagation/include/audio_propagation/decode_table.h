@@ -1,7 +1,7 @@
 #pragma once
 
 // A decode table: what a modem profile's real receiver makes of packets heard through a room,
-// measured by running it on rendered room audio (nava_bench --table PROFILE), against the
+// measured by running it on rendered room audio (decode_table_bench --profile PROFILE), against the
 // signal-to-noise ratio, the direct-to-reverberant ratio, the reverberation time and the kind of
 // disturbance. The `acoustic` channel model (acoustic_model.h) looks a link's figures up in it to
 // decide whether a simulated packet is decoded, and if not, what noise the receiver reports.
@@ -20,7 +20,7 @@
 //   packets: 12                   # per cell
 //   whine_hz: 2500                # the whine of the whine cells
 //   band_hz: [600, 5400]          # the profile's band
-//   command: "nava_bench --table room ..."
+//   command: "decode_table_bench --profile room ..."
 //   snr_db: [-15, -12, ...]       # ascending
 //   drr_db: [-30, ..., 24]        # ascending
 //   rt60: [0.3, 0.6, 1.2]         # ascending, s
@@ -86,7 +86,9 @@ DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected
 // std::runtime_error naming the path when it cannot be written.
 void SaveDecodeTable(const std::string& path, const DecodeTable& table);
 
-// Where the shipped tables live (the source tree's audio_propagation/tables/PROFILE.yaml).
+// Where the shipped table of a profile is: tables/PROFILE.yaml in the package's share folder
+// (package_data; the source tree's audio_propagation/tables/ seen from the build tree). Throws
+// std::runtime_error when the share folder cannot be found.
 std::string ShippedDecodeTable(const std::string& profile);
 
 }  // namespace audio_propagation

@@ -3,6 +3,7 @@
 // How a command-line tool refuses its command line without leaving the process: the parsers
 // throw, and only the tool's main turns that into output and an exit status. So a parser can be
 // called by a test or a fuzzer, which would stop at an exit().
+#include <exception>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -50,7 +51,9 @@ struct ToolUsage {
 inline std::vector<std::string> Words(int argc, char** argv) { return std::vector<std::string>(argv + 1, argv + argc); }
 
 // Runs a tool's main body (a callable returning the exit status), turning a UsageError into its
-// message on stderr and status 1, and HelpRequested into the usage on stdout and status 0.
+// message on stderr and status 1, HelpRequested into the usage on stdout and status 0, and any
+// other error the body lets through (say, no share folder to take a default map from) into its
+// message and status 1 rather than an abort.
 template <typename Body>
 int RunTool(Body&& body) {
   try {
@@ -61,6 +64,9 @@ int RunTool(Body&& body) {
   } catch (const HelpRequested& help) {
     std::cout << "usage: " << help.usage() << "\n";
     return 0;
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
   }
 }
 
