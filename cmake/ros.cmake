@@ -56,7 +56,7 @@ function(multirobot_audio_node target name source)
   add_executable(${target} ${source})
   set_target_properties(${target} PROPERTIES OUTPUT_NAME ${name})
   target_link_libraries(${target} multirobot_audio_ros)
-  install(TARGETS ${target} RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  multirobot_audio_install_programs(${target})
 endfunction()
 multirobot_audio_node(world_sim_node world_sim src/world_sim_node.cpp)
 multirobot_audio_node(wanderer_node wanderer src/wanderer_node.cpp)
@@ -71,7 +71,9 @@ target_link_libraries(task_monitor_node sounds_good_ros)
 multirobot_audio_node(charging_demo_node charging_demo src/charging_demo_node.cpp)
 target_link_libraries(charging_demo_node charging_ros)
 
-install(DIRECTORY launch maps rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+# The nodes in the devel space find the package's data as the tools in the build tree do
+# (package_layout.cmake).
+multirobot_audio_link_data(${CATKIN_DEVEL_PREFIX}/share/multirobot_audio)
 
 if(MULTIROBOT_AUDIO_TESTS)
   find_package(rostest REQUIRED)
@@ -85,6 +87,15 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(sounds_good_conversions_test sounds_good_ros)
   catkin_add_gtest(charging_conversions_test test/charging_conversions_test.cpp)
   target_link_libraries(charging_conversions_test charging_ros)
+
+  # The package installed into a temporary prefix and run from there with the source tree hidden
+  # (test/install_test.sh): the nodes, every tool, the tables, launch files, maps and messages.
+  add_test(NAME install_space COMMAND ${PROJECT_SOURCE_DIR}/test/install_test.sh ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+  add_dependencies(tests world_sim_node wanderer_node audio_propagation_node nava_modem_node local_mutex_node
+                   mutex_client_node sounds_good_explorer_node task_monitor_node charging_demo_node nava_encode
+                   nava_decode nava_room nava_bench audio_propagation_query audio_propagation_bench audio_scene_render
+                   audio_channel_validate decode_table_bench world_sim_bench local_mutex_sim sounds_good_experiment
+                   charging_experiment)
 
   add_rostest_gtest(world_sim_rostest test/world_sim.test test/world_sim_rostest.cpp test/rostest_main.cpp)
   target_link_libraries(world_sim_rostest multirobot_audio_ros)

@@ -9,6 +9,7 @@
 
 #include "audio_propagation_args.h"
 #include "charging_experiment_args.h"
+#include "decode_table_bench_args.h"
 #include "local_mutex_sim_args.h"
 #include "nava_bench_args.h"
 #include "nava_decode_args.h"
@@ -26,7 +27,7 @@ const std::vector<std::function<void(const Words&)>> kParsers = {
     [](const Words& w) { nava_modem::tools::ParseNavaEncodeArgs(w); },              // 0
     [](const Words& w) { nava_modem::tools::ParseNavaDecodeArgs(w); },              // 1
     [](const Words& w) { nava_modem::tools::ParseNavaRoomArgs(w); },                // 2
-    [](const Words& w) { nava_modem::tools::ParseNavaBenchArgs(w); },               // 3 (and --table)
+    [](const Words& w) { nava_modem::tools::ParseNavaBenchArgs(w); },               // 3
     [](const Words& w) { audio_propagation::tools::ParseQueryArgs(w); },            // 4
     [](const Words& w) { audio_propagation::tools::ParseBenchArgs(w); },            // 5
     [](const Words& w) { audio_propagation::tools::ParseSceneRenderArgs(w); },      // 6
@@ -35,6 +36,7 @@ const std::vector<std::function<void(const Words&)>> kParsers = {
     [](const Words& w) { sounds_good_explorer::tools::ParseExperimentArgs(w); },    // 9
     [](const Words& w) { charging_demo::tools::ParseExperimentArgs(w); },           // 10
     [](const Words& w) { world_sim::tools::ParseWorldSimBenchArgs(w); },            // 11
+    [](const Words& w) { audio_propagation::tools::ParseDecodeTableBenchArgs(w); },  // 12
 };
 
 }  // namespace

@@ -2,7 +2,8 @@
 # Installs every Debian package multirobot_audio needs (only what is missing), then configures
 # and builds the package in Release into build/.
 #
-#   scripts/setup.sh [--no-build]
+#   scripts/setup.sh [--no-build | --werror]
+# --werror: a compiler warning fails the build (scripts/test.sh, and so CI, build this way).
 set -euo pipefail
 
 # A pyenv or conda python3 ahead of Debian's breaks catkin and roslaunch: Debian's first.
@@ -69,10 +70,13 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 [ "${1:-}" = "--no-build" ] && exit 0
+werror=OFF
+[ "${1:-}" = "--werror" ] && werror=ON
 
 # The devel space lives beside build/, not in it: rosrun skips everything below a package's
 # build/ folder, so executables there cannot be rosrun. build/devel links to it, so that
 # `source build/devel/setup.bash` works as usual.
-cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release -DCATKIN_DEVEL_PREFIX="$here/devel" >/dev/null
+cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release -DCATKIN_DEVEL_PREFIX="$here/devel" \
+  -DMULTIROBOT_AUDIO_WERROR="$werror" >/dev/null
 ln -sfn ../devel "$here/build/devel"
 cmake --build "$here/build" -j "$(nproc)"

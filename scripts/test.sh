@@ -20,7 +20,7 @@ export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 main_suite() {
-  "$here/scripts/setup.sh"
+  "$here/scripts/setup.sh" --werror
   cmake --build "$here/build" --target tests -j "$(nproc)"
   # catkin's setup script reads unset variables.
   set +u
@@ -41,7 +41,7 @@ sanitized_suite() {
   "$here/scripts/setup.sh" --no-build
   local build="$here/build-sanitize"
   cmake -S "$here" -B "$build" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DSANITIZE=address,undefined >/dev/null
+    -DSANITIZE=address,undefined -DMULTIROBOT_AUDIO_WERROR=ON >/dev/null
   cmake --build "$build" --target tests -j "$(nproc)"
   (cd "$build" &&
     ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \

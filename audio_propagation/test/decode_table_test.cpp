@@ -33,7 +33,7 @@ DecodeTable SmallTable() {
   t.whine_hz = 2500.0;
   t.band_low_hz = 600.0;
   t.band_high_hz = 5400.0;
-  t.command = "nava_bench --table room --quick";
+  t.command = "decode_table_bench --profile room --quick";
   t.snr_db = {-10.0, 10.0};
   t.drr_db = {-20.0, 0.0};
   t.rt60 = {0.3, 1.2};
@@ -159,7 +159,7 @@ std::string ValidText() {
          "packets: 4\n"
          "whine_hz: 3000\n"
          "band_hz: [2150, 3850]\n"
-         "command: \"nava_bench --table nava --quick\"\n"
+         "command: \"decode_table_bench --profile nava --quick\"\n"
          "snr_db: [-12, 0]\n"
          "drr_db: [0]\n"
          "rt60: [0.5]\n"

@@ -12,8 +12,7 @@
 
 #include "audio_propagation/channel_validation.h"
 #include "audio_propagation/decode_table.h"
-#include "bench_support.h"
-#include "speech_interferer.h"
+#include "bench_support/speech.h"
 #include "grid/input_error.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
@@ -86,7 +85,7 @@ inline std::vector<float> SpeechFor(const std::string& program, const world_sim:
   if (!HasSpeech(a)) return {};
   char folder[] = "/tmp/audio_speech.XXXXXX";
   if (!mkdtemp(folder)) Fail(program, "cannot make a folder in /tmp for the speech");
-  std::vector<float> speech = nava_modem::tools::Speech(folder, rate, seed);
+  std::vector<float> speech = nava_modem::ReadAudioAt(bench_support::MakeSpeech(folder, seed), rate);
   std::filesystem::remove_all(folder);
   return speech;
 }

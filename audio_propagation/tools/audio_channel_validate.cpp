@@ -29,6 +29,7 @@
 #include <sstream>
 
 #include "acoustic_world.h"
+#include "bench_support/child_process.h"
 #include "audio_propagation_args.h"
 #include "tool_args/line_chart.h"
 
@@ -119,7 +120,7 @@ int Run(const tools::ValidateArgs& args) {
   const std::string& out = args.out;
   ValidationOptions options = args.validation;
 
-  const double cpu_start = nava_modem::tools::CpuNow();
+  const double cpu_start = bench_support::CpuNow();
   const auto wall_start = std::chrono::steady_clock::now();
   const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, args.map_file);
   const DecodeTable table = tools::LoadTable(program, options.profile, table_file);
@@ -235,7 +236,7 @@ int Run(const tools::ValidateArgs& args) {
     tools::Fail(program, e.what());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  std::printf("plot: %s\ncpu: %.1f s (wall %.1f s) on %d threads\n", plot.c_str(), nava_modem::tools::CpuNow() - cpu_start,
+  std::printf("plot: %s\ncpu: %.1f s (wall %.1f s) on %d threads\n", plot.c_str(), bench_support::CpuNow() - cpu_start,
               wall, options.threads);
   return 0;
 }

@@ -11,6 +11,7 @@
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/real_fft.h"
 #include "nava_modem/room_impulse_response.h"
+#include "nava_modem/wav_file.h"
 
 namespace nava_modem {
 namespace {
@@ -127,6 +128,11 @@ std::vector<float> Resample(const std::vector<float>& in, double ratio) {
   if (error != 0) throw std::runtime_error(std::string("libsamplerate: ") + src_strerror(error));
   out.resize(static_cast<std::size_t>(data.output_frames_gen));
   return out;
+}
+
+std::vector<float> ReadAudioAt(const std::string& path, double rate) {
+  const Audio audio = ReadAudioFile(path);
+  return Resample(audio.samples, rate / audio.sample_rate);
 }
 
 std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rate, const RoomOptions& options,

@@ -9,6 +9,7 @@
 
 #include "nava_modem/modem_options.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/packet_receiver.h"
 #include "tool_args/tool_args.h"
 
 namespace nava_modem::tools {
@@ -16,10 +17,6 @@ namespace nava_modem::tools {
 inline const char* kModemUsage =
     "[--profile nava|room] [--mark 2300] [--space 3700] [--baud 300] [--rate 48000] [--amplitude 0.5] "
     "[--crc ccitt-false|xmodem]";
-
-// The tools' carrier threshold (nava_decode --threshold-db): busy air at or above this in-band
-// level, dB of full scale, in which no frame is found is reported as ZERO_BYTE noise.
-constexpr double kToolCarrierThresholdDb = -40.0;
 
 struct ToolModem {
   Profile profile = Profile::kNava;

@@ -9,10 +9,8 @@
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //
-//   nava_bench --table nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] [--dir DIR]
-//              [--snr-db LIST]
-//
-// --table: the profile's decode table for the simulated `acoustic` channel (decode_table_bench.h).
+// The decode tables of the simulated `acoustic` channel are measured with the same receivers by
+// audio_propagation's decode_table_bench, where the tables live.
 //
 // Without --rooms: a WAV of N random packets for every full-band SNR (tone power over
 // white-noise power across the whole band) from --snr-max down to --snr-min in 1 dB steps.
@@ -44,23 +42,24 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "bench_support.h"
-#include "decode_table_bench.h"
+#include "bench_support/child_process.h"
+#include "bench_support/speech.h"
 #include "modem_args.h"
 #include "nava_bench_args.h"
+#include "nava_bench_support.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "room_conditions.h"
-#include "speech_interferer.h"
 #include "tool_args/line_chart.h"
 
 namespace {
 
 using namespace nava_modem;
 using namespace nava_modem::tools;
+using namespace bench_support;
 using multirobot_audio::tools::LineChart;
 using multirobot_audio::tools::LineSeries;
 using multirobot_audio::tools::ToolUsage;
@@ -197,7 +196,7 @@ int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
   const bool has_nava = std::count(profiles.begin(), profiles.end(), Profile::kNava) > 0;
   const bool has_room = std::count(profiles.begin(), profiles.end(), Profile::kRoom) > 0;
 
-  const std::vector<float> speech = Speech(dir, options.sample_rate, seed);
+  const std::vector<float> speech = ReadAudioAt(MakeSpeech(dir, seed), options.sample_rate);
   if (request.measured_only) {
     MeasuredRoomsTable(request, usage, dir, speech);
     return 0;
@@ -702,8 +701,6 @@ int main(int argc, char** argv) {
   return multirobot_audio::tools::RunTool([&] {
     const NavaBenchOptions o = ParseNavaBenchArgs(multirobot_audio::tools::Words(argc, argv));
     switch (o.mode) {
-      case NavaBenchOptions::Mode::kTable:
-        return DecodeTableBench(o.table, o.usage);
       case NavaBenchOptions::Mode::kDoa:
         return DoaTable(o.doa, o.usage);
       case NavaBenchOptions::Mode::kRooms:

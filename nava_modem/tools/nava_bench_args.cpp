@@ -73,56 +73,16 @@ DoaRequest ParseDoa(const ToolArgs& args) {
 }
 
 // "-30,-27,-24" as an ascending axis; else the tool fails naming the flag.
-std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const std::string& list) {
-  std::vector<double> axis;
-  std::size_t at = 0;
-  while (at <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', at), list.size());
-    const std::string item = list.substr(at, comma - at);
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(v) || std::fabs(v) > 60.0 || (!axis.empty() && v <= axis.back())) {
-      args.Fail(flag + ": expected ascending numbers from -60 to 60 separated by commas, got " + list);
-    }
-    axis.push_back(v);
-    at = comma + 1;
-  }
-  return axis;
-}
-
-DecodeTableRequest ParseTable(const ToolArgs& args) {
-  DecodeTableRequest r;
-  const std::string name = args.String("--table", "");
-  const auto profile = ParseProfile(name);
-  if (!profile) args.Fail(std::string("--table: expected ") + kProfileNames + ", got " + name);
-  r.profile = *profile;
-  r.quick = args.Switch("--quick");
-  r.packets = static_cast<int>(args.Int("--packets", r.quick ? 4 : 12, 1, 100000));
-  r.threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
-  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
-  r.out = args.String("--out", std::string("decode_table_") + ProfileName(r.profile) + ".yaml");
-  r.dir = args.String("--dir", "");
-  const std::string snr_list = args.String("--snr-db", "");
-  args.CheckAllUsed();
-  if (!snr_list.empty()) r.snr_db = AxisArg(args, "--snr-db", snr_list);
-  return r;
-}
-
 }  // namespace
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --table nava|room [--out FILE] [--quick] [--threads 2] [--snr-db LIST]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--quick", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
-  if (!args.String("--table", "").empty()) {
-    o.mode = NavaBenchOptions::Mode::kTable;
-    o.table = ParseTable(args);
-    o.table.command = "nava_bench";
-    for (const std::string& word : words) o.table.command += " " + word;
-  } else if (args.Switch("--doa")) {
+  if (args.Switch("--doa")) {
     o.mode = NavaBenchOptions::Mode::kDoa;
     o.doa = ParseDoa(args);
   } else if (args.Switch("--rooms")) {

@@ -1,6 +1,6 @@
 #pragma once
 
-// nava_bench's command line (nava_bench.cpp, decode_table_bench.cpp), parsed apart from the
+// nava_bench's command line (nava_bench.cpp), parsed apart from the
 // tool so that tests and the fuzzer can call it. Each mode reads its own flags and refuses the
 // rest.
 #include <string>
@@ -41,24 +41,12 @@ struct DoaRequest {
   ModemOptions options;
 };
 
-// nava_bench --table PROFILE: a decode table (decode_table_bench.h).
-struct DecodeTableRequest {
-  Profile profile = Profile::kNava;
-  bool quick = false;
-  int packets = 12, threads = 2;
-  unsigned seed = 1;
-  std::string out, dir;
-  std::vector<double> snr_db;  // --snr-db; empty: the default axis
-  std::string command;         // how the table was made: the whole command line
-};
-
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa, kTable };
+  enum class Mode { kWhiteNoise, kRooms, kDoa };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
   DoaRequest doa;
-  DecodeTableRequest table;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };
 

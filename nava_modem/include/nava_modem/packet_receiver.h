@@ -22,6 +22,12 @@ struct ReceiverOptions {
   std::optional<double> carrier_threshold_db;
 };
 
+// The carrier threshold for recordings (nava_decode --threshold-db, and the decode tables
+// measured on rendered recordings, which must judge busy air as nava_decode does): busy air at or
+// above this in-band level, dB of full scale, in which no frame is found is reported as
+// ZERO_BYTE noise.
+constexpr double kToolCarrierThresholdDb = -40.0;
+
 // What a receiver heard (thesis section 5.2.4): a packet, or noise of some kind.
 struct RxEvent {
   enum class Kind { kPacket, kNoise };

@@ -98,6 +98,10 @@ std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rat
 // recorded at another rate.
 std::vector<float> Resample(const std::vector<float>& in, double ratio);
 
+// A sound file (ReadAudioFile: mixed to mono) resampled to `rate`, as interferers recorded at
+// another rate are used. Throws as ReadAudioFile and Resample do.
+std::vector<float> ReadAudioAt(const std::string& path, double rate);
+
 // The tilt's gain at `hz`, dB (0 below tilt_low_hz, tilt_db above tilt_high_hz).
 double TiltGainDb(const RoomOptions& o, double hz);
 

@@ -1,10 +1,13 @@
 #pragma once
 
-// nava_bench --table PROFILE: measures a profile's decode table (audio_propagation/decode_table.h)
-// with its real receiver on rendered room audio.
+// decode_table_bench: measures a profile's decode table (audio_propagation/decode_table.h) with
+// its real receiver (nava_modem's) on rendered room audio. The tables it writes are shipped in
+// audio_propagation/tables/ and read by the `acoustic` channel model.
 //
-//   nava_bench --table nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] [--dir DIR]
-//              [--snr-db LIST]
+//   decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2]
+//                      [--seed 1] [--dir DIR] [--snr-db LIST]
+//
+// (Tables made before the tool moved here name the same measurement `nava_bench --table PROFILE`.)
 //
 // Axes: SNR -15, -12, -9, -6, -3, 0, 3, 6, 9, 12, 18, 30 dB (room from -27 dB: see the code),
 // DRR -30, -24, -18, -12, -6, 0, 6, 12, 24 dB, RT60 0.3, 0.6, 1.2 s, every kind; --quick: SNR
@@ -38,11 +41,11 @@
 // the rt60 and DRR nearest 0.6 s and 0 dB) and the CPU time to stdout.
 #include <string>
 
-#include "nava_bench_args.h"
+#include "decode_table_bench_args.h"
 
-namespace nava_modem::tools {
+namespace audio_propagation::tools {
 
 // Measures and writes the table; `usage` refuses an --out in no folder.
-int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::tools::ToolUsage& usage);
+int DecodeTableBench(const DecodeTableRequest& request);
 
-}  // namespace nava_modem::tools
+}  // namespace audio_propagation::tools

@@ -1,68 +1,19 @@
 #pragma once
 
-// What nava_bench needs around the decoders: running them as child processes with their CPU
-// time, the packets they printed, and scoring those against what was sent.
-#include <fcntl.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
+// What nava_bench needs around the decoders (which it runs with bench_support's Run): the
+// packets they printed, and scoring those against what was sent.
 #include <unistd.h>
 
-#include <spawn.h>
-#include <stdlib.h>
-
-#include <ctime>
 #include <map>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "modem_args.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/modem_profile.h"
 
-extern char** environ;
-
 namespace nava_modem::tools {
-
-struct RunResult {
-  std::string out;
-  double cpu_s = 0.0;
-  int status = -1;
-};
-
-// Runs a program, capturing its standard output; CPU time from the child's own usage.
-inline RunResult Run(const std::vector<std::string>& argv) {
-  RunResult r;
-  int pipe_fd[2];
-  if (pipe(pipe_fd) != 0) return r;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fd[1], 1);
-  posix_spawn_file_actions_addclose(&actions, pipe_fd[0]);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(pipe_fd[1]);
-  if (spawned != 0) {
-    close(pipe_fd[0]);
-    return r;
-  }
-  char buffer[65536];
-  ssize_t got;
-  while ((got = read(pipe_fd[0], buffer, sizeof buffer)) > 0) r.out.append(buffer, static_cast<std::size_t>(got));
-  close(pipe_fd[0]);
-  struct rusage usage {};
-  int status = 0;
-  wait4(pid, &status, 0, &usage);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.cpu_s = usage.ru_utime.tv_sec + usage.ru_utime.tv_usec * 1e-6 + usage.ru_stime.tv_sec + usage.ru_stime.tv_usec * 1e-6;
-  return r;
-}
 
 struct Count {
   int right = 0, wrong = 0;
@@ -108,21 +59,6 @@ inline std::vector<std::string> MinimodemPackets(const std::string& bytes, CrcVa
     i += kFrameBytes - 1;
   }
   return out;
-}
-
-// The folder for a bench's files: `dir` when given, else a new one in /tmp.
-inline std::string TempDir(const multirobot_audio::tools::ToolUsage& usage, const std::string& dir) {
-  if (!dir.empty()) return dir;
-  char tmpl[] = "/tmp/nava_bench.XXXXXX";
-  if (!mkdtemp(tmpl)) usage.Fail("cannot make a folder in /tmp");
-  return tmpl;
-}
-
-// CPU seconds this process has used, all threads.
-inline double CpuNow() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 inline std::string SelfDir() {

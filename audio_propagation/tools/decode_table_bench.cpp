@@ -13,15 +13,22 @@
 #include <thread>
 
 #include "audio_propagation/decode_table.h"
-#include "bench_support.h"
-#include "modem_args.h"
+#include "bench_support/child_process.h"
+#include "bench_support/speech.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/packet_receiver.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_phy.h"
-#include "speech_interferer.h"
+#include "tool_args/tool_args.h"
 
-namespace nava_modem::tools {
+namespace audio_propagation::tools {
 namespace {
+
+using namespace nava_modem;
+using bench_support::CpuNow;
+using bench_support::MakeSpeech;
+using bench_support::SpeechFrom;
+using bench_support::TempDir;
 
 using audio_propagation::DecodeOutcome;
 using audio_propagation::DecodeTable;
@@ -228,7 +235,8 @@ void PrintSummary(const DecodeTable& t) {
 
 }  // namespace
 
-int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::tools::ToolUsage& usage) {
+int DecodeTableBench(const DecodeTableRequest& request) {
+  const multirobot_audio::tools::ToolUsage& usage = request.usage;
   Setup s;
   s.profile = request.profile;
   DecodeTable& t = s.table;
@@ -269,11 +277,11 @@ int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::
   }
   t.Resize();
   // Made only now, so that bad arguments leave no folder behind.
-  s.speech = Speech(TempDir(usage, request.dir), s.modem.sample_rate, s.seed);
+  s.speech = ReadAudioAt(MakeSpeech(TempDir(usage, request.dir), s.seed), s.modem.sample_rate);
 
   const std::size_t per_kind = t.rt60.size() * t.drr_db.size() * t.snr_db.size();
   const std::size_t cells = t.cells.size();
-  std::fprintf(stderr, "nava_bench --table %s: %zu cells of %d packets on %d threads\n", t.profile.c_str(), cells,
+  std::fprintf(stderr, "decode_table_bench --profile %s: %zu cells of %d packets on %d threads\n", t.profile.c_str(), cells,
                t.packets, threads);
   std::vector<CellCounts> counts(cells);
   std::atomic<std::size_t> next{0};
@@ -309,7 +317,7 @@ int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::
   try {
     audio_propagation::SaveDecodeTable(out, t);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "nava_bench: %s\n", e.what());
+    std::fprintf(stderr, "decode_table_bench: %s\n", e.what());
     return 1;
   }
   PrintSummary(t);
@@ -320,4 +328,11 @@ int DecodeTableBench(const DecodeTableRequest& request, const multirobot_audio::
   return 0;
 }
 
-}  // namespace nava_modem::tools
+}  // namespace audio_propagation::tools
+
+int main(int argc, char** argv) {
+  return multirobot_audio::tools::RunTool([&] {
+    return audio_propagation::tools::DecodeTableBench(
+        audio_propagation::tools::ParseDecodeTableBenchArgs(multirobot_audio::tools::Words(argc, argv)));
+  });
+}

@@ -1,0 +1,30 @@
+#pragma once
+
+// decode_table_bench's command line, parsed apart from the tool so that tests and the fuzzer can
+// call it.
+//
+//   decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2]
+//                      [--seed 1] [--dir DIR] [--snr-db LIST]
+#include <string>
+#include <vector>
+
+#include "nava_modem/modem_profile.h"
+#include "tool_args/tool_args.h"
+
+namespace audio_propagation::tools {
+
+struct DecodeTableRequest {
+  nava_modem::Profile profile = nava_modem::Profile::kNava;
+  bool quick = false;
+  int packets = 12, threads = 2;
+  unsigned seed = 1;
+  std::string out, dir;
+  std::vector<double> snr_db;  // --snr-db; empty: the default axis
+  std::string command;         // how the table was made: the whole command line
+  multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
+};
+
+// Throws multirobot_audio::tools::UsageError naming what it refuses, HelpRequested for -h.
+DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& words);
+
+}  // namespace audio_propagation::tools
