@@ -286,9 +286,14 @@ multirobot_audio::AudioReception Heard(const std::string& frame, const ros::Time
   multirobot_audio::AudioReception msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = frame;
-  msg.kind = packet ? multirobot_audio::AudioReception::PACKET : multirobot_audio::AudioReception::NOISE;
-  msg.noise = packet ? multirobot_audio::AudioReception::NONE : noise;
-  if (packet) msg.data = data;
+  if (packet) {
+    msg.kind = multirobot_audio::AudioReception::PACKET;
+    msg.noise = multirobot_audio::AudioReception::NONE;
+    msg.data = data;
+  } else {
+    msg.kind = multirobot_audio::AudioReception::NOISE;
+    msg.noise = noise;
+  }
   return msg;
 }
 
@@ -318,8 +323,8 @@ multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Recep
                                                   const ros::Time& stamp) {
   // The threshold model knows only collisions; the acoustic model reports what the real
   // receiver would.
-  const std::uint8_t noise = rx.noise == nava_modem::RxEvent::Noise::kNone ? multirobot_audio::AudioReception::COLLISION
-                                                                          : NoiseKind(rx.noise);
+  std::uint8_t noise = multirobot_audio::AudioReception::COLLISION;
+  if (rx.noise != nava_modem::RxEvent::Noise::kNone) noise = NoiseKind(rx.noise);
   multirobot_audio::AudioReception msg =
       Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket, rx.data, noise);
   msg.level_db = static_cast<float>(rx.level_db);

@@ -131,6 +131,32 @@ TEST(Conversions, DirectionArrowPointsWhereTheSoundCameFrom) {
   EXPECT_GT(unsure.color.r, unsure.color.g);    // noise is drawn orange
 }
 
+// Each noise class in the message's own constants: a simulated collision (the threshold model
+// reports no class), the acoustic model's and the real receiver's classes; a packet has none.
+TEST(Conversions, ReceptionsCarryTheirNoiseClass) {
+  using multirobot_audio::AudioReception;
+  audio_propagation::Reception sim;
+  sim.kind = audio_propagation::Reception::Kind::kNoise;
+  sim.data = {9};
+  EXPECT_EQ(ToAudioReception(sim, "f", ros::Time(1.0)).noise, AudioReception::COLLISION);
+  EXPECT_EQ(ToAudioReception(sim, "f", ros::Time(1.0)).kind, AudioReception::NOISE);
+  EXPECT_TRUE(ToAudioReception(sim, "f", ros::Time(1.0)).data.empty());
+  sim.noise = nava_modem::RxEvent::Noise::kOneByte;
+  EXPECT_EQ(ToAudioReception(sim, "f", ros::Time(1.0)).noise, AudioReception::ONE_BYTE);
+  sim.kind = audio_propagation::Reception::Kind::kPacket;
+  sim.noise = nava_modem::RxEvent::Noise::kNone;
+  const AudioReception packet = ToAudioReception(sim, "f", ros::Time(1.0));
+  EXPECT_EQ(packet.kind, AudioReception::PACKET);
+  EXPECT_EQ(packet.noise, AudioReception::NONE);
+  EXPECT_EQ(packet.data, std::vector<std::uint8_t>{9});
+  nava_modem::RxEvent real;
+  real.kind = nava_modem::RxEvent::Kind::kNoise;
+  real.noise = nava_modem::RxEvent::Noise::kZeroByte;
+  EXPECT_EQ(ToAudioReception(real, "f", ros::Time(1.0)).noise, AudioReception::ZERO_BYTE);
+  real.noise = nava_modem::RxEvent::Noise::kBadCrc;
+  EXPECT_EQ(ToAudioReception(real, "f", ros::Time(1.0)).noise, AudioReception::BAD_CRC);
+}
+
 }  // namespace
 }  // namespace multirobot_audio
 
