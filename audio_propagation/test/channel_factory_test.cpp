@@ -152,56 +152,39 @@ TEST(ChannelFactory, RefusesTheAcousticModelWithoutAcoustics) {
 }
 
 TEST(ChannelFactory, ChecksEachOptionsRange) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const SimulatedChannelOptions good = ThresholdRoom();
-  EXPECT_NO_THROW(CheckSimulatedChannelOptions(good));
-  SimulatedChannelOptions o = good;
-  o.source_level_db = nan;
-  ExpectCheckError(o, "source_level_db", {"expected a number in [-1000, 1000], got nan"});
-  o = good;
-  o.threshold_db = 80.0;
-  ExpectCheckError(o, "threshold_db", {"expected at most source_level_db (70.000000), got 80.000000"});
-  o = good;
-  o.source_level_db = 30.0;  // below the default threshold
-  ExpectCheckError(o, "threshold_db", {"got 40.000000"});
-  o = good;
-  o.max_range = -1.0;
-  ExpectCheckError(o, "max_range", {"[0, 1e+06], got -1"});
-  o = good;
-  o.speed_of_sound = 0.5;
-  ExpectCheckError(o, "speed_of_sound", {"got 0.5"});
-  o = good;
-  o.capture_margin_db = -1.0;
-  ExpectCheckError(o, "capture_margin_db", {"got -1"});
-  o = good;
-  o.direction_noise = 11.0;
-  ExpectCheckError(o, "direction_noise", {"[0, 10], got 11"});
-  o = good;
-  o.bit_rate = 0.5;
-  ExpectCheckError(o, "bit_rate", {"[1, 100000], got 0.5"});
-  o.bit_rate = 100000.0;  // a packet shorter than the MAC's deaf time
-  ExpectCheckError(o, "bit_rate", {"deaf_time"});
-  o.profile = nava_modem::Profile::kRoom;
-  ExpectCheckError(o, "bit_rate", {"profile room has its own timing"});
-  o = good;
-  o.seed = -1;
-  ExpectCheckError(o, "seed", {"expected a whole number in [0, 2147483647], got -1"});
-  o = good;
-  o.cache_size = 10000001;
-  ExpectCheckError(o, "cache_size", {"got 10000001"});
-  o = good;
-  o.decode_table = "table.yaml";
-  ExpectCheckError(o, "decode_table", {"only used by channel_model acoustic"});
-  o = good;
-  o.delivery_map_robot = "robot_0";
-  ExpectCheckError(o, "delivery_map_robot", {"only used by channel_model acoustic"});
-  o = good;
-  o.world_file.clear();
-  ExpectCheckError(o, "robots", {"required"});
-  // The factory checks too.
-  o = good;
-  o.max_range = -1.0;
-  ExpectBuildError(o, "max_range", {"got -1"});
+  EXPECT_NO_THROW(CheckSimulatedChannelOptions(ThresholdRoom()));
+  struct Bad {
+    std::function<void(SimulatedChannelOptions&)> set;
+    std::string field, words;
+  };
+  const std::vector<Bad> bad = {
+      {[](auto& o) { o.source_level_db = std::numeric_limits<double>::quiet_NaN(); }, "source_level_db",
+       "expected a number in [-1000, 1000], got nan"},
+      {[](auto& o) { o.threshold_db = 80.0; }, "threshold_db", "expected at most source_level_db (70.000000), got 80.000000"},
+      {[](auto& o) { o.source_level_db = 30.0; }, "threshold_db", "got 40.000000"},  // under the default threshold
+      {[](auto& o) { o.max_range = -1.0; }, "max_range", "[0, 1e+06], got -1"},
+      {[](auto& o) { o.speed_of_sound = 0.5; }, "speed_of_sound", "got 0.5"},
+      {[](auto& o) { o.capture_margin_db = -1.0; }, "capture_margin_db", "got -1"},
+      {[](auto& o) { o.direction_noise = 11.0; }, "direction_noise", "[0, 10], got 11"},
+      {[](auto& o) { o.bit_rate = 0.5; }, "bit_rate", "[1, 100000], got 0.5"},
+      {[](auto& o) { o.bit_rate = 100000.0; }, "bit_rate", "deaf_time"},  // a packet shorter than the MAC's deaf time
+      {[](auto& o) {
+         o.bit_rate = 300.0;
+         o.profile = nava_modem::Profile::kRoom;
+       },
+       "bit_rate", "profile room has its own timing"},
+      {[](auto& o) { o.seed = -1; }, "seed", "expected a whole number in [0, 2147483647], got -1"},
+      {[](auto& o) { o.cache_size = 10000001; }, "cache_size", "got 10000001"},
+      {[](auto& o) { o.decode_table = "table.yaml"; }, "decode_table", "only used by channel_model acoustic"},
+      {[](auto& o) { o.delivery_map_robot = "robot_0"; }, "delivery_map_robot", "only used by channel_model acoustic"},
+      {[](auto& o) { o.world_file.clear(); }, "robots", "required"},
+  };
+  for (const Bad& b : bad) {
+    SimulatedChannelOptions o = ThresholdRoom();
+    b.set(o);
+    ExpectCheckError(o, b.field, {b.words});
+    ExpectBuildError(o, b.field, {b.words});  // the factory checks too
+  }
 }
 
 }  // namespace
