@@ -13,9 +13,7 @@
 
 #include <multirobot_audio/RobotPoses.h>
 
-#include "audio_propagation/acoustic_model.h"
-#include "audio_propagation/audio_channel.h"
-#include "audio_propagation/propagation_model.h"
+#include "audio_propagation/channel_factory.h"
 #include "input_guard.h"
 #include "lockstep_participant.h"
 
@@ -23,11 +21,16 @@ namespace multirobot_audio {
 
 // Options of the audio_propagation node, filled from its private parameters.
 struct AudioPropagationOptions {
-  std::string world_file;        // ~world: robots, microphones and map
-  std::string map_file;          // ~map: replaces the world file's map; without either, /map
-  double map_timeout = 30.0;     // ~map_timeout: wall seconds to wait for /map
-  std::vector<std::string> robots;  // ~robots: which robots to serve (default: all in the world)
-  std::vector<std::string> microphones;  // ~microphones: per robot, overriding the world file
+  // The channel served (audio_propagation/channel_factory.h), each option from the ~parameter of
+  // its name (~world and ~map for world_file and map_file): ~world, ~map, ~robots, ~microphones,
+  // ~profile, ~bit_rate, ~channel_model, ~decode_table, ~delivery_map_robot, ~source_level_db,
+  // ~threshold_db, ~max_range, ~speed_of_sound, ~rule, ~capture_margin_db, ~direction_noise,
+  // ~seed, ~cache_size.
+  audio_propagation::SimulatedChannelOptions channel;
+  // ~frame_id: the world's fixed frame: the robots' poses are looked up in it, and the paths,
+  // corners and delivery maps are drawn in it.
+  std::string frame_id = "map";
+  double map_timeout = 30.0;     // ~map_timeout: wall seconds to wait for /map (with neither ~world nor ~map)
   double update_rate = 100.0;    // ~update_rate: Hz (simulated) of pose reads and channel steps
   // ~update: events (the channel is worked out only while something is in the air or about to
   // be: in lockstep the world does not wait for this node through silences) or every_step (at
@@ -38,24 +41,17 @@ struct AudioPropagationOptions {
   // transmission's own length (a 4-byte packet is about 0.4 s: a flicker in a sped-up run)
   double path_display_time = 0.0;
   int packet_bytes = 4;          // ~packet_bytes: the payload every packet must have (Nava: 4)
-  std::string profile = "nava";  // ~profile: the robots' modem profile
-  // ~channel_model: threshold (the thesis's: level and capture) or acoustic (the world file's
-  // acoustics and the profile's decode table decide each packet)
-  std::string channel_model = "threshold";
-  std::string decode_table;      // ~decode_table: acoustic model's table (default: the profile's shipped one)
   // ~robot_poses: in lockstep, world_sim's topic of every robot's true pose
   std::string robot_poses = "/world_sim/robot_poses";
-  // ~delivery_map_robot: publish ~delivery_map (nav_msgs/OccupancyGrid, 0-100 = percent chance
-  // a listener there decodes this robot) every ~delivery_map_period s (simulated) on cells of
-  // ~delivery_map_resolution m; empty = no map. Acoustic model only.
-  std::string delivery_map_robot;
+  // With ~delivery_map_robot (acoustic model): publish ~delivery_map (nav_msgs/OccupancyGrid,
+  // 0-100 = percent chance a listener there decodes that robot) every ~delivery_map_period s
+  // (simulated) on cells of ~delivery_map_resolution m.
   double delivery_map_period = 5.0;
   double delivery_map_resolution = 0.5;
-  audio_propagation::PropagationOptions model;  // ~source_level_db, ~threshold_db, ~max_range, ~speed_of_sound, ~rule
-  bool threshold_given = false;  // ~threshold_db was set (else the acoustic model picks its own)
-  audio_propagation::ChannelOptions channel;    // ~capture_margin_db, ~bit_rate, ~direction_noise, ~seed
 };
 
+// Reads the node's parameters and checks them (CheckSimulatedChannelOptions for the channel's);
+// throws ParamError naming the parameter, the value and what was expected.
 AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh);
 
 // Serves every simulated robot's audio link from the propagation model: audio/tx in, audio/rx
@@ -88,10 +84,7 @@ class AudioPropagationRos {
   InputGuard guard_;              // before the subscriptions whose callbacks it checks
   ros::WallTimer diagnostics_timer_;
   AudioPropagationOptions options_;
-  std::vector<world_sim::Microphone> microphones_;
-  std::unique_ptr<audio_propagation::PropagationModel> model_;
-  std::unique_ptr<audio_propagation::AcousticModel> acoustic_;
-  std::unique_ptr<audio_propagation::AudioChannel> channel_;
+  audio_propagation::SimulatedChannel sim_;  // its robots, in the order of every per-robot vector here
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;  // not in lockstep (poses come on ground_truth)
   std::vector<ros::Subscriber> tx_subs_;
@@ -106,7 +99,6 @@ class AudioPropagationRos {
   std::vector<std::uint64_t> missing_poses_;  // per robot
   std::vector<ros::Time> pose_stamps_;        // of each robot's latest pose
   ros::Publisher paths_pub_, points_pub_, delivery_pub_;
-  std::size_t delivery_robot_ = 0;
   double next_delivery_map_ = 0.0;  // s of channel time
   ros::Timer timer_;
   ros::Time start_;

@@ -286,9 +286,14 @@ multirobot_audio::AudioReception Heard(const std::string& frame, const ros::Time
   multirobot_audio::AudioReception msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = frame;
-  msg.kind = packet ? multirobot_audio::AudioReception::PACKET : multirobot_audio::AudioReception::NOISE;
-  msg.noise = packet ? multirobot_audio::AudioReception::NONE : noise;
-  if (packet) msg.data = data;
+  if (packet) {
+    msg.kind = multirobot_audio::AudioReception::PACKET;
+    msg.noise = multirobot_audio::AudioReception::NONE;
+    msg.data = data;
+  } else {
+    msg.kind = multirobot_audio::AudioReception::NOISE;
+    msg.noise = noise;
+  }
   return msg;
 }
 
@@ -318,8 +323,8 @@ multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Recep
                                                   const ros::Time& stamp) {
   // The threshold model knows only collisions; the acoustic model reports what the real
   // receiver would.
-  const std::uint8_t noise = rx.noise == nava_modem::RxEvent::Noise::kNone ? multirobot_audio::AudioReception::COLLISION
-                                                                          : NoiseKind(rx.noise);
+  std::uint8_t noise = multirobot_audio::AudioReception::COLLISION;
+  if (rx.noise != nava_modem::RxEvent::Noise::kNone) noise = NoiseKind(rx.noise);
   multirobot_audio::AudioReception msg =
       Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket, rx.data, noise);
   msg.level_db = static_cast<float>(rx.level_db);
@@ -354,6 +359,60 @@ visualization_msgs::Marker ToDirectionMarker(double direction, double confidence
   m.color.b = 0.1f;
   m.lifetime = ros::Duration(3.0);
   return m;
+}
+
+namespace {
+
+geometry_msgs::Point ToPoint(const Eigen::Vector2d& p, double z) {
+  geometry_msgs::Point out;
+  out.x = p.x();
+  out.y = p.y();
+  out.z = z;
+  return out;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray ToSoundPathMarkers(const std::vector<audio_propagation::Transmission>& started,
+                                                   const std::vector<std::string>& robots,
+                                                   const audio_propagation::PropagationOptions& levels,
+                                                   double display_time, const std::string& frame,
+                                                   const ros::Time& stamp, int first_id) {
+  visualization_msgs::MarkerArray out;
+  for (const audio_propagation::Transmission& tx : started) {
+    const bool acoustic = !tx.probability.empty();
+    for (std::size_t r = 0; r < tx.paths.size(); ++r) {
+      const audio_propagation::SoundPath& p = tx.paths[r];
+      if (acoustic ? tx.probability[r] < 0.01 : !p.audible) continue;
+      visualization_msgs::Marker m = BaseMarker(frame, stamp, robots.at(tx.sender),
+                                                first_id + static_cast<int>(out.markers.size()),
+                                                visualization_msgs::Marker::LINE_STRIP);
+      m.scale.x = 0.04;
+      m.lifetime = ros::Duration(std::max(tx.duration, display_time));
+      if (acoustic) {
+        const float sure = static_cast<float>(tx.probability[r]);
+        SetColour(m, 1.0f - sure, sure, 0.1f, 0.9f);
+      } else {
+        const double span = levels.source_level_db - levels.threshold_db;
+        const float loud = static_cast<float>(std::clamp((p.level_db - levels.threshold_db) / span, 0.0, 1.0));
+        SetColour(m, loud, 0.2f, 1.0f - loud, 0.9f);
+      }
+      for (const Eigen::Vector2d& q : p.polyline) m.points.push_back(ToPoint(q, 0.15));
+      out.markers.push_back(m);
+    }
+  }
+  return out;
+}
+
+visualization_msgs::MarkerArray ToDiffractionPointMarkers(const std::vector<Eigen::Vector2d>& corners,
+                                                          const std::string& frame) {
+  visualization_msgs::Marker m = BaseMarker(frame, ros::Time(), "corners", 0, visualization_msgs::Marker::POINTS);
+  m.scale.x = m.scale.y = 0.08;
+  SetColour(m, 0.2f, 0.8f, 0.0f);
+  for (const Eigen::Vector2d& c : corners) m.points.push_back(ToPoint(c, 0.05));
+  visualization_msgs::MarkerArray out;
+  out.markers.push_back(m);
+  return out;
 }
 
 }  // namespace multirobot_audio

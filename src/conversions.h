@@ -88,4 +88,21 @@ multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Recep
 visualization_msgs::Marker ToDirectionMarker(double direction, double confidence, bool packet, const std::string& frame,
                                              const ros::Time& stamp, int id);
 
+// The sound paths of transmissions as they start, for rviz (audio_propagation's ~paths): one
+// LINE_STRIP per path heard (threshold model: audible; acoustic model: a decode chance of 1 %
+// or more), 15 cm up, in the namespace of its sender's name (`robots`), with ids from
+// `first_id` on, lasting the packet or `display_time` s if longer. Threshold model: red at
+// `levels.source_level_db` to blue at `levels.threshold_db`; acoustic model: green (sure to be
+// decoded) to red (hopeless).
+visualization_msgs::MarkerArray ToSoundPathMarkers(const std::vector<audio_propagation::Transmission>& started,
+                                                   const std::vector<std::string>& robots,
+                                                   const audio_propagation::PropagationOptions& levels,
+                                                   double display_time, const std::string& frame,
+                                                   const ros::Time& stamp, int first_id);
+
+// The corners where sound bends (world points), as one green POINTS marker (namespace
+// "corners") for rviz, unstamped: it stands for as long as the map.
+visualization_msgs::MarkerArray ToDiffractionPointMarkers(const std::vector<Eigen::Vector2d>& corners,
+                                                          const std::string& frame);
+
 }  // namespace multirobot_audio

@@ -22,25 +22,55 @@ std::string Range(double lo, double hi, double value) {
 
 }  // namespace
 
-double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback, double lo,
-                   double hi) {
-  if (!pnh.hasParam(name)) return fallback;
+ParamError OptionParamError(const ros::NodeHandle& pnh, const std::string& field, const std::string& problem) {
+  // (A name with brackets is no ROS name: only the list's name is resolved.)
+  const std::size_t entry = field.find('[');
+  return ParamError(Name(pnh, field.substr(0, entry)) + (entry == std::string::npos ? "" : field.substr(entry)) +
+                    ": " + problem);
+}
+
+double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback) {
+  return OptionalNumberParam(pnh, name).value_or(fallback);
+}
+
+std::optional<double> OptionalNumberParam(const ros::NodeHandle& pnh, const std::string& name) {
+  if (!pnh.hasParam(name)) return std::nullopt;
   double value = 0.0;
   int as_int = 0;
   if (!pnh.getParam(name, value)) {
     if (!pnh.getParam(name, as_int)) throw ParamError(Name(pnh, name) + ": expected a number");
     value = as_int;
   }
+  return value;
+}
+
+double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback, double lo,
+                   double hi) {
+  if (!pnh.hasParam(name)) return fallback;
+  const double value = NumberParam(pnh, name, fallback);
   if (!std::isfinite(value) || value < lo || value > hi) {
     throw ParamError(Name(pnh, name) + ": " + Range(lo, hi, value));
   }
   return value;
 }
 
-int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, int lo, int hi) {
+int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback) {
   if (!pnh.hasParam(name)) return fallback;
   int value = 0;
   if (!pnh.getParam(name, value)) throw ParamError(Name(pnh, name) + ": expected a whole number");
+  return value;
+}
+
+std::vector<std::string> StringListParam(const ros::NodeHandle& pnh, const std::string& name,
+                                         const std::string& expected) {
+  std::vector<std::string> value;
+  if (pnh.hasParam(name) && !pnh.getParam(name, value)) throw ParamError(Name(pnh, name) + ": expected " + expected);
+  return value;
+}
+
+int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, int lo, int hi) {
+  if (!pnh.hasParam(name)) return fallback;
+  const int value = IntParam(pnh, name, fallback);
   if (value < lo || value > hi) {
     throw ParamError(Name(pnh, name) + ": expected a whole number in [" + std::to_string(lo) +
                      ", " + std::to_string(hi) + "], got " + std::to_string(value));

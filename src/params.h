@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,11 +17,23 @@ class ParamError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The ParamError for an option of a ROS-free options struct that is named as its parameter:
+// "<~field>: <problem>", where `field` may name an entry of a list ("microphones[2]").
+ParamError OptionParamError(const ros::NodeHandle& pnh, const std::string& field, const std::string& problem);
+
 // Reads ~name (from `pnh`), or `fallback` when unset; throws ParamError on a value of the
 // wrong type or outside [lo, hi].
 double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback, double lo,
                    double hi);
 int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback, int lo, int hi);
+// The same without a range, for options whose own check has it (a number may be NaN or
+// infinite); the optional one is empty when unset.
+double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback);
+std::optional<double> OptionalNumberParam(const ros::NodeHandle& pnh, const std::string& name);
+int IntParam(const ros::NodeHandle& pnh, const std::string& name, int fallback);
+// A list of strings, empty when unset; throws ParamError "expected <expected>" for anything else.
+std::vector<std::string> StringListParam(const ros::NodeHandle& pnh, const std::string& name,
+                                         const std::string& expected);
 std::string StringParam(const ros::NodeHandle& pnh, const std::string& name,
                         const std::string& fallback);
 bool BoolParam(const ros::NodeHandle& pnh, const std::string& name, bool fallback);

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -129,6 +132,110 @@ TEST(Conversions, DirectionArrowPointsWhereTheSoundCameFrom) {
   const visualization_msgs::Marker unsure = ToDirectionMarker(M_PI, 0.0, false, "robot_3/base_link", ros::Time(4.0), 8);
   EXPECT_NEAR(unsure.points[1].x, -0.3, 1e-9);  // behind, short
   EXPECT_GT(unsure.color.r, unsure.color.g);    // noise is drawn orange
+}
+
+// Each noise class in the message's own constants: a simulated collision (the threshold model
+// reports no class), the acoustic model's and the real receiver's classes; a packet has none.
+TEST(Conversions, ReceptionsCarryTheirNoiseClass) {
+  using multirobot_audio::AudioReception;
+  audio_propagation::Reception sim;
+  sim.kind = audio_propagation::Reception::Kind::kNoise;
+  sim.data = {9};
+  EXPECT_EQ(ToAudioReception(sim, "f", ros::Time(1.0)).noise, AudioReception::COLLISION);
+  EXPECT_EQ(ToAudioReception(sim, "f", ros::Time(1.0)).kind, AudioReception::NOISE);
+  EXPECT_TRUE(ToAudioReception(sim, "f", ros::Time(1.0)).data.empty());
+  sim.noise = nava_modem::RxEvent::Noise::kOneByte;
+  EXPECT_EQ(ToAudioReception(sim, "f", ros::Time(1.0)).noise, AudioReception::ONE_BYTE);
+  sim.kind = audio_propagation::Reception::Kind::kPacket;
+  sim.noise = nava_modem::RxEvent::Noise::kNone;
+  const AudioReception packet = ToAudioReception(sim, "f", ros::Time(1.0));
+  EXPECT_EQ(packet.kind, AudioReception::PACKET);
+  EXPECT_EQ(packet.noise, AudioReception::NONE);
+  EXPECT_EQ(packet.data, std::vector<std::uint8_t>{9});
+  nava_modem::RxEvent real;
+  real.kind = nava_modem::RxEvent::Kind::kNoise;
+  real.noise = nava_modem::RxEvent::Noise::kZeroByte;
+  EXPECT_EQ(ToAudioReception(real, "f", ros::Time(1.0)).noise, AudioReception::ZERO_BYTE);
+  real.noise = nava_modem::RxEvent::Noise::kBadCrc;
+  EXPECT_EQ(ToAudioReception(real, "f", ros::Time(1.0)).noise, AudioReception::BAD_CRC);
+}
+
+// A path that sounds at `level_db` along `points`.
+audio_propagation::SoundPath PathAt(double level_db, bool audible, std::vector<Eigen::Vector2d> points) {
+  audio_propagation::SoundPath p;
+  p.reachable = true;
+  p.audible = audible;
+  p.level_db = level_db;
+  p.polyline = std::move(points);
+  return p;
+}
+
+TEST(Conversions, SoundPathsOneMarkerPerPathHeard) {
+  const std::vector<std::string> robots = {"robot_0", "robot_1", "robot_2"};
+  audio_propagation::PropagationOptions levels;  // 70 dB at the source, 40 dB the quietest heard
+  audio_propagation::Transmission tx;
+  tx.sender = 1;
+  tx.duration = 0.4;
+  tx.paths = {PathAt(70.0, true, {{0.0, 0.0}, {1.0, 0.0}, {1.0, 2.0}}), audio_propagation::SoundPath(),
+              PathAt(40.0, true, {{0.0, 0.0}, {3.0, 0.0}})};
+  audio_propagation::Transmission faint = tx;
+  faint.sender = 2;
+  faint.paths = {PathAt(30.0, false, {{0.0, 0.0}, {5.0, 0.0}}), PathAt(50.0, true, {{0.0, 0.0}, {0.0, 1.0}}),
+                 audio_propagation::SoundPath()};
+
+  const visualization_msgs::MarkerArray a =
+      ToSoundPathMarkers({tx, faint}, robots, levels, 2.0, "world", ros::Time(5.0), 40);
+  ASSERT_EQ(a.markers.size(), 3u);  // the unheard and unreachable paths are not drawn
+  for (std::size_t k = 0; k < a.markers.size(); ++k) {
+    const visualization_msgs::Marker& m = a.markers[k];
+    EXPECT_EQ(m.header.frame_id, "world");
+    EXPECT_EQ(m.header.stamp, ros::Time(5.0));
+    EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_STRIP);
+    EXPECT_EQ(m.id, 40 + static_cast<int>(k));
+    EXPECT_DOUBLE_EQ(m.lifetime.toSec(), 2.0);  // the display time, longer than the packet
+  }
+  EXPECT_EQ(a.markers[0].ns, "robot_1");
+  EXPECT_EQ(a.markers[2].ns, "robot_2");
+  ASSERT_EQ(a.markers[0].points.size(), 3u);
+  EXPECT_DOUBLE_EQ(a.markers[0].points[2].y, 2.0);
+  EXPECT_DOUBLE_EQ(a.markers[0].points[2].z, 0.15);
+  EXPECT_FLOAT_EQ(a.markers[0].color.r, 1.0f);  // at the source level: red
+  EXPECT_FLOAT_EQ(a.markers[0].color.b, 0.0f);
+  EXPECT_FLOAT_EQ(a.markers[1].color.r, 0.0f);  // at the threshold: blue
+  EXPECT_FLOAT_EQ(a.markers[1].color.b, 1.0f);
+
+  // A packet longer than the display time lasts as long as it sounds.
+  EXPECT_DOUBLE_EQ(ToSoundPathMarkers({tx}, robots, levels, 0.0, "map", ros::Time(5.0), 0).markers[0].lifetime.toSec(),
+                   0.4);
+  EXPECT_TRUE(ToSoundPathMarkers({}, robots, levels, 0.0, "map", ros::Time(5.0), 0).markers.empty());
+}
+
+TEST(Conversions, SoundPathsOfTheAcousticModelByDecodeChance) {
+  audio_propagation::Transmission tx;
+  tx.sender = 0;
+  tx.paths = {audio_propagation::SoundPath(), PathAt(20.0, false, {{0.0, 0.0}, {1.0, 1.0}}),
+              PathAt(60.0, true, {{0.0, 0.0}, {2.0, 0.0}})};
+  tx.probability = {0.0, 1.0, 0.005};  // the threshold model's `audible` plays no part
+  const visualization_msgs::MarkerArray a =
+      ToSoundPathMarkers({tx}, {"robot_0", "robot_1", "robot_2"}, {}, 0.0, "map", ros::Time(1.0), 0);
+  ASSERT_EQ(a.markers.size(), 1u);
+  EXPECT_EQ(a.markers[0].header.frame_id, "map");
+  EXPECT_FLOAT_EQ(a.markers[0].color.g, 1.0f);  // sure to be decoded: green
+  EXPECT_FLOAT_EQ(a.markers[0].color.r, 0.0f);
+  EXPECT_DOUBLE_EQ(a.markers[0].points[1].x, 1.0);
+}
+
+TEST(Conversions, DiffractionPointsAsOneMarkerInTheFrameGiven) {
+  const visualization_msgs::MarkerArray a = ToDiffractionPointMarkers({{1.0, 2.0}, {3.0, 4.0}}, "world");
+  ASSERT_EQ(a.markers.size(), 1u);
+  const visualization_msgs::Marker& m = a.markers[0];
+  EXPECT_EQ(m.header.frame_id, "world");
+  EXPECT_EQ(m.ns, "corners");
+  EXPECT_EQ(m.type, visualization_msgs::Marker::POINTS);
+  ASSERT_EQ(m.points.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.points[1].x, 3.0);
+  EXPECT_DOUBLE_EQ(m.points[1].y, 4.0);
+  EXPECT_TRUE(ToDiffractionPointMarkers({}, "map").markers[0].points.empty());
 }
 
 }  // namespace
