@@ -9,15 +9,15 @@
 
 #include <fftw3.h>
 
-#include "nava_modem/real_fft.h"
-
 namespace nava_modem {
 namespace {
 
 // FFTW's planner keeps global state (its wisdom, the twiddle tables): making or destroying a
-// plan from two threads at once corrupts it. Until every user plans through FftPlan, the lock
-// is the one the others take too.
-std::mutex& PlannerMutex() { return FftwPlannerMutex(); }
+// plan from two threads at once corrupts it. Only this file makes or destroys plans.
+std::mutex& PlannerMutex() {
+  static std::mutex m;
+  return m;
+}
 
 bool RealInput(FftKind kind) { return kind == FftKind::kRealToComplex; }
 bool RealOutput(FftKind kind) { return kind == FftKind::kComplexToReal; }
