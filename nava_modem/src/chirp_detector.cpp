@@ -1,16 +1,14 @@
 #include "nava_modem/chirp_detector.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstring>
-#include <mutex>
 #include <stdexcept>
 
-#include <fftw3.h>
-
+#include "nava_modem/fft_plan.h"
 #include "nava_modem/noise_spectrum.h"
 #include "nava_modem/power_of_two.h"
-#include "nava_modem/real_fft.h"
 
 namespace nava_modem {
 namespace {
@@ -29,34 +27,11 @@ constexpr std::int64_t kRenewEvery = 1 << 16;
 
 }  // namespace
 
-// FFTW's buffers and plans for one block size.
-struct ChirpDetector::Fftw {
-  explicit Fftw(std::size_t n)
-      : size(n),
-        real(fftw_alloc_real(n)),
-        spectrum(fftw_alloc_complex(n / 2 + 1)),
-        analytic(fftw_alloc_complex(n)),
-        output(fftw_alloc_complex(n)) {
-    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());  // FFTW's planner is not thread-safe
-    forward = fftw_plan_dft_r2c_1d(static_cast<int>(n), real, spectrum, FFTW_ESTIMATE);
-    backward = fftw_plan_dft_1d(static_cast<int>(n), analytic, output, FFTW_BACKWARD, FFTW_ESTIMATE);
-    if (!forward || !backward) throw std::runtime_error("chirp detector: FFTW could not plan a transform of " + std::to_string(n));
-  }
-  ~Fftw() {
-    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
-    fftw_destroy_plan(forward);
-    fftw_destroy_plan(backward);
-    fftw_free(real);
-    fftw_free(spectrum);
-    fftw_free(analytic);
-    fftw_free(output);
-  }
-  std::size_t size;
-  double* real;
-  fftw_complex* spectrum;
-  fftw_complex* analytic;
-  fftw_complex* output;
-  fftw_plan forward, backward;
+// The matched filter's two transforms for one block size: the block's spectrum, and back from
+// the correlation's analytic spectrum (a complex transform, whose magnitude is the envelope).
+struct ChirpDetector::Fft {
+  explicit Fft(std::size_t n) : forward(FftKind::kRealToComplex, n), backward(FftKind::kComplexBackward, n) {}
+  FftPlan forward, backward;
   std::vector<std::complex<double>> chirp_conj;  // conj(FFT of the zero-padded chirp), bins 0..n/2
 };
 
@@ -68,15 +43,16 @@ ChirpDetector::ChirpDetector(const std::vector<float>& chirp, double sample_rate
   hop_ = fft_size_ - chirp_length_ - 2 * margin_ + 1;
   template_energy_ = 0.0;
   for (float c : chirp) template_energy_ += static_cast<double>(c) * c;
-  fftw_ = std::make_unique<Fftw>(fft_size_);
-  std::fill(fftw_->real, fftw_->real + fft_size_, 0.0);
-  std::copy(chirp.begin(), chirp.end(), fftw_->real);
-  fftw_execute(fftw_->forward);
-  fftw_->chirp_conj.resize(fft_size_ / 2 + 1);
+  fft_ = std::make_unique<Fft>(fft_size_);
+  // The plan's input starts zeroed: the chirp is zero-padded to the block.
+  std::copy(chirp.begin(), chirp.end(), fft_->forward.real_input());
+  fft_->forward.Execute();
+  const std::complex<double>* spectrum = fft_->forward.complex_output();
+  fft_->chirp_conj.resize(fft_size_ / 2 + 1);
   template_spectrum_energy_ = 0.0;
   for (std::size_t k = 0; k <= fft_size_ / 2; ++k) {
-    fftw_->chirp_conj[k] = {fftw_->spectrum[k][0], -fftw_->spectrum[k][1]};
-    template_spectrum_energy_ += std::norm(fftw_->chirp_conj[k]);
+    fft_->chirp_conj[k] = std::conj(spectrum[k]);
+    template_spectrum_energy_ += std::norm(fft_->chirp_conj[k]);
   }
   noise_ = std::make_unique<NoiseSpectrum>(
       fft_size_ / 2 + 1, static_cast<std::size_t>(std::ceil(kSmoothHz * fft_size_ / sample_rate)),
@@ -121,9 +97,10 @@ void ChirpDetector::Process(const float* samples, std::size_t count, std::vector
 }
 
 void ChirpDetector::RunBlock() {
-  Fftw& f = *fftw_;
-  std::copy(input_.begin(), input_.end(), f.real);
-  fftw_execute(f.forward);
+  Fft& f = *fft_;
+  std::copy(input_.begin(), input_.end(), f.forward.real_input());
+  f.forward.Execute();
+  const std::complex<double>* spectrum = f.forward.complex_output();
   const std::size_t half = fft_size_ / 2;
   // Whitening by the noise heard before this block: each frequency weighs by the inverse of
   // its noise power, so a whine, a rumble or pink noise counts no more than white noise of the
@@ -140,17 +117,16 @@ void ChirpDetector::RunBlock() {
     weighted += std::norm(f.chirp_conj[k]) * gain_[k];
   }
   const double normal = weighted > 0.0 ? template_spectrum_energy_ / weighted : 1.0;
-  for (std::size_t k = 0; k <= half; ++k) power_[k] = std::norm(std::complex<double>(f.spectrum[k][0], f.spectrum[k][1]));
+  for (std::size_t k = 0; k <= half; ++k) power_[k] = std::norm(spectrum[k]);
   noise_->Add(power_);
   // The correlation's analytic signal: positive frequencies doubled, negative ones dropped.
+  std::complex<double>* analytic = f.backward.complex_input();
   for (std::size_t k = 0; k <= half; ++k) {
-    const std::complex<double> x(f.spectrum[k][0], f.spectrum[k][1]);
-    const std::complex<double> y = x * std::sqrt(gain_[k] * normal) * f.chirp_conj[k] * ((k == 0 || k == half) ? 1.0 : 2.0);
-    f.analytic[k][0] = y.real();
-    f.analytic[k][1] = y.imag();
+    analytic[k] = spectrum[k] * std::sqrt(gain_[k] * normal) * f.chirp_conj[k] * ((k == 0 || k == half) ? 1.0 : 2.0);
   }
-  for (std::size_t k = half + 1; k < fft_size_; ++k) f.analytic[k][0] = f.analytic[k][1] = 0.0;
-  fftw_execute(f.backward);
+  std::fill(analytic + half + 1, analytic + fft_size_, std::complex<double>(0.0, 0.0));
+  f.backward.Execute();
+  const std::complex<double>* output = f.backward.complex_output();
   // Lag k of the circular correlation, the chirp starting at block_start_ + k, is exact for
   // margin_ <= k <= fft_size_ - chirp_length_ - margin_: the whitening's (zero-phase) impulse
   // response lengthens the chirp by up to margin_ either side, and what is longer wraps around
@@ -158,7 +134,7 @@ void ChirpDetector::RunBlock() {
   // that a chirp of amplitude A in white noise gives A^2.
   const double scale = 1.0 / (static_cast<double>(fft_size_) * template_energy_);
   for (std::size_t k = margin_; k < margin_ + hop_; ++k) {
-    const double re = f.output[k][0] * scale, im = f.output[k][1] * scale;
+    const double re = output[k].real() * scale, im = output[k].imag() * scale;
     const std::int64_t n = block_start_ + static_cast<std::int64_t>(k);
     envelope_[static_cast<std::size_t>(n) & envelope_mask_] = static_cast<float>(re * re + im * im);
   }

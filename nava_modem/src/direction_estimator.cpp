@@ -7,9 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fftw3.h>
-
-#include "nava_modem/real_fft.h"
+#include "nava_modem/fft_plan.h"
+#include "nava_modem/power_of_two.h"
 
 namespace nava_modem {
 namespace {
@@ -43,12 +42,6 @@ std::string Number(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
-}
-
-std::size_t NextPowerOfTwo(double n) {
-  std::size_t p = 1;
-  while (static_cast<double>(p) < n) p <<= 1;
-  return p;
 }
 
 // A Tukey window: flat, with raised-cosine ends of kTaper / 2 of its length each. Segments do
@@ -91,22 +84,6 @@ void CheckDistinct(const std::vector<Microphone2D>& mics, const std::string& con
     }
   }
 }
-
-// fftw_malloc'ed scratch (SIMD-aligned as the plans' arrays were, which fftw_execute_dft_* needs).
-template <typename T>
-class FftwBuffer {
- public:
-  explicit FftwBuffer(std::size_t n) : data_(static_cast<T*>(fftw_malloc(sizeof(T) * std::max<std::size_t>(n, 1)))) {
-    if (!data_) throw std::bad_alloc();
-  }
-  ~FftwBuffer() { fftw_free(data_); }
-  FftwBuffer(const FftwBuffer&) = delete;
-  FftwBuffer& operator=(const FftwBuffer&) = delete;
-  T* get() const { return data_; }
-
- private:
-  T* data_;
-};
 
 }  // namespace
 
@@ -151,28 +128,21 @@ struct DirectionEstimator::Fft {
   std::size_t segment = 0, inverse = 0;
   std::vector<double> window;  // over a whole segment
   std::vector<double> grid_x, grid_y;  // the bearing grid's unit vectors
-  fftw_plan forward = nullptr, backward = nullptr;
+  // Estimate() is const and may run on several threads at once: each call executes these on
+  // arrays of its own (FftPlan::MakeBuffers), so the plans are made once and never locked.
+  FftPlan forward, backward;
 
-  Fft(std::size_t segment_size, std::size_t inverse_size) : segment(segment_size), inverse(inverse_size) {
+  Fft(std::size_t segment_size, std::size_t inverse_size)
+      : segment(segment_size),
+        inverse(inverse_size),
+        forward(FftKind::kRealToComplex, segment_size),
+        backward(FftKind::kComplexToReal, inverse_size) {
     window = Window(segment);
     for (int g = 0; g < kBearingSteps; ++g) {
       grid_x.push_back(std::cos(2.0 * M_PI * g / kBearingSteps));
       grid_y.push_back(std::sin(2.0 * M_PI * g / kBearingSteps));
     }
-    FftwBuffer<double> real_in(segment), real_out(inverse);
-    FftwBuffer<fftw_complex> bins_out(segment / 2 + 1), bins_in(inverse / 2 + 1);
-    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
-    // FFTW_ESTIMATE: power-of-two sizes plan well without measuring, and construction stays fast.
-    forward = fftw_plan_dft_r2c_1d(static_cast<int>(segment), real_in.get(), bins_out.get(), FFTW_ESTIMATE);
-    backward = fftw_plan_dft_c2r_1d(static_cast<int>(inverse), bins_in.get(), real_out.get(), FFTW_ESTIMATE);
   }
-  ~Fft() {
-    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
-    fftw_destroy_plan(forward);
-    fftw_destroy_plan(backward);
-  }
-  Fft(const Fft&) = delete;
-  Fft& operator=(const Fft&) = delete;
 };
 
 struct DirectionEstimator::Spectra {
@@ -253,8 +223,8 @@ DirectionEstimator::DirectionEstimator(const DirectionOptions& options) : option
   for (const Microphone2D& m : o.mics) off_line = std::max(off_line, std::abs(-(m.x - cx) * axis_y_ + (m.y - cy) * axis_x_));
   collinear_ = off_line <= kCollinear * largest;
 
-  segment_ = NextPowerOfTwo(std::max({kSegmentSeconds * o.sample_rate, 8.0 * max_delay_ * o.sample_rate, 16.0}));
-  interpolation_ = NextPowerOfTwo(8.0 * o.high_hz / o.sample_rate);
+  segment_ = PowerOfTwoAtLeast(std::max({kSegmentSeconds * o.sample_rate, 8.0 * max_delay_ * o.sample_rate, 16.0}));
+  interpolation_ = PowerOfTwoAtLeast(8.0 * o.high_hz / o.sample_rate);
   const double bin_hz = o.sample_rate / static_cast<double>(segment_);
   low_bin_ = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(o.low_hz / bin_hz)));
   high_bin_ = std::min(segment_ / 2, static_cast<std::size_t>(std::floor(o.high_hz / bin_hz)));
@@ -289,21 +259,22 @@ DirectionEstimator::Spectra DirectionEstimator::Analyse(const std::vector<const 
   const std::vector<double>& window = short_window.empty() ? fft_->window : short_window;
   const std::size_t length = std::min(n, segment_);
 
-  FftwBuffer<double> in(segment_);
-  FftwBuffer<fftw_complex> out(segment_ / 2 + 1);
+  FftBuffers buffers = fft_->forward.MakeBuffers();
+  double* in = buffers.real_input();
+  const std::complex<double>* out = buffers.complex_output();
   s.channel.resize(channels.size());
   s.power.assign(channels.size(), std::vector<double>(s.bins, 0.0));
   for (std::size_t c = 0; c < channels.size(); ++c) {
     s.channel[c].resize(s.segments * s.bins);
     for (std::size_t g = 0; g < s.segments; ++g) {
       const float* x = channels[c] + starts[g];
-      for (std::size_t k = 0; k < length; ++k) in.get()[k] = window[k] * x[k];
-      std::fill(in.get() + length, in.get() + segment_, 0.0);
-      fftw_execute_dft_r2c(fft_->forward, in.get(), out.get());
+      for (std::size_t k = 0; k < length; ++k) in[k] = window[k] * x[k];
+      std::fill(in + length, in + segment_, 0.0);
+      fft_->forward.Execute(buffers);
       for (std::size_t b = 0; b < s.bins; ++b) {
-        const fftw_complex& v = out.get()[low_bin_ + b];
-        s.channel[c][g * s.bins + b] = Complex(v[0], v[1]);
-        s.power[c][b] += v[0] * v[0] + v[1] * v[1];
+        const Complex& v = out[low_bin_ + b];
+        s.channel[c][g * s.bins + b] = v;
+        s.power[c][b] += v.real() * v.real() + v.imag() * v.imag();
       }
     }
   }
@@ -333,23 +304,23 @@ DirectionEstimator::Correlation DirectionEstimator::Correlate(const Spectra& s, 
   r.lags.assign(static_cast<std::size_t>(2 * r.half + 1), 0.0);
   if (strongest <= 0.0) return r;
 
-  FftwBuffer<fftw_complex> bins(inverse / 2 + 1);
-  FftwBuffer<double> lags(inverse);
-  std::fill(reinterpret_cast<double*>(bins.get()), reinterpret_cast<double*>(bins.get() + inverse / 2 + 1), 0.0);
+  // Fresh buffers start zeroed: the bins outside the band stay so.
+  FftBuffers buffers = fft_->backward.MakeBuffers();
+  Complex* bins = buffers.complex_input();
   for (std::size_t b = 0; b < s.bins; ++b) {
     if (magnitude[b] <= kWeakBin * strongest) continue;
     // Same bin index in the longer inverse transform = same frequency: the zero padding
     // interpolates the lags by `interpolation_`.
-    bins.get()[low_bin_ + b][0] = r.cross[b].real() / magnitude[b];
-    bins.get()[low_bin_ + b][1] = r.cross[b].imag() / magnitude[b];
+    bins[low_bin_ + b] = Complex(r.cross[b].real() / magnitude[b], r.cross[b].imag() / magnitude[b]);
     ++r.used;
   }
-  fftw_execute_dft_c2r(fft_->backward, bins.get(), lags.get());
+  fft_->backward.Execute(buffers);
+  const double* lags = buffers.real_output();
   // c2r counts each bin with its mirror: a clean delay peaks at 2 x used.
   const double scale = 1.0 / (2.0 * static_cast<double>(r.used));
   for (std::ptrdiff_t m = -r.half; m <= r.half; ++m) {
     const std::size_t at = static_cast<std::size_t>((m + static_cast<std::ptrdiff_t>(inverse)) % static_cast<std::ptrdiff_t>(inverse));
-    r.lags[static_cast<std::size_t>(m + r.half)] = lags.get()[at] * scale;
+    r.lags[static_cast<std::size_t>(m + r.half)] = lags[at] * scale;
   }
   return r;
 }

@@ -2,14 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <stdexcept>
 
-#include <fftw3.h>
-
+#include "nava_modem/fft_plan.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/power_of_two.h"
-#include "nava_modem/real_fft.h"
 #include "nava_modem/room_code.h"
 #include "nava_modem/room_modulator.h"
 
@@ -46,28 +43,15 @@ double Evidence(double ratio) { return std::log1p(ratio); }
 
 }  // namespace
 
-// FFTW buffers and one plan per window length (the length follows the sender's clock).
+// One plan per symbol window length (the length follows the sender's clock), made when first
+// needed.
 struct RoomReceiver::Fft {
-  explicit Fft(std::size_t max_length)
-      : in(fftw_alloc_real(max_length)), out(fftw_alloc_complex(max_length / 2 + 1)), capacity(max_length) {}
-  ~Fft() {
-    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());  // FFTW's planner is not thread-safe
-    for (auto& [length, plan] : plans) fftw_destroy_plan(plan);
-    fftw_free(in);
-    fftw_free(out);
-  }
-  fftw_plan Plan(int length) {
+  FftPlan& Plan(int length) {
     auto it = plans.find(length);
-    if (it != plans.end()) return it->second;
-    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
-    fftw_plan plan = fftw_plan_dft_r2c_1d(length, in, out, FFTW_ESTIMATE);
-    if (!plan) throw std::runtime_error("room receiver: FFTW could not plan a transform of " + std::to_string(length));
-    return plans[length] = plan;
+    if (it == plans.end()) it = plans.emplace(length, FftPlan(FftKind::kRealToComplex, static_cast<std::size_t>(length))).first;
+    return it->second;
   }
-  double* in;
-  fftw_complex* out;
-  std::size_t capacity;
-  std::map<int, fftw_plan> plans;
+  std::map<int, FftPlan> plans;
 };
 
 RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options)
@@ -91,7 +75,7 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
   history_.assign(size, 0.0f);
   history_mask_ = size - 1;
   level_step_ = std::max<std::int64_t>(1, std::llround(kBusyStepSeconds * modem.sample_rate));
-  fft_ = std::make_unique<Fft>(static_cast<std::size_t>(kSymbolSeconds * modem.sample_rate * (1.0 + MaxStretchError())) + 2);
+  fft_ = std::make_unique<Fft>();
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
 
@@ -243,14 +227,17 @@ void RoomReceiver::ExpireChirps(std::int64_t now, std::vector<RxEvent>& events) 
 }
 
 void RoomReceiver::SymbolEnergies(std::int64_t first, int length, double* energies) {
-  for (int k = 0; k < length; ++k) fft_->in[k] = Sample(first + k);
-  fftw_execute(fft_->Plan(length));
+  FftPlan& plan = fft_->Plan(length);
+  double* in = plan.real_input();
+  for (int k = 0; k < length; ++k) in[k] = Sample(first + k);
+  plan.Execute();
+  const std::complex<double>* out = plan.complex_output();
   // A tone of amplitude A whose frequency sits on a bin gives |X| = A * length / 2: energies
   // are the tones' squared amplitudes.
   const double scale = 4.0 / (static_cast<double>(length) * length);
   for (int b = 0; b < kBins; ++b) {
-    const fftw_complex& x = fft_->out[kLowestBin + b];
-    energies[b] = (x[0] * x[0] + x[1] * x[1]) * scale;
+    const std::complex<double>& x = out[kLowestBin + b];
+    energies[b] = (x.real() * x.real() + x.imag() * x.imag()) * scale;
   }
 }
 

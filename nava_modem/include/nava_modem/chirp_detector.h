@@ -66,8 +66,8 @@ class ChirpDetector {
   double template_energy_, template_spectrum_energy_;
   std::unique_ptr<NoiseSpectrum> noise_;
   std::vector<double> power_, gain_;  // per bin: this block's power, the whitening gains
-  struct Fftw;
-  std::unique_ptr<Fftw> fftw_;
+  struct Fft;  // the block's transforms and the chirp's spectrum
+  std::unique_ptr<Fft> fft_;
   std::vector<double> input_;        // the last fft_size_ samples
   std::size_t input_fill_ = 0;       // samples in input_ not yet run through a block
   std::int64_t block_start_ = 0;     // absolute index of input_[0]

@@ -1,11 +1,11 @@
 #pragma once
 
-// Whole-signal real FFTs through FFTW, for the room channel's filters (one big transform per
-// signal: the room's impulse response, the tilt and the noise colour are all applied as
-// products of spectra, so no block bookkeeping is needed).
+// Whole-signal real FFTs, for the room channel's filters (one big transform per signal: the
+// room's impulse response, the tilt and the noise colour are all applied as products of
+// spectra, so no block bookkeeping is needed). Each call plans its own FftPlan (fft_plan.h);
+// code that transforms blocks of one size again and again keeps an FftPlan instead.
 #include <complex>
 #include <cstddef>
-#include <mutex>
 #include <vector>
 
 namespace nava_modem {
@@ -19,10 +19,6 @@ std::vector<std::complex<double>> ForwardFft(const std::vector<double>& x, std::
 // The n real samples whose DFT is `spectrum` (n/2 + 1 bins), scaled by 1/n so that
 // InverseFft(ForwardFft(x, n), n) == x.
 std::vector<double> InverseFft(const std::vector<std::complex<double>>& spectrum, std::size_t n);
-
-// FFTW's planner is not thread-safe (only fftw_execute is): every code that makes or destroys a
-// plan holds this.
-std::mutex& FftwPlannerMutex();
 
 // Frequency of bin k of an n-point DFT at `sample_rate`.
 inline double BinHz(std::size_t k, std::size_t n, double sample_rate) {
