@@ -542,7 +542,8 @@ struct DoaResult {
   double decode_cpu = 0.0, estimate_cpu = 0.0;
 };
 
-double Percentile(std::vector<double> v, double p) {
+// The p-quantile (nearest rank) of `v`, sorted in place; NaN for none.
+double Percentile(std::vector<double>& v, double p) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)))];
@@ -648,7 +649,7 @@ int DoaTable(const DoaRequest& request, const ToolUsage& usage) {
   for (Profile p : {Profile::kNava, Profile::kRoom}) {
     for (const Geometry& g : geometries) {
       for (const DoaCondition* c : {&anechoic, &room}) {
-        const DoaResult r = MeasureDoa(p, options, g, *c, packets, seed);
+        DoaResult r = MeasureDoa(p, options, g, *c, packets, seed);
         const double share = r.eligible ? 100.0 * r.bit_right / r.eligible : 0.0;
         const double median = Percentile(r.errors_deg, 0.5), p90 = Percentile(r.errors_deg, 0.9);
         char bits[32] = "-", med[32] = "-", ninety[32] = "-";

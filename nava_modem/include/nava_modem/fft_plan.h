@@ -5,7 +5,7 @@
 // execute, destroy): the constructor plans, Execute() transforms, the destructor destroys.
 //
 // Why one object: FFTW's planner (making and destroying plans) is not thread-safe, only
-// executing a plan is, and nava_bench --table renders rooms and decodes them on several threads
+// executing a plan is, and decode_table_bench renders rooms and decodes them on several threads
 // at once (ForwardFft, the receivers' plans), while copies of a DirectionEstimator share theirs.
 // Every plan made here takes the planner lock in fft_plan.cpp and nowhere else, so no caller can
 // forget it. Plans are made with FFTW_ESTIMATE: the sizes here are used a few times each, or are
