@@ -46,3 +46,9 @@ foreach(entry ${MULTIROBOT_AUDIO_DATA})
     install(FILES ${PROJECT_SOURCE_DIR}/${source} DESTINATION ${MULTIROBOT_AUDIO_DATA_DESTINATION})
   endif()
 endforeach()
+
+# A standalone build (this package at the top, not in a catkin workspace, whose catkin installs
+# its own setup files) installs a setup.bash beside lib/ and share/.
+if(CMAKE_SOURCE_DIR STREQUAL PROJECT_SOURCE_DIR)
+  install(FILES ${PROJECT_SOURCE_DIR}/cmake/install_setup.bash DESTINATION . RENAME setup.bash)
+endif()

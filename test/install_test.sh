@@ -41,8 +41,21 @@ fi
 if find "$share" -type l | grep -q .; then fail "the share folder holds links: $(find "$share" -type l | head -3)"; fi
 echo "install_test: every program and the data installed under $prefix; none names $src"
 
-# The runs, from the install space alone.
-cat >"$work/team.test" <<'EOF'
+# The runs, from the install space alone. rostest runs a .test file of a package: a package of
+# the test's own holds it.
+mkdir -p "$work/install_check"
+cat >"$work/install_check/package.xml" <<'EOF'
+<?xml version="1.0"?>
+<package format="2">
+  <name>install_check</name>
+  <version>0.0.0</version>
+  <description>multirobot_audio's install test: a team launched from the install space</description>
+  <maintainer email="nobody@example.com">nobody</maintainer>
+  <license>BSD</license>
+  <exec_depend>multirobot_audio</exec_depend>
+</package>
+EOF
+cat >"$work/install_check/team.test" <<'EOF'
 <launch>
   <include file="$(find multirobot_audio)/launch/sim_team.launch">
     <arg name="robots" value="3"/>
@@ -64,6 +77,7 @@ set -euo pipefail
 cd "$work"
 env -i HOME="$work" PATH=/usr/bin:/bin bash -euo pipefail -c '
   set +u; source "$prefix/setup.bash"; set -u
+  export ROS_PACKAGE_PATH="\$ROS_PACKAGE_PATH:$work/install_check"
   export ROS_HOME="$work/ros" ROS_LOG_DIR="$work/ros/log"
   [ "\$(rospack find multirobot_audio)" = "$share" ] || { echo "rospack finds \$(rospack find multirobot_audio)"; exit 1; }
   lib="$prefix/lib/multirobot_audio"
@@ -76,7 +90,11 @@ env -i HOME="$work" PATH=/usr/bin:/bin bash -euo pipefail -c '
     || { tail "$work/experiment.err"; echo "sounds_good_experiment --quick failed"; exit 1; }
   [ -s "$work/experiment/table_3_1.md" ] || { echo "sounds_good_experiment wrote no table"; exit 1; }
   echo "install_test: sounds_good_experiment --quick ran"
-  rostest "$work/team.test" >"$work/rostest.out" 2>&1 || { tail -40 "$work/rostest.out"; echo "the team launched from the install space failed"; exit 1; }
+  rostest install_check team.test >"$work/rostest.out" 2>&1 || { tail -40 "$work/rostest.out"; echo "the team launched from the install space failed"; exit 1; }
+  # rostest calls a run whose test node was shut down (say, by a required node that died) a
+  # success with no tests: the test must have run.
+  grep -q "^ \* TESTS: 1\$" "$work/rostest.out" && grep -q "^ \* FAILURES: 0\$" "$work/rostest.out" \
+    || { tail -40 "$work/rostest.out"; echo "the team launched from the install space did not run its test"; exit 1; }
   echo "install_test: sim_team.launch channel_model:=acoustic from the install space, robots heard each other"
 '
 EOF
