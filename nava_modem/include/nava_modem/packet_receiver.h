@@ -22,6 +22,12 @@ struct ReceiverOptions {
   std::optional<double> carrier_threshold_db;
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected:
+// detect_threshold from 0.05 to 1 (below, noise alone would pass for a break), max_rate_error
+// above 0 and below 0.2, max_fixed_bits 0 to 2, a finite carrier_threshold_db. Every profile's
+// receiver is made through ModemProfile::MakeReceiver, which checks them.
+void ValidateReceiverOptions(const ReceiverOptions& options);
+
 // What a receiver heard (thesis section 5.2.4): a packet, or noise of some kind.
 struct RxEvent {
   enum class Kind { kPacket, kNoise };
