@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "audio_propagation/microphone.h"
+#include "grid/option_checks.h"
 
 namespace audio_propagation {
 namespace {
@@ -19,6 +20,15 @@ constexpr std::size_t kMaxPendingSends = 1000;
 
 }  // namespace
 
+void ValidateOptions(const ChannelOptions& o) {
+  grid::RequireAtLeast("audio channel capture_margin_db (dB)", o.capture_margin_db, 0.0);
+  grid::RequireAtLeast("audio channel direction_noise (rad)", o.direction_noise, 0.0);
+  if (!std::isfinite(o.noise_floor_db)) {
+    throw std::invalid_argument("audio channel noise_floor_db must be a finite level in dB, got " +
+                                std::to_string(o.noise_floor_db));
+  }
+}
+
 AudioChannel::AudioChannel(const PropagationModel& model,
                            std::vector<world_sim::Microphone> microphones,
                            const ChannelOptions& options, const AcousticModel* acoustic)
@@ -28,12 +38,7 @@ AudioChannel::AudioChannel(const PropagationModel& model,
       options_(options),
       cache_(options.cache_size),
       rng_(options.seed) {
-  if (!(options_.capture_margin_db >= 0.0)) {
-    throw std::invalid_argument("audio channel: capture_margin_db must be >= 0 dB");
-  }
-  if (!(options_.direction_noise >= 0.0)) {
-    throw std::invalid_argument("audio channel: direction_noise must be >= 0 rad");
-  }
+  ValidateOptions(options_);
   nava_modem::MacOptions mac = options_.mac;
   // With the acoustic model each robot calibrates its threshold on the noise it hears at the
   // start, as a real robot does (the loudest level of its calibration time plus a margin).

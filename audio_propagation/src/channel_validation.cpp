@@ -12,7 +12,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "grid/option_checks.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/room_channel.h"
 #include "world_sim/collision.h"
@@ -195,13 +197,21 @@ Eigen::Vector2d FreePoints::Draw(std::mt19937& rng) const {
   throw std::runtime_error("free points: no free point far enough from walls");
 }
 
+void ValidateOptions(const ValidationOptions& o) {
+  grid::RequireAtLeast("validation links", o.links, 1);
+  grid::RequireAtLeast("validation packets", o.packets, 1);
+  grid::RequireAtLeast("validation threads", o.threads, 1);
+  grid::RequireAtLeast("validation clearance (m)", o.clearance, 0.0);
+  grid::RequireAtLeast("validation min_separation (m)", o.min_separation, 0.0);
+  grid::RequireAtLeast("validation channel_hearing_distance (m)", o.channel_hearing_distance, 0.0);
+  nava_modem::ValidateSampleRate("validation sample rate", o.sample_rate);
+}
+
 std::vector<ValidationLink> ValidateLinks(const PropagationModel& propagation, const world_sim::Acoustics& acoustics,
                                           const DecodeTable& table, const std::vector<std::string>& world_robots,
                                           const std::vector<Eigen::Vector2d>& resting, const ValidationOptions& options,
                                           const std::function<void(int)>& progress) {
-  if (options.links < 1 || options.packets < 1 || options.threads < 1) {
-    throw std::invalid_argument("validation: links, packets and threads must each be at least 1");
-  }
+  ValidateOptions(options);
   if (world_robots.size() != resting.size()) throw std::invalid_argument("validation: a resting place per robot");
   std::vector<std::string> team = world_robots;
   team.push_back(kValidationSender);

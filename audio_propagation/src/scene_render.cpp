@@ -9,8 +9,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include "grid/input_error.h"
+#include "grid/option_checks.h"
 #include "grid/yaml_fields.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/modem_options.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/room_channel.h"
 
@@ -168,11 +170,15 @@ std::vector<float> ListenerRecording::Mix() const {
   return out;
 }
 
+void ValidateOptions(const SceneRenderOptions& o) {
+  nava_modem::ValidateSampleRate("scene renderer: sample rate", o.sample_rate);
+  grid::RequireAbove("scene renderer level_step (s)", o.level_step, 0.0);
+}
+
 SceneRenderer::SceneRenderer(const AcousticModel& model, std::vector<std::string> robot_names,
                              std::vector<Eigen::Vector2d> resting, SceneRenderOptions options)
     : model_(model), robot_names_(std::move(robot_names)), resting_(std::move(resting)), options_(std::move(options)) {
-  if (!(options_.sample_rate > 0.0)) throw std::invalid_argument("scene renderer: the sample rate must be above 0 Hz");
-  if (!(options_.level_step > 0.0)) throw std::invalid_argument("scene renderer: level_step must be above 0 s");
+  ValidateOptions(options_);
   if (robot_names_.size() != resting_.size()) {
     throw std::invalid_argument("scene renderer: " + std::to_string(robot_names_.size()) + " robot names but " +
                                 std::to_string(resting_.size()) + " resting positions");

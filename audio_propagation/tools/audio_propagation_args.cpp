@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "nava_modem/modem_options.h"
+
 namespace audio_propagation::tools {
 namespace {
 
@@ -76,7 +78,7 @@ SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words) {
   s.scene_file = args.Required("--scene");
   s.out = args.Required("--out");
   const std::string profile_name = args.String("--profile", "");
-  s.rate = args.Double("--rate", 48000.0, 8000.0, 192000.0);
+  s.rate = args.Double("--rate", 48000.0, nava_modem::kMinSampleRate, nava_modem::kMaxSampleRate);
   s.table_file = args.String("--table", "");
   s.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   args.CheckAllUsed();

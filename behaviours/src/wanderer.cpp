@@ -4,10 +4,23 @@
 #include <cmath>
 #include <limits>
 
+#include "grid/option_checks.h"
+
 namespace behaviours {
 
+void ValidateOptions(const WanderOptions& o) {
+  grid::RequireAtLeast("wander cruise_speed (m/s)", o.cruise_speed, 0.0);
+  grid::RequireAtLeast("wander turn_rate (rad/s)", o.turn_rate, 0.0);
+  grid::RequireAtLeast("wander avoid_range (m)", o.avoid_range, 0.0);
+  grid::RequireAbove("wander slow_range (m, above avoid_range)", o.slow_range, o.avoid_range);
+  grid::RequireAtLeast("wander heading_change (rad/s)", o.heading_change, 0.0);
+  grid::RequireAbove("wander heading_period (s)", o.heading_period, 0.0);
+}
+
 Wanderer::Wanderer(const WanderOptions& options, std::uint32_t seed)
-    : options_(options), rng_(seed) {}
+    : options_(options), rng_(seed) {
+  ValidateOptions(options_);
+}
 
 VelocityCommand Wanderer::Update(const std::vector<float>& ranges, double dt) {
   const int n = static_cast<int>(ranges.size());

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -10,6 +12,21 @@ namespace behaviours {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+
+TEST(WanderOptions, ImpossibleValuesAreNamed) {
+  EXPECT_NO_THROW(ValidateOptions(WanderOptions{}));
+  WanderOptions o;
+  o.slow_range = o.avoid_range;
+  try {
+    Wanderer w(o, 1);
+    FAIL() << "a slow_range not above avoid_range was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "wander slow_range (m, above avoid_range) must be > 0.45, got 0.45");
+  }
+  o = {};
+  o.cruise_speed = -0.1;
+  EXPECT_THROW(ValidateOptions(o), std::invalid_argument);
+}
 
 TEST(Wanderer, CruisesInTheOpen) {
   Wanderer w({}, 1);

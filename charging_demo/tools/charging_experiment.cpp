@@ -30,6 +30,7 @@
 #include "charging_demo/charging_timeline.h"
 #include "charging_demo/charging_trial.h"
 #include "charging_demo/charging_world.h"
+#include "grid/file_path.h"
 #include "grid/input_error.h"
 #include "grid/map_file.h"
 #include "tool_args/parallel_for.h"
@@ -192,11 +193,11 @@ int Run(const Protocol& p, const BatchRun& batch) {
     map = std::move(loaded.map);
     for (std::size_t s : which) worlds[s] = loaded.config;
   } else {
-    const std::string absolute = fs::absolute(p.map_file).lexically_normal().string();
-    map = grid::LoadMapFile(absolute);
+    const std::string canonical = grid::CanonicalPath(p.map_file);
+    map = grid::LoadMapFile(canonical);
     for (std::size_t s : which) {
       std::mt19937 rng(p.first_seed + static_cast<std::uint32_t>(s));
-      worlds[s] = RandomChargingWorld(map, absolute, world_sim::RobotModel{}, p.placement, rng);
+      worlds[s] = RandomChargingWorld(map, canonical, world_sim::RobotModel{}, p.placement, rng);
     }
   }
   const fs::path out(p.out_dir);

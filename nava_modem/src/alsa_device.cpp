@@ -6,6 +6,8 @@
 
 #include <alsa/asoundlib.h>
 
+#include "nava_modem/modem_options.h"
+
 namespace nava_modem {
 namespace {
 
@@ -34,13 +36,19 @@ snd_pcm_t* OpenStream(const AlsaOptions& o, snd_pcm_stream_t stream) {
 
 }  // namespace
 
+void ValidateAlsaOptions(const AlsaOptions& o) {
+  if (o.device.empty()) throw std::invalid_argument("ALSA device: expected a PCM name (default, pulse, ...), got none");
+  ValidateSampleRate("ALSA sample rate", o.sample_rate);
+  if (!(o.capture_channels >= 1 && o.capture_channels <= 64)) {
+    throw std::invalid_argument("ALSA capture channels " + std::to_string(o.capture_channels) + ": expected 1 to 64");
+  }
+  if (!(o.latency > 0.0 && o.latency <= 2.0)) {
+    throw std::invalid_argument("ALSA latency " + std::to_string(o.latency) + " s: expected above 0 and at most 2");
+  }
+}
+
 AlsaDevice::AlsaDevice(const AlsaOptions& options) : options_(options) {
-  if (!(options_.capture_channels >= 1 && options_.capture_channels <= 64)) {
-    throw std::invalid_argument("ALSA capture channels " + std::to_string(options_.capture_channels) + ": expected 1 to 64");
-  }
-  if (!(options_.latency > 0.0 && options_.latency <= 2.0)) {
-    throw std::invalid_argument("ALSA latency " + std::to_string(options_.latency) + " s: expected above 0 and at most 2");
-  }
+  ValidateAlsaOptions(options_);
   Open();
 }
 

@@ -134,6 +134,7 @@ FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& optio
       per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
       equalizer_(modem) {
   ValidateModemOptions(modem_);
+  ValidateReceiverOptions(options_);
   w_ = static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_));
   const std::size_t size = RingSize(per_bit_);
   m_.assign(size, 0.0f);

@@ -11,12 +11,25 @@ namespace {
 
 }  // namespace
 
-void ValidateModemOptions(const ModemOptions& o) {
-  std::ostringstream why;
-  if (!(o.sample_rate >= 4000.0 && o.sample_rate <= 384000.0)) {
-    why << "sample rate " << o.sample_rate << " Hz: expected 4000 to 384000";
+void ValidateSampleRate(const char* what, double sample_rate) {
+  if (!(sample_rate >= kMinSampleRate && sample_rate <= kMaxSampleRate)) {
+    std::ostringstream why;
+    why << what << " " << sample_rate << " Hz: expected " << kMinSampleRate << " to " << kMaxSampleRate;
     Fail(why.str());
   }
+}
+
+void ValidateAmplitude(double amplitude) {
+  if (!(amplitude > 0.0 && amplitude <= 1.0)) {
+    std::ostringstream why;
+    why << "amplitude " << amplitude << ": expected above 0 and at most 1 (full scale)";
+    Fail(why.str());
+  }
+}
+
+void ValidateModemOptions(const ModemOptions& o) {
+  std::ostringstream why;
+  ValidateSampleRate("sample rate", o.sample_rate);
   const double nyquist = o.sample_rate / 2.0;
   for (const auto& [name, f] : {std::pair<const char*, double>{"mark", o.mark_hz}, {"space", o.space_hz}}) {
     if (!(f > 0.0 && f < nyquist)) {
@@ -43,10 +56,7 @@ void ValidateModemOptions(const ModemOptions& o) {
         << " Hz apart: the tones must be at least one bit rate apart";
     Fail(why.str());
   }
-  if (!(o.amplitude > 0.0 && o.amplitude <= 1.0)) {
-    why << "amplitude " << o.amplitude << ": expected above 0 and at most 1 (full scale)";
-    Fail(why.str());
-  }
+  ValidateAmplitude(o.amplitude);
   if (!(o.transition >= 0.0 && o.transition <= 0.5)) {
     why << "transition " << o.transition << ": expected a fraction of a bit from 0 to 0.5";
     Fail(why.str());

@@ -22,6 +22,7 @@ class ProfileOf : public ModemProfile {
     return modulator_.ModulatePacket(data);
   }
   std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
+    ValidateReceiverOptions(options);
     return std::make_unique<Receiver>(options_, options);
   }
   double Airtime() const override { return ProfileAirtime(kKind, options_); }

@@ -36,14 +36,19 @@ LinkOptions Checked(LinkOptions o, const AudioDevice& device) {
                                 std::to_string(o.microphones.size()) + " microphone positions were given (one per channel)");
   }
   UseProfileTiming(o.profile, o.modem, o.mac);
-  ValidateReopenOptions(o.reopen);
-  if (!(o.max_capture_lag > 0.0 && o.max_capture_lag <= 10.0)) {
-    throw std::invalid_argument("max capture lag " + std::to_string(o.max_capture_lag) + " s: expected above 0 and at most 10");
-  }
+  ValidateLinkOptions(o);
   return o;
 }
 
 }  // namespace
+
+void ValidateLinkOptions(const LinkOptions& o) {
+  ValidateReceiverOptions(o.receiver);
+  ValidateReopenOptions(o.reopen);
+  if (!(o.max_capture_lag > 0.0 && o.max_capture_lag <= 10.0)) {
+    throw std::invalid_argument("max capture lag " + std::to_string(o.max_capture_lag) + " s: expected above 0 and at most 10");
+  }
+}
 
 NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock)
     : options_(Checked(options, device)),

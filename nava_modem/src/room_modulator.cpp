@@ -13,18 +13,18 @@ namespace nava_modem {
 
 void ValidateRoomRate(double sample_rate) {
   const double needed = 2.0 * room_phy::kHighestHz * 1.05;
-  if (!(sample_rate >= needed && sample_rate <= 384000.0)) {
+  ValidateSampleRate("profile room: sample rate", sample_rate);
+  if (!(sample_rate >= needed)) {
     throw std::invalid_argument("profile room: sample rate " + std::to_string(std::lround(sample_rate)) +
                                 " Hz cannot carry its band (600 to 5400 Hz): expected " +
-                                std::to_string(static_cast<int>(std::ceil(needed))) + " to 384000 Hz");
+                                std::to_string(static_cast<int>(std::ceil(needed))) + " to " +
+                                std::to_string(std::lround(kMaxSampleRate)) + " Hz");
   }
 }
 
 RoomModulator::RoomModulator(const ModemOptions& options) : options_(options) {
   ValidateRoomRate(options_.sample_rate);
-  if (!(options_.amplitude > 0.0 && options_.amplitude <= 1.0)) {
-    throw std::invalid_argument("amplitude " + std::to_string(options_.amplitude) + ": expected above 0 and at most 1");
-  }
+  ValidateAmplitude(options_.amplitude);
   chirp_ = room_phy::Chirp(options_.sample_rate);
 }
 

@@ -34,6 +34,7 @@
 #include <string>
 #include <thread>
 
+#include "grid/file_path.h"
 #include "grid/input_error.h"
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/decode_table.h"
@@ -93,7 +94,7 @@ Setup MakeSetup(Protocol& p) {
   if (!p.worlds.empty()) {
     setup = LoadWorlds(p.worlds, trial.explorer.task);
   } else {
-    setup.map_file = fs::absolute(p.map_file).lexically_normal().string();
+    setup.map_file = grid::CanonicalPath(p.map_file);
     setup.map = grid::LoadMapFile(setup.map_file);
     std::mt19937 rng(p.options.seed);
     for (int c = 0; c < p.configs; ++c)

@@ -7,6 +7,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "grid/file_path.h"
 #include "grid/input_error.h"
 #include "grid/map_file.h"
 #include "grid/yaml_fields.h"
@@ -215,9 +216,9 @@ LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_overri
   if (map_override.empty()) {
     fs::path map_path(root.String("map"));
     if (map_path.is_relative()) map_path = fs::path(path).parent_path() / map_path;
-    config.map_file = map_path.lexically_normal().string();
+    config.map_file = grid::CanonicalPath(map_path.string());
   } else {
-    config.map_file = map_override;
+    config.map_file = grid::CanonicalPath(map_override);
   }
   const double seed = root.Number("seed", 1.0);
   if (seed < 0 || seed > 4294967295.0 || seed != std::floor(seed)) {
@@ -343,8 +344,7 @@ void SaveWorldFile(const std::string& path, const WorldConfig& config) {
   out.SetDoublePrecision(17);  // enough digits to read back every double exactly
   out << YAML::BeginMap;
   // Absolute, so the file can be loaded from wherever it is written.
-  out << YAML::Key << "map" << YAML::Value
-      << std::filesystem::absolute(config.map_file).lexically_normal().string();
+  out << YAML::Key << "map" << YAML::Value << grid::CanonicalPath(config.map_file);
   out << YAML::Key << "seed" << YAML::Value << config.seed;
   EmitModel(out, config.model);
   out << YAML::Key << "robots" << YAML::Value << YAML::BeginSeq;

@@ -115,7 +115,7 @@ TEST_F(WorldFileTest, SavedWorldLoadsBackTheSame) {
   WorldConfig relative = a;
   relative.map_file = fs::relative(a.map_file).string();
   SaveWorldFile(saved, relative);
-  EXPECT_EQ(LoadWorldFile(saved).config.map_file, fs::path(a.map_file).lexically_normal().string());
+  EXPECT_EQ(LoadWorldFile(saved).config.map_file, a.map_file);
 }
 
 TEST_F(WorldFileTest, ShippedWorldsLoad) {
@@ -288,6 +288,30 @@ TEST_F(WorldFileTest, MarkerInsideAWall) {
               "markers[0].position");
   ExpectError("robots: [{name: a, pose: [1, 1, 0]}]\nmarkers: [{id: -1, position: [1.0, 2.0]}]\n",
               "markers[0].id: expected a whole number");
+}
+
+// A checkout reached through a symbolic link (a catkin workspace's package is often one): the
+// same world loaded, and saved, through the link and through the real folder names one map.
+TEST_F(WorldFileTest, AWorldThroughALinkNamesTheSameMapAsThroughItsRealFolder) {
+  const fs::path real = dir_ / "real", link = dir_ / "link";
+  fs::create_directories(real / "maps");
+  for (const char* name : {"test_room.yaml", "test_room.pgm"})
+    fs::copy_file(fs::path(PROJECT_MAPS_DIR) / name, real / "maps" / name);
+  fs::create_directory_symlink(real, link);
+  std::ofstream(real / "world.yaml") << "map: maps/test_room.yaml\nrobots: [{name: a, pose: [1.0, 1.0, 0]}]\n";
+
+  const LoadedWorld through_real = LoadWorldFile((real / "world.yaml").string());
+  const LoadedWorld through_link = LoadWorldFile((link / "world.yaml").string());
+  EXPECT_EQ(through_link.config.map_file, through_real.config.map_file);
+  EXPECT_EQ(LoadWorldFile((real / "world.yaml").string(), (link / "maps" / "test_room.yaml").string()).config.map_file,
+            through_real.config.map_file);
+
+  SaveWorldFile((link / "saved.yaml").string(), through_link.config);
+  EXPECT_EQ(LoadWorldFile((real / "saved.yaml").string()).config.map_file, through_real.config.map_file);
+  WorldConfig relative = through_link.config;
+  relative.map_file = fs::relative(link / "maps" / "test_room.yaml").string();
+  SaveWorldFile((real / "saved.yaml").string(), relative);
+  EXPECT_EQ(LoadWorldFile((link / "saved.yaml").string()).config.map_file, through_real.config.map_file);
 }
 
 TEST_F(WorldFileTest, MapOverrideLoadsAnotherMapByPath) {

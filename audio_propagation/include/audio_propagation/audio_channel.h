@@ -28,6 +28,11 @@ struct ChannelOptions {
   std::uint32_t seed = 1;
 };
 
+// Throws std::invalid_argument naming the field and its value: capture_margin_db and
+// direction_noise at least 0, a finite noise_floor_db. Each robot's MAC checks `mac` once given
+// the profile's timing (nava_modem::ValidateMacOptions).
+void ValidateOptions(const ChannelOptions& options);
+
 // Something a robot heard, at the end of its reception.
 struct Reception {
   enum class Kind { kPacket, kNoise };

@@ -55,6 +55,11 @@ struct ValidationOptions {
   double channel_hearing_distance = 0.0;  // 0: not flagged
 };
 
+// Throws std::invalid_argument naming the field and its value: links, packets and threads at
+// least 1, clearance, min_separation and channel_hearing_distance at least 0, a sample rate the
+// modems run at (nava_modem::ValidateSampleRate).
+void ValidateOptions(const ValidationOptions& options);
+
 // One packet of a link, judged twice.
 struct JudgedPacket {
   double probability = 0.0;  // the model's

@@ -129,10 +129,14 @@ struct SceneRenderOptions {
   std::vector<float> speech;
 };
 
+// Throws std::invalid_argument naming the field and its value: a sample rate the modems run at
+// (nava_modem::ValidateSampleRate), level_step above 0 s.
+void ValidateOptions(const SceneRenderOptions& options);
+
 class SceneRenderer {
  public:
   // `robot_names` and `resting` (their positions when not in a scene) are the team the model was
-  // built with. Throws std::invalid_argument for a sample rate or level step not above 0, or
+  // built with. Throws std::invalid_argument for impossible options (ValidateOptions), or
   // names and positions of different lengths.
   SceneRenderer(const AcousticModel& model, std::vector<std::string> robot_names, std::vector<Eigen::Vector2d> resting,
                 SceneRenderOptions options);

@@ -15,6 +15,11 @@ struct WanderOptions {
   double heading_period = 2.0;    // s between random turn changes
 };
 
+// Throws std::invalid_argument naming the field and its value: cruise_speed, turn_rate,
+// avoid_range and heading_change at least 0, slow_range above avoid_range (the speed ramps
+// between them), heading_period above 0.
+void ValidateOptions(const WanderOptions& options);
+
 struct VelocityCommand {
   double v = 0.0;
   double w = 0.0;
@@ -26,7 +31,7 @@ struct VelocityCommand {
 // counter-clockwise), +inf or NaN meaning nothing in reach. Deterministic for a seed.
 class Wanderer {
  public:
-  Wanderer(const WanderOptions& options, std::uint32_t seed);
+  Wanderer(const WanderOptions& options, std::uint32_t seed);  // throws as ValidateOptions
 
   VelocityCommand Update(const std::vector<float>& ranges, double dt);
 

@@ -15,6 +15,11 @@ struct AlsaOptions {
   int capture_channels = 1;  // microphones captured (interleaved); playback stays mono
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected: a device
+// name, a sample rate the project runs at (ValidateSampleRate), latency above 0 and at most
+// 2 s, 1 to 64 capture channels.
+void ValidateAlsaOptions(const AlsaOptions& options);
+
 // One capture and one playback stream on an ALSA device. Under- and overruns are recovered
 // from and counted. The constructor throws std::runtime_error (DeviceFault) naming the device
 // and what failed when a stream cannot be opened or refuses the rate, std::invalid_argument

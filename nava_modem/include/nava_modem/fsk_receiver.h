@@ -35,6 +35,8 @@ namespace nava_modem {
 // clock, with a model of the room's echoes fitted to the packet itself.
 class FskReceiver : public PacketReceiver {
  public:
+  // Throws std::invalid_argument for impossible options (ValidateModemOptions,
+  // ValidateReceiverOptions).
   FskReceiver(const ModemOptions& modem, const ReceiverOptions& options);
 
   void Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) override;

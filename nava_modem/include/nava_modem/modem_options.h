@@ -18,6 +18,16 @@ struct ModemOptions {
   CrcVariant crc = CrcVariant::kCcittFalse;
 };
 
+// The sample rates (Hz) any profile and any audio device of the project may run at; a profile
+// may need more (the room profile's band: ValidateRoomRate).
+inline constexpr double kMinSampleRate = 4000.0;
+inline constexpr double kMaxSampleRate = 384000.0;
+
+// Throws std::invalid_argument "<what> <rate> Hz: expected 4000 to 384000" outside that range.
+void ValidateSampleRate(const char* what, double sample_rate);
+// Throws std::invalid_argument "amplitude <value>: expected above 0 and at most 1 (full scale)".
+void ValidateAmplitude(double amplitude);
+
 // Throws std::invalid_argument naming the value when the options are impossible: MARK equal to
 // SPACE, a tone at or above Nyquist, a bit rate too high for the sample rate or for the tone
 // spacing, an amplitude outside (0, 1].

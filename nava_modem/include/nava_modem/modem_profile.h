@@ -38,6 +38,7 @@ class ModemProfile {
   virtual Profile profile() const = 0;
   // The samples of one packet carrying 4 data bytes.
   virtual std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const = 0;
+  // Throws std::invalid_argument for impossible options (ValidateReceiverOptions).
   virtual std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const = 0;
   // Seconds one packet lasts on the air.
   virtual double Airtime() const = 0;

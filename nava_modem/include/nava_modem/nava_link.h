@@ -32,6 +32,12 @@ struct LinkOptions {
   std::uint32_t seed = 1;
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected, for what
+// can be judged without the device: the receiver (ValidateReceiverOptions), the reopen
+// schedule (ValidateReopenOptions), max_capture_lag above 0 and at most 10 s. The profile
+// checks the modem, and the MAC its options once given the profile's timing.
+void ValidateLinkOptions(const LinkOptions& options);
+
 // A whole Nava link on an audio device (thesis section 5.2.4), with any modem profile: every
 // tick (1/16 of the profile's MAC bit) it reads
 // a tick of audio, runs the receiver on it (deaf while sending and for the echo time after),

@@ -22,6 +22,12 @@ struct ReceiverOptions {
   std::optional<double> carrier_threshold_db;
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected:
+// detect_threshold from 0.05 to 1 (below, noise alone would pass for a break), max_rate_error
+// above 0 and below 0.2, max_fixed_bits 0 to 2, a finite carrier_threshold_db. Every profile's
+// receiver is made through ModemProfile::MakeReceiver, which checks them.
+void ValidateReceiverOptions(const ReceiverOptions& options);
+
 // The carrier threshold for recordings (nava_decode --threshold-db, and the decode tables
 // measured on rendered recordings, which must judge busy air as nava_decode does): busy air at or
 // above this in-band level, dB of full scale, in which no frame is found is reported as

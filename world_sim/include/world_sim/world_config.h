@@ -71,7 +71,8 @@ struct ChargerSpec {
   std::optional<std::uint32_t> marker;
 };
 
-// Everything a world file describes, with the map file resolved to an absolute path.
+// Everything a world file describes, with the map file resolved to a canonical path
+// (absolute, symbolic links resolved: grid::CanonicalPath).
 struct WorldConfig {
   std::string map_file;
   std::uint32_t seed = 1;

@@ -21,13 +21,15 @@ struct LoadedWorld {
 //   markers:  [{id: 1, position: [x, y]}, ...]
 //   chargers: [{pose: [x, y, yaw], radius: 0.2, marker: 100}, ...]
 //
-// `map_override`, when not empty, replaces the file's map. Validates everything a simulation
+// `map_override`, when not empty, replaces the file's map. The map's path is kept canonical
+// (grid::CanonicalPath), so worlds that name one map through different links compare equal.
+// Validates everything a simulation
 // relies on (robots and markers in free space, unique names, sane model values) and throws
 // grid::InputError naming the file and field otherwise.
 LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_override = "");
 
 // Writes `config` as a world file that LoadWorldFile reads back to the same config (the map
-// path made absolute, the whole robot model, every robot, marker and charger). Throws
+// path made canonical, the whole robot model, every robot, marker and charger). Throws
 // std::runtime_error naming the path when it cannot be written.
 void SaveWorldFile(const std::string& path, const WorldConfig& config);
 
