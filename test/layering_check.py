@@ -23,17 +23,17 @@ LEVELS = {
     "package_data": 0,    # finds the package's share folder at run time
     "bench_support": 1,   # what the benches of several components share
     "grid": 2,            # maps, line of sight, the input checks everyone shares
-    "behaviours": 2,      # reactive robot behaviours (the wanderer)
     "nava_modem": 2,      # the audio link: modem profiles, framing, MAC, audio I/O
-    "world_sim": 3,       # the simulated world
-    "local_navigation": 4,  # driving with no global map (and world_sim's readings for it)
-    "audio_propagation": 4,  # sound paths and the simulated audio channel
-    "local_mutex": 5,     # the lock the tasks share chargers and places with
-    "sounds_good_explorer": 6,  # the tasks
-    "charging_demo": 6,
-    "src": 7,             # the ROS nodes and bridges
-    "test": 8,            # the rostests
-    "fuzz": 8,            # the fuzz targets
+    "behaviours": 3,      # reactive robot behaviours (the wanderer)
+    "world_sim": 4,       # the simulated world
+    "local_navigation": 5,  # driving with no global map (and world_sim's readings for it)
+    "audio_propagation": 5,  # sound paths and the simulated audio channel
+    "local_mutex": 6,     # the lock the tasks share chargers and places with
+    "sounds_good_explorer": 7,  # the tasks
+    "charging_demo": 7,
+    "src": 8,             # the ROS nodes and bridges
+    "test": 9,            # the rostests
+    "fuzz": 9,            # the fuzz targets
 }
 
 SOURCES = (".h", ".hpp", ".cpp", ".cc")
@@ -130,7 +130,7 @@ def self_test():
             (root / name).write_text(text)
         found = "\n".join(check(root))
         expected = ["grid/src/a.cpp:2: grid (level 2) includes world_sim",
-                    "charging_demo/src/c.cpp:1: charging_demo (level 6) includes sounds_good_explorer",
+                    "charging_demo/src/c.cpp:1: charging_demo (level 7) includes sounds_good_explorer",
                     "grid/CMakeLists.txt:2: grid (level 2) links world_sim",
                     "nava_modem/CMakeLists.txt:2: nava_modem (level 2) adds the include folder of audio_propagation"]
         missing = [e for e in expected if e not in found]
