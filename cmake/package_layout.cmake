@@ -2,23 +2,27 @@
 # lib/multirobot_audio/, shipped data in share/multirobot_audio/. Programs find the data at run
 # time from their own place (package_data/), so nothing compiled in points at the source tree;
 # the build tree (and the catkin devel space) get a share/multirobot_audio/ of links to the
-# source tree's data, an install space a copy.
+# source tree's run-time data, an install space a copy of all of it.
 set(MULTIROBOT_AUDIO_PROGRAM_DESTINATION lib/multirobot_audio)
 set(MULTIROBOT_AUDIO_DATA_DESTINATION share/multirobot_audio)
 
-# NAME=SOURCE: what share/multirobot_audio/NAME holds, from the source tree's SOURCE.
-set(MULTIROBOT_AUDIO_DATA
+# NAME=SOURCE: what share/multirobot_audio/NAME holds, from the source tree's SOURCE. The first
+# list is what the programs read at run time: linked into the build tree's and the devel space's
+# share folders too. The launch files and rviz configs are only installed: links to them inside
+# the package's folder would make roslaunch find each launch file several times.
+set(MULTIROBOT_AUDIO_RUN_TIME_DATA
   package.xml=package.xml
-  launch=launch
   maps=maps
-  rviz=rviz
   tables=audio_propagation/tables
   make_speech.sh=nava_modem/tools/make_speech.sh)
+set(MULTIROBOT_AUDIO_DATA ${MULTIROBOT_AUDIO_RUN_TIME_DATA}
+  launch=launch
+  rviz=rviz)
 
-# Makes SHARE_DIR a share folder of links to the source tree's data (at configure time).
+# Makes SHARE_DIR a share folder of links to the source tree's run-time data (at configure time).
 function(multirobot_audio_link_data share_dir)
   file(MAKE_DIRECTORY ${share_dir})
-  foreach(entry ${MULTIROBOT_AUDIO_DATA})
+  foreach(entry ${MULTIROBOT_AUDIO_RUN_TIME_DATA})
     string(REPLACE "=" ";" pair ${entry})
     list(GET pair 0 name)
     list(GET pair 1 source)
