@@ -6,6 +6,7 @@
 #   scripts/fuzz.sh --list              the targets
 #   scripts/fuzz.sh TARGET SECONDS      runs one target for that long
 #   scripts/fuzz.sh all SECONDS         runs each target in turn for that long
+#   scripts/fuzz.sh --build             only builds them (scripts/test.sh builds them early)
 #
 # Each run starts from a copy of the target's seeds (fuzz/corpus/TARGET/, never written to) in a
 # scratch folder, with fuzz/dict/TARGET.dict when there is one, and fails on a crash, a sanitizer
@@ -21,7 +22,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$here/build-fuzz"
 
 usage() {
-  echo "usage: scripts/fuzz.sh --list | TARGET SECONDS | all SECONDS" >&2
+  echo "usage: scripts/fuzz.sh --list | --build | TARGET SECONDS | all SECONDS" >&2
   exit 2
 }
 
@@ -47,6 +48,11 @@ if [ "$1" = "--list" ]; then
   targets
   exit 0
 fi
+build_only=false
+if [ "$1" = "--build" ] && [ $# -eq 1 ]; then
+  build_only=true
+  set -- all 1
+fi
 [ $# -eq 2 ] || usage
 which=$1 seconds=$2
 [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: SECONDS: expected a whole number above 0, got '$seconds'" >&2; exit 2; }
@@ -66,6 +72,7 @@ if ! grep -q '^FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
 fi
 # Two jobs: the machine has two cores.
 cmake --build "$build" --target fuzz_targets -j 2 >"$build/build.log" 2>&1 || { tail -n 40 "$build/build.log"; echo "fuzz.sh: the build failed" >&2; exit 1; }
+$build_only && exit 0
 
 # In memory where there is a tmpfs: the loaders' targets write a file per input, and a busy disk
 # can stall a write past the timeout.

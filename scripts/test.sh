@@ -19,9 +19,12 @@ set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-main_suite() {
+main_build() {
   "$here/scripts/setup.sh" --werror
   cmake --build "$here/build" --target tests -j "$(nproc)"
+}
+
+main_tests() {
   # catkin's setup script reads unset variables.
   set +u
   # shellcheck disable=SC1091
@@ -37,15 +40,55 @@ main_suite() {
   (cd "$here/build" && ctest --output-on-failure "$@")
 }
 
-sanitized_suite() {
+main_suite() {
+  main_build
+  main_tests "$@"
+}
+
+sanitized_build() {
   "$here/scripts/setup.sh" --no-build
-  local build="$here/build-sanitize"
-  cmake -S "$here" -B "$build" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S "$here" -B "$here/build-sanitize" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSANITIZE=address,undefined -DMULTIROBOT_AUDIO_WERROR=ON >/dev/null
-  cmake --build "$build" --target tests -j "$(nproc)"
-  (cd "$build" &&
+  cmake --build "$here/build-sanitize" --target tests -j "$(nproc)"
+}
+
+sanitized_tests() {
+  (cd "$here/build-sanitize" &&
     ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
       ctest --output-on-failure "$@")
+}
+
+sanitized_suite() {
+  sanitized_build
+  sanitized_tests "$@"
+}
+
+# Runs a build in the background at the lowest priority, in a process group of its own (so that
+# it can be stopped whole), its output in LOG; its PID in background_pid. (Not through $(...):
+# the build must be this shell's child to be waited for.)
+background_build() {
+  local log=$1
+  shift
+  setsid nice -n 19 "$@" >"$log" 2>&1 &
+  background_pid=$!
+}
+
+# Stops the background builds still running (when a part fails before they are waited for).
+stop_background_builds() {
+  local pid
+  for pid in ${sanitized_pid:-} ${fuzz_pid:-}; do
+    kill -- -"$pid" 2>/dev/null || true
+  done
+}
+
+# Waits for a background build; on failure shows the end of its log and fails.
+await_build() {
+  local pid=$1 log=$2 what=$3
+  if ! wait "$pid"; then
+    tail -n 40 "$log"
+    echo "test.sh: the $what build failed (all of it in $log)" >&2
+    return 1
+  fi
 }
 
 part() {
@@ -61,10 +104,28 @@ case "${1:-}" in
     "$here/scripts/fuzz.sh" all "${2:-20}"
     ;;
   "")
+    # The builds overlap the runs: the main suite's tests are mostly ROS nodes waiting on
+    # simulated and real time (about a third of two cores), so the sanitized tree builds beside
+    # them, and the fuzz targets beside the sanitized tests, at the lowest priority, so that the
+    # tests keep the processor whenever they want it.
     start=$SECONDS
-    part "main suite"; main_suite
-    part "sanitized suite"; sanitized_suite
-    part "fuzz targets, 20 s each"; "$here/scripts/fuzz.sh" all 20
+    mkdir -p "$here/build-logs"
+    part "main suite"
+    main_build
+    background_build "$here/build-logs/sanitize.log" \
+      bash -c "$(declare -f sanitized_build); here='$here'; set -euo pipefail; sanitized_build"
+    sanitized_pid=$background_pid
+    trap stop_background_builds EXIT
+    main_tests
+    part "sanitized suite"
+    await_build "$sanitized_pid" "$here/build-logs/sanitize.log" sanitized
+    background_build "$here/build-logs/fuzz.log" "$here/scripts/fuzz.sh" --build
+    fuzz_pid=$background_pid
+    sanitized_tests
+    part "fuzz targets, 20 s each"
+    await_build "$fuzz_pid" "$here/build-logs/fuzz.log" fuzz
+    trap - EXIT
+    "$here/scripts/fuzz.sh" all 20
     echo "test.sh: every part passed in $((SECONDS - start)) s"
     ;;
   *)
