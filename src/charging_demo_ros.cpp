@@ -87,12 +87,10 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
   w.turn_rate = PositiveParam(pnh, "turn_rate", w.turn_rate, 100.0);
   w.avoid_range = PositiveParam(pnh, "avoid_range", w.avoid_range, 100.0);
   w.slow_range = NumberParam(pnh, "slow_range", w.slow_range, 0.0, 100.0);
-  if (w.slow_range <= w.avoid_range) {
-    throw ParamError(pnh.resolveName("slow_range") + ": expected a range above avoid_range (" + Number(w.avoid_range) +
-                     " m), got " + Number(w.slow_range));
-  }
   w.heading_change = NumberParam(pnh, "heading_change", w.heading_change, 0.0, 100.0);
   w.heading_period = PositiveParam(pnh, "heading_period", w.heading_period);
+  CheckOptionParams(pnh, {"cruise_speed", "turn_rate", "avoid_range", "slow_range", "heading_change", "heading_period"},
+                    [&] { behaviours::ValidateOptions(w); });
 
   // The search for a charger when none is known.
   charging_demo::SearchOptions& se = c.search;

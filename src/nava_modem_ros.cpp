@@ -17,9 +17,11 @@ namespace multirobot_audio {
 NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   NavaModemOptions o;
   o.alsa.device = StringParam(pnh, "device", o.alsa.device);
-  o.alsa.sample_rate = NumberParam(pnh, "sample_rate", o.alsa.sample_rate, 4000.0, 384000.0);
-  o.alsa.latency = NumberParam(pnh, "latency", o.alsa.latency, 0.001, 2.0);
-  o.alsa.capture_channels = IntParam(pnh, "channels", 1, 1, 64);
+  o.alsa.sample_rate = NumberParam(pnh, "sample_rate", o.alsa.sample_rate);
+  CheckOptionParams(pnh, {"sample_rate"}, [&] { nava_modem::ValidateSampleRate("sample rate", o.alsa.sample_rate); });
+  o.alsa.latency = NumberParam(pnh, "latency", o.alsa.latency);
+  o.alsa.capture_channels = IntParam(pnh, "channels", 1);
+  CheckOptionParams(pnh, {"device", "latency", "channels"}, [&] { nava_modem::ValidateAlsaOptions(o.alsa); });
   if (pnh.hasParam("mic_positions")) {
     std::vector<double> xy;
     if (!pnh.getParam("mic_positions", xy)) {
@@ -55,7 +57,7 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   m.mark_hz = NumberParam(pnh, "mark", m.mark_hz, 1.0, 1e6);
   m.space_hz = NumberParam(pnh, "space", m.space_hz, 1.0, 1e6);
   m.baud = NumberParam(pnh, "baud", m.baud, 1.0, 1e6);
-  m.amplitude = NumberParam(pnh, "amplitude", m.amplitude, 1e-6, 1.0);
+  m.amplitude = NumberParam(pnh, "amplitude", m.amplitude);
   const std::string crc = StringParam(pnh, "crc", "ccitt-false");
   const auto variant = nava_modem::ParseCrcVariant(crc);
   if (!variant) throw ParamError(pnh.resolveName("crc") + ": expected ccitt-false or xmodem, got '" + crc + "'");
@@ -72,17 +74,20 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   nava_modem::UseProfileTiming(o.link.profile, m, mac);
 
   nava_modem::ReceiverOptions& rx = o.link.receiver;
-  rx.max_fixed_bits = IntParam(pnh, "max_fixed_bits", rx.max_fixed_bits, 0, 2);
-  rx.detect_threshold = NumberParam(pnh, "detect_threshold", rx.detect_threshold, 0.05, 1.0);
+  rx.max_fixed_bits = IntParam(pnh, "max_fixed_bits", rx.max_fixed_bits);
+  rx.detect_threshold = NumberParam(pnh, "detect_threshold", rx.detect_threshold);
+  CheckOptionParams(pnh, {"max_fixed_bits", "detect_threshold"}, [&] { nava_modem::ValidateReceiverOptions(rx); });
   o.link.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
   o.link.max_capture_lag = NumberParam(pnh, "max_capture_lag", o.link.max_capture_lag, 0.001, 10.0);
   nava_modem::ReopenOptions& reopen = o.link.reopen;
   reopen.first_wait = NumberParam(pnh, "reopen_backoff_min", reopen.first_wait, 0.001, 60.0);
   reopen.max_wait = NumberParam(pnh, "reopen_backoff_max", reopen.max_wait, reopen.first_wait, 600.0);
   reopen.settle_time = NumberParam(pnh, "reopen_settle_time", reopen.settle_time, 0.0, 60.0);
-  try {
+  CheckOptionParams(pnh, {"mark", "space", "amplitude"}, [&] {
     nava_modem::ValidateModemOptions(m);
     nava_modem::MakeProfile(o.link.profile, m);  // refuses a rate the profile's band does not fit
+  });
+  try {
     nava_modem::ValidateMacOptions(mac);
     nava_modem::ValidateReopenOptions(reopen);
   } catch (const std::invalid_argument& e) {

@@ -1,5 +1,6 @@
 #include "params.h"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -20,6 +21,16 @@ std::string Range(double lo, double hi, double value) {
   return s.str();
 }
 
+// Where `word` first stands alone in `text` (not inside a longer name), or npos.
+std::size_t FindWord(const std::string& text, const std::string& word) {
+  const auto name_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
+    const std::size_t end = at + word.size();
+    if ((at == 0 || !name_char(text[at - 1])) && (end == text.size() || !name_char(text[end]))) return at;
+  }
+  return std::string::npos;
+}
+
 }  // namespace
 
 ParamError OptionParamError(const ros::NodeHandle& pnh, const std::string& field, const std::string& problem) {
@@ -27,6 +38,26 @@ ParamError OptionParamError(const ros::NodeHandle& pnh, const std::string& field
   const std::size_t entry = field.find('[');
   return ParamError(Name(pnh, field.substr(0, entry)) + (entry == std::string::npos ? "" : field.substr(entry)) +
                     ": " + problem);
+}
+
+void CheckOptionParams(const ros::NodeHandle& pnh, const std::vector<std::string>& fields,
+                       const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const std::invalid_argument& e) {
+    const std::string problem = e.what();
+    const std::string* named = fields.size() == 1 ? &fields.front() : nullptr;
+    std::size_t first = std::string::npos;
+    for (const std::string& field : fields) {
+      const std::size_t at = FindWord(problem, field);
+      if (at < first) {
+        first = at;
+        named = &field;
+      }
+    }
+    if (!named) throw ParamError(pnh.getNamespace() + ": " + problem);
+    throw OptionParamError(pnh, *named, problem);
+  }
 }
 
 double NumberParam(const ros::NodeHandle& pnh, const std::string& name, double fallback) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,13 @@ class ParamError : public std::runtime_error {
 // The ParamError for an option of a ROS-free options struct that is named as its parameter:
 // "<~field>: <problem>", where `field` may name an entry of a list ("microphones[2]").
 ParamError OptionParamError(const ros::NodeHandle& pnh, const std::string& field, const std::string& problem);
+
+// Runs `check`, a ROS-free options check that throws std::invalid_argument naming the field, so
+// that the component's range is the one used: its error becomes the OptionParamError of the
+// parameter among `fields` (each read into the option of that name) whose name its message
+// holds first as a word, or of the one field given; else a ParamError of the node's namespace.
+void CheckOptionParams(const ros::NodeHandle& pnh, const std::vector<std::string>& fields,
+                       const std::function<void()>& check);
 
 // Reads ~name (from `pnh`), or `fallback` when unset; throws ParamError on a value of the
 // wrong type or outside [lo, hi].

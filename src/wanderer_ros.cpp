@@ -1,5 +1,6 @@
 #include "wanderer_ros.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <geometry_msgs/Twist.h>
@@ -12,11 +13,12 @@ namespace multirobot_audio {
 
 behaviours::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
   behaviours::WanderOptions o;
-  o.cruise_speed = NumberParam(pnh, "cruise_speed", o.cruise_speed, 0.0, 10.0);
-  o.turn_rate = NumberParam(pnh, "turn_rate", o.turn_rate, 0.0, 20.0);
-  o.avoid_range = NumberParam(pnh, "avoid_range", o.avoid_range, 0.0, 100.0);
-  o.slow_range = NumberParam(pnh, "slow_range", std::max(o.slow_range, o.avoid_range + 0.1),
-                             o.avoid_range + 1e-3, 100.0);
+  o.cruise_speed = NumberParam(pnh, "cruise_speed", o.cruise_speed);
+  o.turn_rate = NumberParam(pnh, "turn_rate", o.turn_rate);
+  o.avoid_range = NumberParam(pnh, "avoid_range", o.avoid_range);
+  o.slow_range = NumberParam(pnh, "slow_range", std::max(o.slow_range, o.avoid_range + 0.1));
+  CheckOptionParams(pnh, {"cruise_speed", "turn_rate", "avoid_range", "slow_range"},
+                    [&] { behaviours::ValidateOptions(o); });
   return o;
 }
 

@@ -12,7 +12,7 @@
 namespace multirobot_audio {
 
 // Fills WanderOptions from ~cruise_speed, ~turn_rate, ~avoid_range, ~slow_range; throws
-// ParamError on impossible values.
+// ParamError naming the parameter on values behaviours::ValidateOptions refuses.
 behaviours::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh);
 
 // One robot's wandering controller: a cmd_vel for every scan. Runs in the robot's namespace,

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "grid/input_error.h"
+#include "grid/option_checks.h"
 #include "grid/reachability.h"
 
 namespace charging_demo {
@@ -20,9 +21,7 @@ constexpr int kMaxRobots = 255;
 
 }  // namespace
 
-world_sim::WorldConfig RandomChargingWorld(const grid::OccupancyMap& map, const std::string& map_file,
-                                           const world_sim::RobotModel& model,
-                                           const ChargingWorldOptions& o, std::mt19937& rng) {
+void ValidateOptions(const ChargingWorldOptions& o) {
   if (o.chargers < 1)
     throw std::invalid_argument("chargers must be at least 1, got " + std::to_string(o.chargers));
   if (o.robots < 1 || o.robots > kMaxRobots)
@@ -31,6 +30,16 @@ world_sim::WorldConfig RandomChargingWorld(const grid::OccupancyMap& map, const 
   if (!(o.min_battery > 0.0 && o.min_battery <= 1.0))
     throw std::invalid_argument("initial battery minimum must be within (0, 1], got " +
                                 std::to_string(o.min_battery));
+  grid::RequireAtLeast("charger_clearance (m)", o.charger_clearance, 0.0);
+  grid::RequireAtLeast("charger_spacing (m)", o.charger_spacing, 0.0);
+  grid::RequireAtLeast("robot_clearance (m)", o.robot_clearance, 0.0);
+  grid::RequireAtLeast("margin (m)", o.margin, 0.0);
+}
+
+world_sim::WorldConfig RandomChargingWorld(const grid::OccupancyMap& map, const std::string& map_file,
+                                           const world_sim::RobotModel& model,
+                                           const ChargingWorldOptions& o, std::mt19937& rng) {
+  ValidateOptions(o);
   const grid::Reachability robot_room(map, model.radius + o.margin);
   const grid::Reachability charger_room(map, o.charger_clearance);
   const int region = robot_room.largest();

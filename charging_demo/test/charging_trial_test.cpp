@@ -124,5 +124,24 @@ TEST(ChargingWorld, RandomWorldsFitAndSayWhatDoesNot) {
   EXPECT_THROW(RoomWorld(2, 0, 1, map), std::invalid_argument);
 }
 
+TEST(ChargingWorld, ImpossibleOptionsAreNamed) {
+  const auto message = [](void (*change)(ChargingWorldOptions&)) {
+    ChargingWorldOptions o;
+    change(o);
+    try {
+      ValidateOptions(o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NO_THROW(ValidateOptions(ChargingWorldOptions{}));
+  EXPECT_EQ(message([](ChargingWorldOptions& o) { o.robots = 256; }), "robots must be within 1..255, got 256");
+  EXPECT_EQ(message([](ChargingWorldOptions& o) { o.charger_clearance = -1.0; }),
+            "charger_clearance (m) must be >= 0, got -1");
+  EXPECT_NE(message([](ChargingWorldOptions& o) { o.min_battery = 1.5; }).find("within (0, 1], got 1.5"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace charging_demo

@@ -50,6 +50,7 @@ Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
   // in their own words (no usage line).
   charging.chargers = {placement.first_marker};
   try {
+    ValidateOptions(placement);
     ValidateOptions(options.controller);
     ValidateOptions(options);
   } catch (const std::invalid_argument& e) {

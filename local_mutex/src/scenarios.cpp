@@ -1,6 +1,7 @@
 #include "local_mutex/scenarios.h"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -25,7 +26,33 @@ std::vector<TeamRobot> ThreeScenario(const Eigen::Vector2d& centre) {
           {212, centre + Eigen::Vector2d(0.0, 1.5), {{32.8, 2, 20.0}}}};
 }
 
+namespace {
+
+void RequireTrial(bool ok, const char* name, double value, const char* expected) {
+  if (ok) return;
+  std::ostringstream text;
+  text << "trials: " << name << " = " << value << ": expected " << expected;
+  throw std::invalid_argument(text.str());
+}
+
+}  // namespace
+
+void ValidateTrialOptions(const TrialOptions& o) {
+  if (o.min_robots < 1 || o.max_robots < o.min_robots || o.max_robots > 255) {
+    throw std::invalid_argument("trials: robots must satisfy 1 <= min <= max <= 255, got " +
+                                std::to_string(o.min_robots) + ".." + std::to_string(o.max_robots));
+  }
+  RequireTrial(o.radius >= 0.0, "radius", o.radius, ">= 0 m");
+  RequireTrial(o.spacing >= 0.0, "spacing", o.spacing, ">= 0 m");
+  RequireTrial(o.want_spread >= 0.0, "want_spread", o.want_spread, ">= 0 s");
+  RequireTrial(o.hold_min >= 0.0, "hold_min", o.hold_min, ">= 0 s");
+  RequireTrial(o.hold_max >= o.hold_min, "hold_max", o.hold_max, "at least hold_min");
+  RequireTrial(o.cycles >= 1, "cycles", o.cycles, "at least 1");
+  RequireTrial(o.liveness_bound >= 0.0, "liveness_bound", o.liveness_bound, ">= 0 s (0: derived from the timers)");
+}
+
 std::vector<TeamRobot> RandomTeam(const TrialOptions& o, const Eigen::Vector2d& centre, std::mt19937& rng) {
+  ValidateTrialOptions(o);
   const int n = std::uniform_int_distribution<int>(o.min_robots, o.max_robots)(rng);
   std::uniform_real_distribution<double> u(-o.radius, o.radius), want(0.0, o.want_spread),
       hold(o.hold_min, o.hold_max);
@@ -68,10 +95,7 @@ double LivenessBound(const TrialOptions& trials, const MutexOptions& m, int robo
 
 std::unique_ptr<TeamSim> RunTrial(const audio_propagation::PropagationModel& model, const TrialOptions& trials,
                                   const TeamSimOptions& options, int index) {
-  if (trials.min_robots < 1 || trials.max_robots < trials.min_robots || trials.max_robots > 255) {
-    throw std::invalid_argument("trials: robots must satisfy 1 <= min <= max <= 255, got " +
-                                std::to_string(trials.min_robots) + ".." + std::to_string(trials.max_robots));
-  }
+  ValidateTrialOptions(trials);
   const grid::OccupancyMap& map = model.map();
   const Eigen::Vector2d centre = map.CellCoordsToWorld({map.width() / 2.0, map.height() / 2.0});
   TeamSimOptions o = options;

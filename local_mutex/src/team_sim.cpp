@@ -20,15 +20,20 @@ void CheckProbability(double p, const char* name) {
 
 }  // namespace
 
+void ValidateTeamSimOptions(const TeamSimOptions& o) {
+  CheckProbability(o.noise, "noise");
+  CheckProbability(o.loss, "loss");
+  if (!(o.step > 0.0)) throw std::invalid_argument("team sim: step = " + std::to_string(o.step) + ": expected > 0 s");
+  audio_propagation::ValidateOptions(o.channel);
+}
+
 TeamSim::TeamSim(const audio_propagation::PropagationModel& model, std::vector<TeamRobot> robots,
                  const TeamSimOptions& options)
     : robots_(std::move(robots)),
       options_(options),
       channel_(model, OmniMicrophones(robots_.size()), options.channel),
       rng_(options.seed) {
-  CheckProbability(options_.noise, "noise");
-  CheckProbability(options_.loss, "loss");
-  if (!(options_.step > 0.0)) throw std::invalid_argument("team sim: step must be > 0 s");
+  ValidateTeamSimOptions(options_);
   const std::size_t n = robots_.size();
   std::vector<Eigen::Vector2d> positions;
   for (std::size_t k = 0; k < n; ++k) {

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -146,6 +147,31 @@ TEST(Timeline, DrawsARecordedRunAndRefusesAnUnrecordedOne) {
   TeamSim quiet(*model, SingleScenario(Centre(*model)), {});
   quiet.Run(10.0);
   EXPECT_THROW(DrawTimeline(quiet, path), std::runtime_error);
+}
+
+TEST(TeamSim, ImpossibleOptionsAreNamed) {
+  const auto message = [](const auto& check) {
+    try {
+      check();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NO_THROW(ValidateTeamSimOptions({}));
+  EXPECT_NO_THROW(ValidateTrialOptions({}));
+  TeamSimOptions sim;
+  sim.step = 0.0;
+  EXPECT_EQ(message([&] { ValidateTeamSimOptions(sim); }), "team sim: step = 0.000000: expected > 0 s");
+  sim = {};
+  sim.loss = 1.5;
+  EXPECT_NE(message([&] { ValidateTeamSimOptions(sim); }).find("loss = 1.5"), std::string::npos);
+  TrialOptions trials;
+  trials.hold_max = 1.0;
+  EXPECT_EQ(message([&] { ValidateTrialOptions(trials); }), "trials: hold_max = 1: expected at least hold_min");
+  trials = {};
+  trials.min_robots = 7;
+  EXPECT_NE(message([&] { ValidateTrialOptions(trials); }).find("got 7..6"), std::string::npos);
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <complex>
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 
 #include "nava_modem/fft_plan.h"
+#include "nava_modem/modem_options.h"
 #include "nava_modem/noise_spectrum.h"
 #include "nava_modem/power_of_two.h"
 
@@ -25,7 +27,29 @@ constexpr double kWhiteningSpan = 0.02;
 // Renew the running background sum this often against rounding.
 constexpr std::int64_t kRenewEvery = 1 << 16;
 
+void Require(bool ok, const char* field, double value, const char* expected) {
+  if (ok) return;
+  std::ostringstream why;
+  why << "chirp detector " << field << " " << value << ": expected " << expected;
+  throw std::invalid_argument(why.str());
+}
+
 }  // namespace
+
+void ValidateChirpDetectorOptions(const ChirpDetectorOptions& o) {
+  Require(o.threshold > 1.0 && std::isfinite(o.threshold), "threshold", o.threshold,
+          "a finite factor above 1 over the background");
+  Require(o.background_seconds > 0.0 && std::isfinite(o.background_seconds), "background_seconds",
+          o.background_seconds, "finite and above 0 s");
+  Require(o.guard_seconds >= 0.0 && std::isfinite(o.guard_seconds), "guard_seconds", o.guard_seconds,
+          "finite and at least 0 s");
+  Require(o.peak_window_seconds >= 0.0 && std::isfinite(o.peak_window_seconds), "peak_window_seconds",
+          o.peak_window_seconds, "finite and at least 0 s");
+  Require(o.history_seconds > 0.0 && std::isfinite(o.history_seconds), "history_seconds", o.history_seconds,
+          "finite and above 0 s");
+  Require(o.whitening_seconds > 0.0 && std::isfinite(o.whitening_seconds), "whitening_seconds",
+          o.whitening_seconds, "finite and above 0 s");
+}
 
 // The matched filter's two transforms for one block size: the block's spectrum, and back from
 // the correlation's analytic spectrum (a complex transform, whose magnitude is the envelope).
@@ -38,6 +62,8 @@ struct ChirpDetector::Fft {
 ChirpDetector::ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options)
     : options_(options), chirp_length_(chirp.size()) {
   if (chirp.empty()) throw std::invalid_argument("chirp detector: empty chirp");
+  ValidateSampleRate("chirp detector sample rate", sample_rate);
+  ValidateChirpDetectorOptions(options_);
   margin_ = static_cast<std::size_t>(std::ceil(kWhiteningSpan * sample_rate));
   fft_size_ = PowerOfTwoAtLeast(2.0 * (chirp_length_ + 2 * margin_));
   hop_ = fft_size_ - chirp_length_ - 2 * margin_ + 1;

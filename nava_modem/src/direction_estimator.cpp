@@ -166,8 +166,38 @@ struct DirectionEstimator::Correlation {
   }
 };
 
-DirectionEstimator::DirectionEstimator(const DirectionOptions& options) : options_(options) {
-  const DirectionOptions& o = options_;
+namespace {
+
+double LargestSpacing(const std::vector<Microphone2D>& mics) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < mics.size(); ++i) {
+    for (std::size_t j = i + 1; j < mics.size(); ++j) {
+      largest = std::max(largest, std::hypot(mics[i].x - mics[j].x, mics[i].y - mics[j].y));
+    }
+  }
+  return largest;
+}
+
+// The analysis the options ask for: Welch segment length and the band's bins in it.
+struct Analysis {
+  std::size_t segment = 0;
+  std::size_t low_bin = 0, high_bin = 0;  // inclusive
+  double bin_hz = 0.0;
+};
+
+Analysis AnalysisFor(const DirectionOptions& o) {
+  Analysis a;
+  const double max_delay = LargestSpacing(o.mics) / o.speed_of_sound;
+  a.segment = PowerOfTwoAtLeast(std::max({kSegmentSeconds * o.sample_rate, 8.0 * max_delay * o.sample_rate, 16.0}));
+  a.bin_hz = o.sample_rate / static_cast<double>(a.segment);
+  a.low_bin = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(o.low_hz / a.bin_hz)));
+  a.high_bin = std::min(a.segment / 2, static_cast<std::size_t>(std::floor(o.high_hz / a.bin_hz)));
+  return a;
+}
+
+}  // namespace
+
+void ValidateDirectionOptions(const DirectionOptions& o) {
   const std::string context = "DirectionOptions";
   if (o.mics.size() < 2) {
     throw std::invalid_argument(context + ": " + std::to_string(o.mics.size()) + " microphones; expected at least 2");
@@ -195,13 +225,18 @@ DirectionEstimator::DirectionEstimator(const DirectionOptions& options) : option
     throw std::invalid_argument(context + ": low_hz " + Number(o.low_hz) + " Hz; expected from 0 to below high_hz " +
                                 Number(o.high_hz) + " Hz");
   }
-
-  double largest = 0.0;
-  for (std::size_t i = 0; i < o.mics.size(); ++i) {
-    for (std::size_t j = i + 1; j < o.mics.size(); ++j) {
-      largest = std::max(largest, std::hypot(o.mics[i].x - o.mics[j].x, o.mics[i].y - o.mics[j].y));
-    }
+  const Analysis a = AnalysisFor(o);
+  if (a.high_bin < a.low_bin + kMinBandBins - 1) {
+    throw std::invalid_argument(context + ": band " + Number(o.low_hz) + "-" + Number(o.high_hz) + " Hz; expected at least " +
+                                Number(kMinBandBins * a.bin_hz) + " Hz wide (" + std::to_string(kMinBandBins) +
+                                " bins of the " + Number(a.bin_hz) + " Hz analysis)");
   }
+}
+
+DirectionEstimator::DirectionEstimator(const DirectionOptions& options) : options_(options) {
+  const DirectionOptions& o = options_;
+  ValidateDirectionOptions(o);
+  const double largest = LargestSpacing(o.mics);
   max_delay_ = largest / o.speed_of_sound;
 
   // The array's best line (principal axis through the centroid) and how far the mics stray.
@@ -223,16 +258,11 @@ DirectionEstimator::DirectionEstimator(const DirectionOptions& options) : option
   for (const Microphone2D& m : o.mics) off_line = std::max(off_line, std::abs(-(m.x - cx) * axis_y_ + (m.y - cy) * axis_x_));
   collinear_ = off_line <= kCollinear * largest;
 
-  segment_ = PowerOfTwoAtLeast(std::max({kSegmentSeconds * o.sample_rate, 8.0 * max_delay_ * o.sample_rate, 16.0}));
+  const Analysis a = AnalysisFor(o);
+  segment_ = a.segment;
   interpolation_ = PowerOfTwoAtLeast(8.0 * o.high_hz / o.sample_rate);
-  const double bin_hz = o.sample_rate / static_cast<double>(segment_);
-  low_bin_ = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(o.low_hz / bin_hz)));
-  high_bin_ = std::min(segment_ / 2, static_cast<std::size_t>(std::floor(o.high_hz / bin_hz)));
-  if (high_bin_ < low_bin_ + kMinBandBins - 1) {
-    throw std::invalid_argument(context + ": band " + Number(o.low_hz) + "-" + Number(o.high_hz) + " Hz; expected at least " +
-                                Number(kMinBandBins * bin_hz) + " Hz wide (" + std::to_string(kMinBandBins) +
-                                " bins of the " + Number(bin_hz) + " Hz analysis)");
-  }
+  low_bin_ = a.low_bin;
+  high_bin_ = a.high_bin;
   fft_ = std::make_shared<const Fft>(segment_, segment_ * interpolation_);
 }
 

@@ -61,9 +61,7 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
       level_(modem.sample_rate, kChirpLowHz - 100.0, kHighestHz + 600.0, kLevelSeconds),
       busy_(kBusyRelease, kBusyMinimum),
       packet_length_(kPostChirpStart * modem.sample_rate) {
-  if (!(options_.max_rate_error > 0.0 && options_.max_rate_error < 0.2)) {
-    throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": expected above 0 and below 0.2");
-  }
+  ValidateReceiverOptions(options_);
   if (kHighestHz * (1.0 + MaxStretchError()) >= modem.sample_rate / 2.0) {
     throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": a sender that fast would put " +
                                 "the room profile's highest tone above the Nyquist frequency at " +

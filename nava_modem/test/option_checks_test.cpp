@@ -5,13 +5,17 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "nava_modem/alsa_device.h"
+#include "nava_modem/chirp_detector.h"
+#include "nava_modem/direction_estimator.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/nava_link.h"
 #include "nava_modem/room_modulator.h"
+#include "nava_modem/room_receiver.h"
 
 namespace nava_modem {
 namespace {
@@ -54,6 +58,35 @@ TEST(ReceiverOptions, EveryProfilesReceiverChecksThem) {
     const auto profile = MakeProfile(p, ModemOptions{});
     ExpectRefused([&] { profile->MakeReceiver(wrong); }, "max_fixed_bits -1");
   }
+}
+
+TEST(ReceiverOptions, TheRoomReceiverTakesTheOneRange) {
+  ReceiverOptions wide;
+  wide.max_rate_error = 0.2;
+  ExpectRefused([&] { RoomReceiver(ModemOptions{}, wide); }, "receiver max_rate_error 0.2: expected above 0 and below 0.2");
+}
+
+TEST(DirectionOptions, ImpossibleValuesAreNamed) {
+  DirectionOptions o;
+  o.mics = {{0.1, 0.0}, {-0.1, 0.0}};
+  EXPECT_EQ(Refusal([&] { ValidateDirectionOptions(o); }), "accepted");
+  o.max_seconds = 0.0;
+  ExpectRefused([&] { ValidateDirectionOptions(o); }, "DirectionOptions: max_seconds 0 s; expected above 0");
+  o.max_seconds = 0.2;
+  o.low_hz = 5990.0;
+  ExpectRefused([&] { DirectionEstimator{o}; }, "DirectionOptions: band 5990-6000 Hz; expected at least");
+}
+
+TEST(ChirpDetectorOptions, ImpossibleValuesAreNamed) {
+  EXPECT_EQ(Refusal([] { ValidateChirpDetectorOptions({}); }), "accepted");
+  ChirpDetectorOptions o;
+  o.threshold = 1.0;
+  ExpectRefused([&] { ValidateChirpDetectorOptions(o); }, "chirp detector threshold 1: expected a finite factor above 1");
+  o = {};
+  o.guard_seconds = -0.01;
+  ExpectRefused([&] { ChirpDetector(std::vector<float>(64, 0.5f), 48000.0, o); }, "chirp detector guard_seconds -0.01");
+  ExpectRefused([] { ChirpDetector(std::vector<float>(64, 0.5f), 1000.0, {}); },
+                "chirp detector sample rate 1000 Hz: expected 4000 to 384000");
 }
 
 TEST(SampleRate, OneRangeForEveryProfileAndDevice) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "grid/input_error.h"
+#include "grid/option_checks.h"
 #include "grid/reachability.h"
 #include "world_sim/world_file.h"
 
@@ -21,13 +22,21 @@ std::string Where(double x, double y) {
 
 }  // namespace
 
+void ValidateOptions(const ConfigurationOptions& o) {
+  if (o.robots < 1)
+    throw std::invalid_argument("a configuration needs at least 1 robot, got " + std::to_string(o.robots));
+  if (o.source == o.sink)
+    throw std::invalid_argument("configuration source and sink must be different markers, both are " +
+                                std::to_string(o.source));
+  grid::RequireAtLeast("configuration margin (m)", o.margin, 0.0);
+  grid::RequireAtLeast("configuration min_marker_separation (m)", o.min_marker_separation, 0.0);
+}
+
 world_sim::WorldConfig RandomConfiguration(const grid::OccupancyMap& map,
                                            const std::string& map_file,
                                            const world_sim::RobotModel& model,
                                            const ConfigurationOptions& options, std::mt19937& rng) {
-  if (options.robots < 1)
-    throw std::invalid_argument("a configuration needs at least 1 robot, got " +
-                                std::to_string(options.robots));
+  ValidateOptions(options);
   // A cell's centre stands for every point in it (and a draw is jittered within the cell), so
   // keep a cell's width more room: the world's own overlap test then never refuses a draw.
   const grid::Reachability room(map, model.radius + options.margin + map.resolution());

@@ -12,10 +12,16 @@ std::uint32_t TrialSeed(std::uint32_t base, int config, int trial) {
          static_cast<std::uint32_t>(trial);
 }
 
+void ValidateOptions(const ExperimentOptions& o) {
+  if (o.modes.empty()) throw std::invalid_argument("modes: at least one mode is needed, got none");
+  if (o.trials < 1) throw std::invalid_argument("trials must be at least 1, got " + std::to_string(o.trials));
+  if (o.threads < 0)
+    throw std::invalid_argument("threads must be at least 0 (0: one per core), got " + std::to_string(o.threads));
+  ValidateOptions(o.trial);
+}
+
 std::vector<TrialRow> ExperimentRows(int configs, const ExperimentOptions& options) {
-  if (options.trials < 1)
-    throw std::invalid_argument("trials must be at least 1, got " + std::to_string(options.trials));
-  if (options.modes.empty()) throw std::invalid_argument("at least one mode is needed");
+  ValidateOptions(options);
   std::vector<TrialRow> rows;
   for (int c = 1; c <= configs; ++c)
     for (ListenMode mode : options.modes)
@@ -34,7 +40,7 @@ void RunRows(const grid::OccupancyMap& map, const std::vector<world_sim::WorldCo
              const audio_propagation::PropagationModel& model, const ExperimentOptions& options,
              const std::vector<std::size_t>& which, std::vector<TrialRow>& rows,
              const std::function<void(int, int)>& progress) {
-  ValidateOptions(options.trial);
+  ValidateOptions(options);
   multirobot_audio::tools::ParallelFor(
       which.size(), options.threads,
       [&](std::size_t k) {

@@ -1,6 +1,7 @@
 #include "sounds_good_explorer/configurations.h"
 
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -95,6 +96,18 @@ TEST(Configurations, ImpossibleRequestsAreRefused) {
   o.robots = 2;
   o.min_marker_separation = 100.0;  // no two points of a 6 m map are that far apart
   EXPECT_THROW(RandomConfiguration(map, "boxed", {}, o, rng), std::invalid_argument);
+  EXPECT_NO_THROW(ValidateOptions(ConfigurationOptions{}));
+  o = {};
+  o.sink = o.source;
+  EXPECT_THROW(RandomConfiguration(map, "boxed", {}, o, rng), std::invalid_argument);
+  o = {};
+  o.margin = -0.5;
+  try {
+    ValidateOptions(o);
+    ADD_FAILURE() << "a negative margin was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "configuration margin (m) must be >= 0, got -0.5");
+  }
 }
 
 }  // namespace

@@ -100,5 +100,23 @@ TEST(TeamTrial, ImpossibleRequestsAreRefused) {
   EXPECT_THROW(RunTeamTrial(w.map, w.config, w.model, o), std::invalid_argument);
 }
 
+TEST(Experiment, ImpossibleOptionsAreNamed) {
+  EXPECT_NO_THROW(ValidateOptions(ExperimentOptions{}));
+  ExperimentOptions o;
+  o.threads = -1;
+  try {
+    ExperimentRows(1, o);
+    ADD_FAILURE() << "a negative thread count was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "threads must be at least 0 (0: one per core), got -1");
+  }
+  o = {};
+  o.modes.clear();
+  EXPECT_THROW(ExperimentRows(1, o), std::invalid_argument);
+  o = {};
+  o.trial.jobs = 0;
+  EXPECT_THROW(ValidateOptions(o), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace sounds_good_explorer

@@ -1,21 +1,26 @@
 #include "world_sim/lockstep_coordinator.h"
 
 #include <algorithm>
+#include <set>
 #include <stdexcept>
 
 namespace world_sim {
 
-LockstepCoordinator::LockstepCoordinator(LockstepOptions options) : options_(std::move(options)) {
-  if (!(options_.timeout > 0.0)) {
+void ValidateOptions(const LockstepOptions& o) {
+  if (!(o.timeout > 0.0)) {
     throw std::invalid_argument("lockstep_timeout: expected a positive number of seconds, got " +
-                                std::to_string(options_.timeout));
+                                std::to_string(o.timeout));
   }
-  for (const std::string& name : options_.participants) {
+  std::set<std::string> named;
+  for (const std::string& name : o.participants) {
     if (name.empty()) throw std::invalid_argument("lockstep_participants: expected node names, got an empty one");
-    if (!participants_.emplace(name, Participant{}).second) {
-      throw std::invalid_argument("lockstep_participants: " + name + " is named twice");
-    }
+    if (!named.insert(name).second) throw std::invalid_argument("lockstep_participants: " + name + " is named twice");
   }
+}
+
+LockstepCoordinator::LockstepCoordinator(LockstepOptions options) : options_(std::move(options)) {
+  ValidateOptions(options_);
+  for (const std::string& name : options_.participants) participants_.emplace(name, Participant{});
 }
 
 void LockstepCoordinator::SetOwnStreams(const std::vector<std::string>& subscribed,

@@ -13,15 +13,26 @@
 namespace world_sim {
 namespace {
 
-std::uint64_t StepsPer(double period, double step, const char* name) {
+void CheckPeriod(double period, double step, const char* name) {
   if (!(period >= step) || !std::isfinite(period)) {
     throw std::invalid_argument(std::string("world_sim: ") + name + " must be >= step (" +
                                 std::to_string(step) + " s), got " + std::to_string(period));
   }
-  return StepsPerPeriod(period, step);
 }
 
 }  // namespace
+
+void ValidateOptions(const WorldOptions& o) {
+  if (!(o.step > 0.0) || !(o.step <= 1.0)) {
+    throw std::invalid_argument("world_sim: step must be in (0, 1] s, got " + std::to_string(o.step));
+  }
+  if (!(o.start_time > 0.0)) {
+    throw std::invalid_argument("world_sim: start_time must be positive, got " + std::to_string(o.start_time));
+  }
+  CheckPeriod(o.scan_period, o.step, "scan_period");
+  CheckPeriod(o.camera_period, o.step, "camera_period");
+  CheckPeriod(o.odom_period, o.step, "odom_period");
+}
 
 std::uint64_t StepsPerPeriod(double period, double step) {
   return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(period / step)));
@@ -29,17 +40,10 @@ std::uint64_t StepsPerPeriod(double period, double step) {
 
 World::World(grid::OccupancyMap map, WorldConfig config, const WorldOptions& options)
     : map_(std::move(map)), config_(std::move(config)), options_(options) {
-  if (!(options_.step > 0.0) || !(options_.step <= 1.0)) {
-    throw std::invalid_argument("world_sim: step must be in (0, 1] s, got " +
-                                std::to_string(options_.step));
-  }
-  if (!(options_.start_time > 0.0)) {
-    throw std::invalid_argument("world_sim: start_time must be positive, got " +
-                                std::to_string(options_.start_time));
-  }
-  scan_every_ = StepsPer(options_.scan_period, options_.step, "scan_period");
-  camera_every_ = StepsPer(options_.camera_period, options_.step, "camera_period");
-  odom_every_ = StepsPer(options_.odom_period, options_.step, "odom_period");
+  ValidateOptions(options_);
+  scan_every_ = StepsPerPeriod(options_.scan_period, options_.step);
+  camera_every_ = StepsPerPeriod(options_.camera_period, options_.step);
+  odom_every_ = StepsPerPeriod(options_.odom_period, options_.step);
   ValidateWorld(config_.map_file, config_, map_);
 
   for (std::size_t k = 0; k < config_.robots.size(); ++k) {

@@ -24,6 +24,8 @@ LockstepCoordinator TwoRobots() {
 TEST(LockstepCoordinator, RefusesANegativeTimeoutAndANameGivenTwice) {
   EXPECT_THROW(LockstepCoordinator(LockstepOptions{"/w", {"/a"}, -1.0}), std::invalid_argument);
   EXPECT_THROW(LockstepCoordinator(LockstepOptions{"/w", {"/a", "/a"}, 1.0}), std::invalid_argument);
+  EXPECT_THROW(ValidateOptions(LockstepOptions{"/w", {"/a", ""}, 1.0}), std::invalid_argument);
+  EXPECT_NO_THROW(ValidateOptions(LockstepOptions{"/w", {"/a", "/b"}, 1.0}));
 }
 
 TEST(LockstepCoordinator, IsReadyOnlyWhenEveryParticipantHearsEveryPublisher) {

@@ -48,6 +48,13 @@ TEST(World, RejectsImpossibleOptions) {
   o = {};
   o.scan_period = 0.001;
   EXPECT_THROW(World(Room(), TwoRobots(), o), std::invalid_argument);
+  EXPECT_NO_THROW(ValidateOptions(WorldOptions{}));
+  try {
+    ValidateOptions(o);
+    ADD_FAILURE() << "a scan period under the step was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "world_sim: scan_period must be >= step (0.020000 s), got 0.001000");
+  }
   WorldConfig inside = TwoRobots();
   inside.robots[0].start = {5.05, 3.0, 0.0};
   EXPECT_THROW(World(Room(), inside), grid::InputError);

@@ -22,11 +22,16 @@ struct ChargingWorldOptions {
   double min_battery = 0.4;          // initial levels are drawn from [min_battery, 1]
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected: chargers at
+// least 1, robots within 1..255 (the lock's ids), min_battery within (0, 1], clearances,
+// spacing and margin at least 0.
+void ValidateOptions(const ChargingWorldOptions& options);
+
 // A random world for the charging trial: `chargers` chargers in free space with room around
 // them, pairwise `charger_spacing` apart, and `robots` robots (robot_0 ...) with random poses
 // and battery levels, all in the map's largest connected free region, none overlapping.
-// Throws std::invalid_argument naming what does not fit (more robots or chargers than the map
-// holds, or no charger at all) after a bounded number of draws.
+// Throws std::invalid_argument for impossible options (ValidateOptions) or naming what does not
+// fit (more robots or chargers than the map holds) after a bounded number of draws.
 world_sim::WorldConfig RandomChargingWorld(const grid::OccupancyMap& map, const std::string& map_file,
                                            const world_sim::RobotModel& model,
                                            const ChargingWorldOptions& options, std::mt19937& rng);

@@ -31,7 +31,12 @@ struct TrialOptions {
   double liveness_bound = 0.0;
 };
 
-// A random team for one trial.
+// Throws std::invalid_argument naming the field, its value and what was expected: team sizes
+// outside 1 <= min_robots <= max_robots <= 255 (the lock's ids), a negative radius, spacing,
+// want_spread, hold time or liveness_bound, hold_max under hold_min, cycles under 1.
+void ValidateTrialOptions(const TrialOptions& options);
+
+// A random team for one trial; throws std::invalid_argument for impossible options.
 std::vector<TeamRobot> RandomTeam(const TrialOptions& options, const Eigen::Vector2d& centre, std::mt19937& rng);
 
 // The liveness bound actually used for `robots` robots.

@@ -41,6 +41,10 @@ struct TeamSimOptions {
   std::uint32_t seed = 1;
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected: noise and
+// loss outside [0, 1], a step not above 0 s, impossible channel options.
+void ValidateTeamSimOptions(const TeamSimOptions& options);
+
 // A lock event of one robot; for a packet heard, `from` is the robot that sent it.
 struct RobotEvent {
   std::size_t robot = 0;
@@ -62,8 +66,8 @@ struct Grant {
 // hearing range holds it is a violation. Deterministic for a seed.
 class TeamSim {
  public:
-  // Throws std::invalid_argument for impossible options or robots (an id outside 1..255, a
-  // robot off the map or in a wall, a probability outside [0, 1]).
+  // Throws std::invalid_argument for impossible options (ValidateTeamSimOptions) or robots (an
+  // id outside 1..255, a robot off the map or in a wall).
   TeamSim(const audio_propagation::PropagationModel& model, std::vector<TeamRobot> robots,
           const TeamSimOptions& options);
 

@@ -28,6 +28,11 @@ struct ChirpDetectorOptions {
   double whitening_seconds = 3.0;
 };
 
+// Throws std::invalid_argument "chirp detector <field> <value>: expected ..." when the options
+// are impossible: a threshold not above 1 (every sample would pass), a background, history or
+// whitening time not above 0 s, a negative guard or peak window, any value not finite.
+void ValidateChirpDetectorOptions(const ChirpDetectorOptions& options);
+
 struct ChirpPeak {
   double sample = 0.0;    // where the chirp starts, in samples since the first (sub-sample)
   double ratio = 0.0;     // peak power over the background
@@ -39,6 +44,8 @@ struct ChirpPeak {
 // magnitude is the envelope, and CFAR peak picking on the envelope's power.
 class ChirpDetector {
  public:
+  // Throws std::invalid_argument for an empty chirp, a sample rate outside the project's range
+  // (ValidateSampleRate) or impossible options (ValidateChirpDetectorOptions).
   ChirpDetector(const std::vector<float>& chirp, double sample_rate, const ChirpDetectorOptions& options);
   ~ChirpDetector();
   ChirpDetector(const ChirpDetector&) = delete;

@@ -31,11 +31,10 @@
 // - Reverberation: the direct sound comes first, so only the first `max_seconds` of the samples
 //   given are used; PHAT keeps the diffuse tail, uncorrelated between microphones, from biasing
 //   the peak. For the room profile its first chirp (0.12 s, 600-5400 Hz) is best: later parts
-//   only add reverberation (simulated 7x5x3 m room, 0.1 m square 2 m from the sender: mean error
-//   0.8 degrees at RT60 1 s and DRR -9 dB). For the nava profile the whole packet is best: it
-//   opens with 67 ms of SPACE then 67 ms of MARK, single tones whose correlations repeat every
-//   0.27 and 0.43 ms, and its first 0.12 s gave wrong bearings for 5 of 18 senders at RT60 0.5 s
-//   and DRR 0 dB, the whole packet none (nava_decode uses these settings).
+//   only add reverberation. For the nava profile the whole packet is best: it opens with 67 ms
+//   of SPACE then 67 ms of MARK, single tones whose correlations repeat every 0.27 and 0.43 ms,
+//   so its opening alone gives wrong bearings in reverberant rooms (nava_decode uses these
+//   settings; the measurements behind them are in docs/audio_link.md, "Direction of arrival").
 //
 // Spatial aliasing with the nava profile: its energy sits at two tones, 2300 and 3700 Hz
 // (wavelengths 15 and 9.3 cm). A pair further apart than half a wavelength (7.5 and 4.6 cm) sees
@@ -43,18 +42,14 @@
 // (sides 14 cm, diagonals 20 cm) exceeds both, and the two tones together give the correlation
 // 2 cos(2 pi 3000 t) cos(2 pi 700 t), which has a second peak of 59 % of the main one at
 // +-0.5 ms, inside the diagonals' +-0.58 ms. The six pairs see these aliases at different
-// bearings, so the SRP sum still picks the right bearing in clean air (within 0.2 degrees all
-// round at 20 dB SNR in the tests) and mostly in the simulated rooms over the whole packet (mean
-// error 0.6 to 1.2 degrees up to RT60 0.5 s, DRR 0 dB), but the margin is small: at RT60 0.8 s,
-// DRR -6 dB one of the tests' 12 bearings is 50 degrees off, and at RT60 1 s, DRR -9 dB the
-// first 0.35 s rather than the whole 0.367 s put 4 of 18 bearings over 10 degrees off.
-// Confidence in such rooms is low (0.1-0.2 on average) whether or not the bearing is right. The
-// room profile's 600-5400 Hz chirp has no such ambiguity. A nava array without aliasing would
-// want spacings under 4.6 cm (delays under 0.13 ms, 6 samples at 48 kHz: noisier bearings).
+// bearings, so the SRP sum still picks the right bearing in clean air and mostly in reverberant
+// rooms, but the margin is small, and the confidence in such rooms is low whether or not the
+// bearing is right. The room profile's 600-5400 Hz chirp has no such ambiguity. A nava array
+// without aliasing would want spacings under 4.6 cm (delays under 0.13 ms, 6 samples at 48 kHz:
+// noisier bearings).
 //
-// Cost: at most 8 segment FFTs per channel and one inverse FFT per pair: about 80-100 us per
-// estimate for 4 microphones at 16 or 48 kHz (the tests print it), against about 1 ms of nava
-// decoding and 3 (16 kHz) to 16 ms (48 kHz) of room decoding per packet.
+// Cost: at most 8 segment FFTs per channel and one inverse FFT per pair, whatever the length
+// given (the tests print the time per estimate; docs/audio_link.md compares it with decoding).
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -79,6 +74,12 @@ struct DirectionOptions {
   double max_seconds = 0.2;
 };
 
+// Throws std::invalid_argument "DirectionOptions: <field> <value>; expected ..." when the options
+// are impossible: fewer than 2 microphones, two at one point or one not finite, a non-positive
+// rate, speed of sound or max_seconds, a band outside (0, sample_rate / 2] or too narrow for a
+// few bins of the analysis.
+void ValidateDirectionOptions(const DirectionOptions& options);
+
 struct Direction {
   // rad, CCW from the robot's +x, in (-pi, pi]; NaN when the geometry cannot resolve it (or
   // there is nothing in the band).
@@ -92,9 +93,7 @@ struct Direction {
 
 class DirectionEstimator {
  public:
-  // Throws std::invalid_argument naming the value: fewer than 2 microphones, two at one point, a
-  // band outside (0, sample_rate / 2] or too narrow for a few bins, a non-positive rate, speed
-  // of sound or max_seconds.
+  // Throws std::invalid_argument for impossible options (ValidateDirectionOptions).
   explicit DirectionEstimator(const DirectionOptions& options);
   ~DirectionEstimator();
   DirectionEstimator(const DirectionEstimator&) = default;

@@ -33,6 +33,9 @@ namespace nava_modem {
 // is ZERO_BYTE.
 class RoomReceiver : public PacketReceiver {
  public:
+  // Throws std::invalid_argument for a rate the room profile cannot use (ValidateRoomRate),
+  // impossible options (ValidateReceiverOptions), or a max_rate_error that would stretch the
+  // highest tone past Nyquist.
   RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options);
   ~RoomReceiver() override;
 

@@ -20,9 +20,15 @@ struct ConfigurationOptions {
   double min_marker_separation = 3.0;   // m between source and sink
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected: robots under
+// 1, the source and sink one marker, a negative margin or marker separation.
+void ValidateOptions(const ConfigurationOptions& options);
+
 // A valid starting configuration of the thesis (section 3.4): robots (robot_0 ...) with random
 // poses and the source and sink markers, all in free space with room for a robot, nobody
 // overlapping, and every marker reachable by every robot. The map file is recorded as given.
+// Throws std::invalid_argument for impossible options (ValidateOptions) or when the map has
+// no room for them after a bounded number of draws.
 world_sim::WorldConfig RandomConfiguration(const grid::OccupancyMap& map,
                                            const std::string& map_file,
                                            const world_sim::RobotModel& model,

@@ -19,6 +19,10 @@ struct ExperimentOptions {
   std::uint32_t seed = 1;
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected: no mode,
+// trials under 1, a negative thread count, impossible trial options.
+void ValidateOptions(const ExperimentOptions& options);
+
 struct TrialRow {
   int config = 0;  // 1-based, as the thesis numbers them
   ListenMode mode = ListenMode::kNone;
@@ -33,7 +37,7 @@ std::uint32_t TrialSeed(std::uint32_t base, int config, int trial);
 
 // Every configuration x mode x trial of an experiment on `configs` configurations, with its
 // seed and no result yet, in (config, mode, trial) order: the order of a whole run, which
-// numbers the trials for shards. Throws std::invalid_argument for no trials or no mode.
+// numbers the trials for shards. Throws std::invalid_argument for impossible options.
 std::vector<TrialRow> ExperimentRows(int configs, const ExperimentOptions& options);
 
 // Runs rows[i] for every i in `which` (a shard's share, or all), spread over `threads` worker

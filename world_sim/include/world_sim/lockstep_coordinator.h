@@ -63,9 +63,13 @@ struct LockstepOptions {
   double timeout = 5.0;                   // wall s a participant may keep the world waiting
 };
 
+// Throws std::invalid_argument naming the field and what was expected: a timeout not above 0,
+// an empty participant name or one given twice.
+void ValidateOptions(const LockstepOptions& options);
+
 class LockstepCoordinator {
  public:
-  // Throws std::invalid_argument on a negative timeout or a name given twice.
+  // Throws std::invalid_argument on impossible options (ValidateOptions).
   explicit LockstepCoordinator(LockstepOptions options);
 
   // The world's own subscriptions (topics it counts) and publications.

@@ -21,6 +21,10 @@ struct WorldOptions {
   double start_time = 1.0;      // s; never 0, which ROS reads as "no time yet"
 };
 
+// Throws std::invalid_argument naming the field, its value and what was expected: step within
+// (0, 1] s, start_time above 0, each sensor period finite and at least one step.
+void ValidateOptions(const WorldOptions& options);
+
 // How many whole steps make up `period` (at least one): sensor and publishing periods are
 // rounded to whole steps.
 std::uint64_t StepsPerPeriod(double period, double step);
@@ -51,8 +55,8 @@ struct RobotState {
 // map, config and options give the same trajectories for the same commands.
 class World {
  public:
-  // Throws std::invalid_argument on impossible options and grid::InputError on a config that
-  // does not fit the map.
+  // Throws std::invalid_argument on impossible options (ValidateOptions) and grid::InputError on
+  // a config that does not fit the map.
   World(grid::OccupancyMap map, WorldConfig config, const WorldOptions& options = {});
 
   // Commands robot `index` (clamped to the model's limits; ignored while the battery is empty).
