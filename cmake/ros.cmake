@@ -159,6 +159,12 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(charging_demo_rostest multirobot_audio_ros)
   add_dependencies(charging_demo_rostest world_sim_node audio_propagation_node local_mutex_node charging_demo_node)
 
+  # A test run by test/nava_air.sh. Labelled "air": its links stream in real time with short
+  # buffers, so scripts/test.sh runs these with nothing building beside them.
+  function(multirobot_audio_air_add_test name test_file)
+    add_test(NAME ${name} COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh ${test_file} ${ARGN})
+    set_tests_properties(${name} PROPERTIES LABELS air)
+  endfunction()
   # Over the air: built like rostest nodes, but each run by test/nava_air.sh, which starts the
   # PulseAudio server the test needs, runs the given .test file and stops the server.
   function(multirobot_audio_air_test target test_file)
@@ -168,12 +174,12 @@ if(MULTIROBOT_AUDIO_TESTS)
     set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib/${PROJECT_NAME})
     add_dependencies(${target} ${PROJECT_NAME}_generate_messages_cpp)
     add_dependencies(tests ${target} nava_modem_node)
-    add_test(NAME ${target} COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh ${test_file})
+    multirobot_audio_air_add_test(${target} ${test_file})
   endfunction()
   multirobot_audio_air_test(nava_air_rostest nava_air.test test/nava_air_rostest.cpp)
   # A broken peer against nava_modem's audio/tx over the air.
   multirobot_audio_air_test(hostile_nava_rostest hostile_nava.test test/hostile_nava_rostest.cpp test/hostile_peer.cpp)
-  add_test(NAME nava_air_room_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh nava_air.test profile:=room)
+  multirobot_audio_air_add_test(nava_air_room_rostest nava_air.test profile:=room)
   # A stalled process and a sound server killed in the middle of a packet and restarted: every
   # packet is still heard exactly once.
   multirobot_audio_air_test(nava_air_faults_rostest nava_air_faults.test test/nava_air_faults_rostest.cpp)
@@ -183,7 +189,7 @@ if(MULTIROBOT_AUDIO_TESTS)
   # launch/team_robots.launch with every machine localhost: three robots' links on the air and
   # their controllers (the wanderers' announcements must cross the air), then the mutex task.
   multirobot_audio_air_test(team_robots_rostest team_robots.test test/team_robots_rostest.cpp)
-  add_test(NAME team_robots_mutex_rostest COMMAND ${PROJECT_SOURCE_DIR}/test/nava_air.sh team_robots.test task:=mutex)
+  multirobot_audio_air_add_test(team_robots_mutex_rostest team_robots.test task:=mutex)
   add_dependencies(tests wanderer_node)
   # How roslaunch reads the team's machines, for remote hosts too: nothing is started.
   add_test(NAME team_robots_machines COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/team_robots_machines.py)

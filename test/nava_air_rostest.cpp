@@ -86,6 +86,24 @@ class Air {
 
 Air* air = nullptr;
 
+// One robot's packet, sent alone: "" when every other robot heard it, else what went wrong.
+// `data` carries the try's number, so that a late copy of an earlier try is not taken for it.
+std::string SendAlone(std::size_t s, const std::vector<std::uint8_t>& data) {
+  air->Forget();
+  air->Send(kRobots[s], data);
+  std::string wrong;
+  for (std::size_t r = 0; r < kRobots.size(); ++r) {
+    if (r == s) continue;
+    if (!WaitFor([&] { return !air->Packets(kRobots[r], data).empty(); }, 4.0 + 3.0 * PacketSeconds())) {
+      wrong += "\n" + kRobots[r] + " did not hear " + kRobots[s] + "; it heard:" + air->Describe(kRobots[r]);
+    }
+  }
+  return wrong;
+}
+
+// The air is real time on a shared machine: a stall of the sender's process can cut the packet
+// it is playing, which the listeners then report as noise. So a packet that did not reach every
+// listener is sent again, up to three tries; a link that cannot send or hear fails all three.
 TEST(NavaAir, EveryRobotHearsEveryOther) {
   ASSERT_TRUE(air->Ready()) << "the nava_modem nodes did not come up";
   // robot_0 captures two channels (its node is required: had the capture failed, the test
@@ -94,14 +112,22 @@ TEST(NavaAir, EveryRobotHearsEveryOther) {
   ASSERT_TRUE(ros::param::get("/robot_0/nava_modem/channels", channels));
   ASSERT_EQ(channels, 2);
   for (std::size_t s = 0; s < kRobots.size(); ++s) {
-    air->Forget();
-    const std::vector<std::uint8_t> data = {0x10, static_cast<std::uint8_t>(s), 0xAB, 0xCD};
-    air->Send(kRobots[s], data);
-    for (std::size_t r = 0; r < kRobots.size(); ++r) {
-      if (r == s) continue;
-      EXPECT_TRUE(WaitFor([&] { return !air->Packets(kRobots[r], data).empty(); }, 4.0 + 3.0 * PacketSeconds()))
-          << kRobots[r] << " did not hear " << kRobots[s];
+    std::vector<std::uint8_t> data;
+    std::string failures;
+    bool heard = false;
+    for (std::uint8_t attempt = 1; attempt <= 3; ++attempt) {
+      data = {0x10, static_cast<std::uint8_t>(s), attempt, 0xCD};
+      const std::string wrong = SendAlone(s, data);
+      heard = wrong.empty();
+      if (heard) break;
+      failures += "\ntry " + std::to_string(attempt) + ":" + wrong;
+      ros::WallDuration(1.0).sleep();  // let the air fall quiet before trying again
     }
+    if (!heard) {
+      ADD_FAILURE() << "three tries of " << kRobots[s] << "'s packet all failed:" << failures;
+      continue;
+    }
+    if (!failures.empty()) std::fprintf(stderr, "nava_air_rostest: %s heard after:%s\n", kRobots[s].c_str(), failures.c_str());
     ros::WallDuration(0.5 + PacketSeconds()).sleep();
     ros::spinOnce();
     EXPECT_TRUE(air->Packets(kRobots[s], data).empty()) << kRobots[s] << " heard itself";
