@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "nava_modem/fft_plan.h"
+#include "nava_modem/first_arrival.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/power_of_two.h"
 #include "nava_modem/room_code.h"
@@ -29,6 +30,9 @@ constexpr double kAlignBefore = 0.010, kAlignAfter = 0.050, kAlignReach = 0.045;
 // detector's own threshold: the window is narrow, and the CRC judges what is decoded.
 constexpr double kSearchRatio = 4.0;
 constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
+// A decoded packet's first arrival is looked for from this long before its first chirp's
+// strongest peak (the direct sound may precede a stronger reflection) to this long after it.
+constexpr double kArrivalBefore = 0.025, kArrivalAfter = 0.010;
 
 double Median(std::vector<double>& v) {
   if (v.empty()) return 0.0;
@@ -57,7 +61,8 @@ struct RoomReceiver::Fft {
 RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem),
       options_(options),
-      detector_((ValidateRoomRate(modem.sample_rate), Chirp(modem.sample_rate)), modem.sample_rate, ChirpDetectorOptions{}),
+      chirp_((ValidateRoomRate(modem.sample_rate), Chirp(modem.sample_rate))),
+      detector_(chirp_, modem.sample_rate, ChirpDetectorOptions{}),
       level_(modem.sample_rate, kChirpLowHz - 100.0, kHighestHz + 600.0, kLevelSeconds),
       busy_(kBusyRelease, kBusyMinimum),
       packet_length_(kPostChirpStart * modem.sample_rate) {
@@ -363,11 +368,21 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   if (CrcMatches(frame, modem_.crc)) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(frame.begin() + 1, frame.begin() + 1 + kDataBytes);
+    ev.arrival = Arrival(pre);
   } else {
     ev.kind = RxEvent::Kind::kNoise;
     ev.noise = RxEvent::Noise::kBadCrc;
   }
   return ev;
+}
+
+double RoomReceiver::Arrival(const ChirpPeak& pre) const {
+  const double fs = modem_.sample_rate;
+  const std::int64_t from = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(pre.sample - kArrivalBefore * fs)));
+  const std::size_t count = detector_.length() + static_cast<std::size_t>(std::lround((kArrivalBefore + kArrivalAfter) * fs));
+  std::vector<float> heard(count);
+  for (std::size_t k = 0; k < count; ++k) heard[k] = Sample(from + static_cast<std::int64_t>(k));
+  return static_cast<double>(from) / fs + FirstArrival(heard.data(), count, chirp_, fs);
 }
 
 }  // namespace nava_modem

@@ -3,13 +3,15 @@
 # make_speech.sh is resampled and mixed, the summary line; a 4-microphone render; the room
 # profile through a room where the reverberation is louder than the direct sound; a render
 # through a measured response (--rir); then the tools' answers to bad input.
-#   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH
+#   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH NAVA_BENCH
+# (nava_bench for its --arrival mode: room packets timed through measured responses)
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
 tool=$1
 encode=$2
 decode=$3
 make_speech=$4
+bench=$5
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 source "$(dirname "$0")/../../test/tool_checks.sh"
@@ -66,6 +68,29 @@ grep -q "measured response $out/response.wav channel 1 (.* samples), DRR .* dB i
 decodes "$out/measured.wav"
 # Its delay is kept: the packets start 20 ms later than in the clean file (0.5 s).
 grep -q '"kind": "packet".*"start": 0\.52[01]' "$out/decoded" || { cat "$out/decoded"; fail "the response's 20 ms delay was not kept"; }
+# The nava profile does not time its packets; the room profile does: the first packet's first
+# sample left at 0.5 s, and its direct sound (the click, 20 ms late) rises to half its peak a
+# little before 20 ms.
+grep -q '"kind": "packet".*"arrival": null' "$out/decoded" || { cat "$out/decoded"; fail "a nava packet was timed"; }
+"$encode" --profile room --out "$out/room_clean.wav" 01020304 || fail "nava_encode --profile room failed"
+"$tool" --in "$out/room_clean.wav" --out "$out/room_measured.wav" --rir "$out/response_mono.wav" --noise white --snr 10 \
+  2>"$out/stderr" || { cat "$out/stderr"; fail "room packets through a measured response failed"; }
+"$decode" --profile room "$out/room_measured.wav" >"$out/decoded" || fail "nava_decode --profile room failed"
+arrival=$(sed -n 's/.*"kind": "packet".*"arrival": \([0-9.]*\).*/\1/p' "$out/decoded" | head -n 1)
+awk -v a="$arrival" 'BEGIN { exit !(a > 0.5197 && a < 0.5201) }' || { cat "$out/decoded"; fail "arrival '$arrival': expected 0.5197 to 0.5201 s"; }
+# nava_bench --arrival over a folder holding that response: every packet timed, the targets met.
+mkdir -p "$out/rooms"
+cp "$out/response.wav" "$out/rooms/"
+"$bench" --arrival --rir-dir "$out/rooms" --packets 3 >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --arrival failed"; }
+grep -q "^response.wav:1 .* 3/3 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --arrival did not time every packet"; }
+grep -q "target: median <= 100 us and p90 <= 300 us: yes" "$out/bench" || { cat "$out/bench"; fail "nava_bench --arrival missed its target"; }
+tool_was=$tool
+tool=$bench
+expect_error "--arrival: expected --rir-dir DIR" --arrival
+mkdir -p "$out/nothing_here"
+expect_error "--rir-dir $out/nothing_here: no audio files" --arrival --rir-dir "$out/nothing_here"
+expect_error "--rir-dir $out/missing: No such file" --arrival --rir-dir "$out/missing"
+tool=$tool_was
 sox -n -r 48000 -c 1 "$out/silent.wav" trim 0 0.1 || fail "sox could not make silence"
 expect_error "--rir $out/response.wav: 2 channels: expected one, or a channel chosen (--channel 0..1)" \
   --in "$out/clean.wav" --out "$out/x.wav" --rir "$out/response.wav"

@@ -8,6 +8,7 @@
 //              [--rir-dir DIR [--rir-packets 20] [--measured-only]]
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
+//   nava_bench --arrival --rir-dir DIR [--packets 10] [--snr 10] [--min-drr -8] [--seed 1] [--rate 48000]
 //
 // The decode tables of the simulated `acoustic` channel are measured with the same receivers by
 // audio_propagation's decode_table_bench, where the tables live.
@@ -28,6 +29,8 @@
 // room, N packets from random bearings at 2 m (nava_room's array renderer), decoded as the link
 // does it (DecodeArray): the share of right front/back bits or the median and 90th-percentile
 // bearing error, the estimator's CPU time against the decoding's, the targets, and a polar PNG.
+// With --arrival: how well room packets are timed (their first arrival) through each measured
+// room (arrival_table.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -47,6 +50,8 @@
 #include "modem_args.h"
 #include "nava_bench_args.h"
 #include "nava_bench_support.h"
+#include "measured_rooms.h"
+#include "arrival_table.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/room_array.h"
@@ -364,54 +369,6 @@ int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
 }
 
 
-// One measured room: a channel of a response file, with its figures in the modems' band.
-struct MeasuredRoom {
-  std::string name;  // file name, and ":K" for channel K of a file with several
-  std::string path;
-  int channel = 0;
-  ResponseMeasures figures;
-};
-
-// Every channel of every audio file in `dir` (sorted by name), each a room; other files (a
-// README) are passed over. A file that cannot serve fails the bench, naming it.
-std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const ToolUsage& usage) {
-  std::vector<std::string> files;
-  std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
-    std::string ext = entry.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (entry.is_regular_file() && (ext == ".wav" || ext == ".flac" || ext == ".aif" || ext == ".aiff")) {
-      files.push_back(entry.path().string());
-    }
-  }
-  if (error) usage.Fail("--rir-dir " + dir + ": " + error.message());
-  if (files.empty()) usage.Fail("--rir-dir " + dir + ": no audio files (.wav, .flac, .aif): expected impulse responses");
-  std::sort(files.begin(), files.end());
-  std::vector<MeasuredRoom> rooms;
-  for (const std::string& path : files) {
-    MultiAudio audio;
-    try {
-      audio = ReadAudioChannels(path);
-    } catch (const std::exception& e) {
-      usage.Fail(std::string("--rir-dir: ") + e.what());
-    }
-    const int channels = static_cast<int>(audio.channels.size());
-    for (int c = 0; c < channels; ++c) {
-      MeasuredRoom room;
-      room.path = path;
-      room.channel = c;
-      room.name = std::filesystem::path(path).filename().string() + (channels > 1 ? ":" + std::to_string(c) : "");
-      try {
-        room.figures = MeasureResponse(LoadImpulseResponse(path, c, audio.sample_rate), audio.sample_rate);
-      } catch (const std::exception& e) {
-        usage.Fail(std::string("--rir-dir: ") + path + " channel " + std::to_string(c) + ": " + e.what());
-      }
-      rooms.push_back(room);
-    }
-  }
-  return rooms;
-}
-
 // The conditions every measured room is heard under: white noise at full-band SNR 20 and 0 dB,
 // and speech at SIR 0 dB over the 20 dB noise.
 std::vector<RoomCondition> MeasuredConditions() {
@@ -704,6 +661,8 @@ int main(int argc, char** argv) {
     switch (o.mode) {
       case NavaBenchOptions::Mode::kDoa:
         return DoaTable(o.doa, o.usage);
+      case NavaBenchOptions::Mode::kArrival:
+        return ArrivalTable(o.arrival, o.usage);
       case NavaBenchOptions::Mode::kRooms:
         return RoomsTable(o.rooms, o.usage);
       case NavaBenchOptions::Mode::kWhiteNoise:

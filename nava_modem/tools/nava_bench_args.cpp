@@ -72,17 +72,32 @@ DoaRequest ParseDoa(const ToolArgs& args) {
   return r;
 }
 
-// "-30,-27,-24" as an ascending axis; else the tool fails naming the flag.
+ArrivalRequest ParseArrival(const ToolArgs& args) {
+  ArrivalRequest r;
+  r.rir_dir = args.String("--rir-dir", "");
+  r.packets = static_cast<int>(args.Int("--packets", 10, 1, 100000));
+  r.snr_db = args.Double("--snr", 10.0, -60.0, 100.0);
+  r.min_drr_db = args.Double("--min-drr", -8.0, -60.0, 60.0);
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.options = ModemArgs(args);
+  args.CheckAllUsed();
+  if (r.rir_dir.empty()) args.Fail("--arrival: expected --rir-dir DIR, a folder of measured impulse responses");
+  return r;
+}
+
 }  // namespace
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
-  if (args.Switch("--doa")) {
+  if (args.Switch("--arrival")) {
+    o.mode = NavaBenchOptions::Mode::kArrival;
+    o.arrival = ParseArrival(args);
+  } else if (args.Switch("--doa")) {
     o.mode = NavaBenchOptions::Mode::kDoa;
     o.doa = ParseDoa(args);
   } else if (args.Switch("--rooms")) {

@@ -41,12 +41,23 @@ struct DoaRequest {
   ModemOptions options;
 };
 
+// nava_bench --arrival --rir-dir DIR: first arrivals of room packets through measured responses.
+struct ArrivalRequest {
+  std::string rir_dir;
+  int packets = 10;         // per room
+  double snr_db = 10.0;     // white noise, full band
+  double min_drr_db = -8.0;  // rooms below this DRR are listed, not counted in the targets
+  unsigned seed = 1;
+  ModemOptions options;
+};
+
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa };
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
   DoaRequest doa;
+  ArrivalRequest arrival;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };
 

@@ -7,6 +7,9 @@
 // channel i from the microphone at (xi, yi) m in the robot's frame; each line then also gives
 // "direction" (rad, CCW from the robot's +x, null when the array cannot tell) and
 // "direction_confidence" (0..1), estimated from that event's samples on all channels.
+// "arrival": when the packet's first sample, as sent, reached the microphone by the shortest way
+// (s from the file's start, 6 decimals: the leading edge of its direct sound, first_arrival.h);
+// null for noise and where the profile does not time packets.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +33,14 @@ std::string DirectionJson(const RxEvent& e) {
   } else {
     std::snprintf(text, sizeof text, ", \"direction\": %.4f, \"direction_confidence\": %.2f", e.direction, e.direction_confidence);
   }
+  return text;
+}
+
+// The packet's first arrival, 6 decimals (a microsecond); null where it was not timed.
+std::string ArrivalJson(const RxEvent& e) {
+  if (std::isnan(e.arrival)) return ", \"arrival\": null";
+  char text[48];
+  std::snprintf(text, sizeof text, ", \"arrival\": %.6f", e.arrival);
   return text;
 }
 
@@ -83,10 +94,10 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < events.size(); ++k) {
       const RxEvent& e = events[k];
       std::printf("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"level_db\": %.1f, "
-                  "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s}\n",
+                  "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s%s}\n",
                   e.end, e.kind == RxEvent::Kind::kPacket ? "packet" : "noise", NoiseName(e.noise),
                   tools::HexBytes(e.data).c_str(), e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error,
-                  o.mics ? DirectionJson(e).c_str() : "");
+                  ArrivalJson(e).c_str(), o.mics ? DirectionJson(e).c_str() : "");
     }
     return 0;
   });

@@ -51,6 +51,10 @@ struct RxEvent {
   // (0 to 1), from a microphone array; a single microphone leaves them NaN and 0.
   double direction = std::numeric_limits<double>::quiet_NaN();
   double direction_confidence = 0.0;
+  // When the packet's first sample, as sent, reached the microphone by the shortest way (the
+  // leading edge of its direct or diffracted sound, first_arrival.h), s since the first sample,
+  // finer than a sample; NaN where the receiver does not time packets or for noise.
+  double arrival = std::numeric_limits<double>::quiet_NaN();
 };
 const char* NoiseName(RxEvent::Noise noise);  // none, zero_byte, one_byte, bad_crc
 

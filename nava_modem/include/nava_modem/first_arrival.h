@@ -1,0 +1,36 @@
+#pragma once
+
+// When a known sound first reached a microphone: the leading edge of its direct (or, round a
+// corner, diffracted) arrival, finer than a sample. The base of acoustic ranging: the first
+// arrival is the shortest way, whatever the room adds after it. No ROS.
+//
+// The definition, the same for a measured response and for a packet heard: the channel's
+// impulse response is read in the modems' band (600-5400 Hz, as MeasureResponse reads it), its
+// envelope is the magnitude of its analytic signal, the direct sound is the earliest peak of that
+// envelope within kDirectWithinDb of its largest, and the arrival is where the envelope, rising
+// to that peak, first reaches half of it. (For a bare delay that is a little before the delay
+// itself: the band's pulse rises over about 0.1 ms. Ranging takes differences, and both sides of
+// a check use the same definition, so the offset cancels.)
+#include <cstddef>
+#include <vector>
+
+namespace nava_modem {
+
+// The direct sound's peak is the first within this of the largest (a reflection can be
+// stronger than the direct sound, behind a head or a corner, but not by more).
+constexpr double kDirectWithinDb = 12.0;
+
+// Seconds from received[0] at which `reference`'s first sample reached the microphone: the
+// leading edge of the impulse response found by dividing received's spectrum by reference's in
+// the band (regularised where the reference is weak), looked for at delays 0 to
+// `count - reference.size()` samples. NaN when nothing stands out there (silence). Throws
+// std::invalid_argument for an empty reference, a count shorter than it, or a sample rate
+// below 2 x 5400 Hz.
+double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate);
+
+// The leading edge of a response's direct sound, seconds from its first sample: the truth a
+// FirstArrival through that response is judged against. Throws as FirstArrival does, and for an
+// empty response.
+double LeadingEdge(const std::vector<float>& response, double sample_rate);
+
+}  // namespace nava_modem

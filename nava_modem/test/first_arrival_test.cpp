@@ -1,0 +1,175 @@
+// First arrivals: the leading edge of a response's direct sound, and the arrival of a known sound
+// heard through a room, on responses of our own with what measured rooms have (a reflection
+// stronger than the direct sound, early reflections within a few ms, a reverberant tail, noise).
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "nava_modem/first_arrival.h"
+#include "nava_modem/modem_profile.h"
+#include "nava_modem/room_channel.h"
+#include "nava_modem/room_phy.h"
+
+namespace nava_modem {
+namespace {
+
+constexpr double kRate = 48000.0;
+
+// A unit impulse `delay` samples late, fractional delays by a Hann-windowed sinc.
+void AddImpulse(std::vector<float>& h, double delay, double gain) {
+  const int half = 32;
+  const long centre = std::lround(std::floor(delay));
+  for (long k = centre - half; k <= centre + half; ++k) {
+    if (k < 0 || k >= static_cast<long>(h.size())) continue;
+    const double x = static_cast<double>(k) - delay;
+    const double sinc = std::abs(x) < 1e-12 ? 1.0 : std::sin(M_PI * x) / (M_PI * x);
+    const double hann = 0.5 + 0.5 * std::cos(M_PI * x / (half + 1));
+    h[static_cast<std::size_t>(k)] += static_cast<float>(gain * sinc * hann);
+  }
+}
+
+std::vector<float> Impulse(double delay, std::size_t length = 4800) {
+  std::vector<float> h(length, 0.0f);
+  AddImpulse(h, delay, 1.0);
+  return h;
+}
+
+// A room as measured ones are: the direct sound at `delay` samples, a floor reflection 0.4 ms and a
+// wall reflection 1.3 ms after it, a reflection 2 ms after it that is louder than the direct
+// sound (a head or an obstacle shadowing the direct way), and a decaying tail from 3 ms.
+std::vector<float> HardRoom(double delay, double rt60, unsigned seed) {
+  std::vector<float> h(static_cast<std::size_t>(delay + 1.2 * rt60 * kRate), 0.0f);
+  AddImpulse(h, delay, 1.0);
+  AddImpulse(h, delay + 0.0004 * kRate, -0.7);
+  AddImpulse(h, delay + 0.0013 * kRate, 0.6);
+  AddImpulse(h, delay + 0.0020 * kRate, 1.5);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, 0.03);
+  for (std::size_t k = static_cast<std::size_t>(delay + 0.003 * kRate); k < h.size(); ++k) {
+    const double t = (static_cast<double>(k) - delay) / kRate;
+    h[k] += static_cast<float>(gauss(rng) * std::exp(-6.907755 * t / rt60));
+  }
+  return h;
+}
+
+TEST(LeadingEdgeTest, MovesWithTheDelayToAFractionOfASample) {
+  const double base = LeadingEdge(Impulse(1000.0), kRate);
+  for (double delay : {1000.25, 1000.5, 1003.75, 1400.0, 2000.125}) {
+    const double moved = LeadingEdge(Impulse(delay), kRate) - base;
+    EXPECT_NEAR(moved, (delay - 1000.0) / kRate, 1e-6) << delay;
+  }
+}
+
+TEST(LeadingEdgeTest, ABareDelaysEdgeIsTheBandsRiseBeforeIt) {
+  const double edge = LeadingEdge(Impulse(1000.0), kRate);
+  EXPECT_LT(edge, 1000.0 / kRate);
+  EXPECT_GT(edge, 1000.0 / kRate - 0.0002);
+}
+
+TEST(LeadingEdgeTest, IsTheDirectSoundsEvenUnderAStrongerReflection) {
+  const double bare = LeadingEdge(Impulse(1000.0), kRate);
+  std::vector<float> h = Impulse(1000.0);
+  AddImpulse(h, 1000.0 + 0.001 * kRate, 1.8);  // 5 dB louder, 1 ms later
+  // Its pulse's low skirt (the band's roll-off spreads it over a few ms) lifts the direct
+  // sound's rise a little.
+  EXPECT_NEAR(LeadingEdge(h, kRate), bare, 2e-5);
+  // 20 dB louder: beyond what a direct sound can be under, so the reflection is taken.
+  std::vector<float> shadowed = Impulse(1000.0);
+  AddImpulse(shadowed, 1000.0 + 0.001 * kRate, 10.0);
+  EXPECT_NEAR(LeadingEdge(shadowed, kRate), bare + 0.001, 5e-6);
+}
+
+TEST(LeadingEdgeTest, RefusesWhatItCannotMeasure) {
+  EXPECT_THROW(LeadingEdge({}, kRate), std::invalid_argument);
+  EXPECT_THROW(LeadingEdge(Impulse(100.0), 8000.0), std::invalid_argument);
+  EXPECT_TRUE(std::isnan(LeadingEdge(std::vector<float>(4800, 0.0f), kRate)));
+}
+
+// The chirp that begins a room packet, heard through `h` with white noise at `snr_db` (full
+// band, over the packet's power; none at infinity): its arrival, from a window that begins `before_s` ahead of
+// where it starts, against the response's leading edge.
+double ArrivalError(const std::vector<float>& h, double snr_db, unsigned seed) {
+  const std::unique_ptr<ModemProfile> room = MakeProfile(Profile::kRoom, ModemOptions{});
+  std::vector<float> clean(static_cast<std::size_t>(0.3 * kRate), 0.0f);
+  const std::vector<float> packet = room->ModulatePacket({1, 2, 3, 4});
+  const std::size_t start = clean.size();
+  clean.insert(clean.end(), packet.begin(), packet.end());
+  clean.resize(clean.size() + static_cast<std::size_t>(0.3 * kRate), 0.0f);
+  RoomOptions o;
+  o.response = h;
+  if (std::isfinite(snr_db)) {
+    o.noise = RoomOptions::Noise::kWhite;
+    o.snr_db = snr_db;
+  }
+  o.seed = seed;
+  const std::vector<float> heard = RenderRoom(clean, kRate, o);
+  const std::vector<float> chirp = room_phy::Chirp(kRate);
+  const std::size_t from = start - static_cast<std::size_t>(0.025 * kRate);
+  const std::size_t count = chirp.size() + static_cast<std::size_t>(0.025 * kRate + 0.05 * kRate);
+  const double arrival = static_cast<double>(from) / kRate + FirstArrival(heard.data() + from, count, chirp, kRate);
+  return arrival - (static_cast<double>(start) / kRate + LeadingEdge(h, kRate));
+}
+
+TEST(FirstArrivalTest, AChirpThroughABareDelayArrivesAtTheResponsesEdge) {
+  for (double delay : {100.0, 333.3, 900.6}) EXPECT_NEAR(ArrivalError(Impulse(delay), INFINITY, 1), 0.0, 5e-6) << delay;
+}
+
+TEST(FirstArrivalTest, EarlyReflectionsATailAndNoiseLeaveTheEdgeWithinTensOfMicroseconds) {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    for (double snr : {20.0, 10.0, 0.0}) {
+      const std::vector<float> h = HardRoom(200.0 + 37.3 * seed, 0.5, seed);
+      EXPECT_NEAR(ArrivalError(h, snr, seed), 0.0, 1.5e-5) << "seed " << seed << " snr " << snr;
+    }
+  }
+}
+
+// The room receiver times every packet it decodes, on its own clock, and nothing else.
+TEST(FirstArrivalTest, TheRoomReceiverTimesEachPacketItDecodes) {
+  const std::unique_ptr<ModemProfile> room = MakeProfile(Profile::kRoom, ModemOptions{});
+  const std::vector<float> h = HardRoom(300.0, 0.6, 7);
+  std::vector<float> clean;
+  std::vector<double> starts;
+  for (std::uint8_t p = 0; p < 3; ++p) {
+    clean.resize(clean.size() + static_cast<std::size_t>((0.5 + 0.1 * p) * kRate) + p, 0.0f);
+    starts.push_back(static_cast<double>(clean.size()) / kRate);
+    const std::vector<float> packet = room->ModulatePacket({p, 1, 2, 3});
+    clean.insert(clean.end(), packet.begin(), packet.end());
+  }
+  clean.resize(clean.size() + static_cast<std::size_t>(kRate), 0.0f);
+  RoomOptions o;
+  o.response = h;
+  o.noise = RoomOptions::Noise::kWhite;
+  o.snr_db = 10.0;
+  const std::vector<float> heard = RenderRoom(clean, kRate, o);
+  std::vector<RxEvent> events;
+  const auto receiver = room->MakeReceiver(ReceiverOptions{});
+  receiver->Process(heard.data(), heard.size(), events);
+  receiver->Flush(events);
+  const double edge = LeadingEdge(h, kRate);
+  std::size_t packets = 0;
+  for (const RxEvent& e : events) {
+    if (e.kind != RxEvent::Kind::kPacket) {
+      EXPECT_TRUE(std::isnan(e.arrival)) << "noise was timed";
+      continue;
+    }
+    ASSERT_EQ(e.data.size(), 4u);
+    ASSERT_LT(e.data[0], 3);
+    EXPECT_NEAR(e.arrival, starts[e.data[0]] + edge, 1.5e-5) << "packet " << static_cast<int>(e.data[0]);
+    ++packets;
+  }
+  EXPECT_EQ(packets, 3u);
+}
+
+TEST(FirstArrivalTest, SilenceHasNoArrivalAndBadCallsAreRefused) {
+  const std::vector<float> chirp = room_phy::Chirp(kRate);
+  const std::vector<float> silence(chirp.size() * 2, 0.0f);
+  EXPECT_TRUE(std::isnan(FirstArrival(silence.data(), silence.size(), chirp, kRate)));
+  EXPECT_THROW(FirstArrival(silence.data(), chirp.size() - 1, chirp, kRate), std::invalid_argument);
+  EXPECT_THROW(FirstArrival(silence.data(), silence.size(), {}, kRate), std::invalid_argument);
+  EXPECT_THROW(FirstArrival(silence.data(), silence.size(), chirp, 0.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace nava_modem

@@ -1,0 +1,89 @@
+#include "arrival_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "measured_rooms.h"
+#include "nava_bench_support.h"
+#include "nava_modem/first_arrival.h"
+#include "nava_modem/modem_profile.h"
+#include "nava_modem/room_channel.h"
+
+namespace nava_modem::tools {
+namespace {
+
+constexpr double kTargetMedianS = 0.0001, kTargetP90S = 0.0003;
+
+// The q-quantile of |errors| (nearest rank); NaN for none.
+double AbsQuantile(std::vector<double> errors, double q) {
+  if (errors.empty()) return std::nan("");
+  for (double& e : errors) e = std::abs(e);
+  std::sort(errors.begin(), errors.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(errors.size())));
+  return errors[std::min(errors.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+}  // namespace
+
+int ArrivalTable(const ArrivalRequest& request, const multirobot_audio::tools::ToolUsage& usage) {
+  const ModemOptions& options = request.options;
+  const double fs = options.sample_rate;
+  const std::vector<MeasuredRoom> rooms = MeasuredRooms(request.rir_dir, usage);
+  const std::unique_ptr<ModemProfile> profile = MakeProfile(Profile::kRoom, options);
+  std::mt19937 rng(request.seed);
+  const CleanSignal clean = RandomPackets(*profile, request.packets, 0.6, 0.4, rng);
+  std::vector<double> starts;  // where each packet begins in the clean signal, s
+  for (int p = 0; p < request.packets; ++p) {
+    starts.push_back(p == 0 ? std::floor(0.6 * fs) / fs : static_cast<double>(clean.ends[static_cast<std::size_t>(p) - 1]) / fs);
+  }
+  std::printf("first arrivals (%s): %d room packets per room at %.0f Hz, white noise at SNR %.0f dB; "
+              "error = arrival - (sent + the response's leading edge)\n",
+              request.rir_dir.c_str(), request.packets, fs, request.snr_db);
+  std::printf("%-44s %7s %6s %7s %10s %10s %10s\n", "room", "drr_dB", "rt60_s", "timed", "median_us", "p90_us", "worst_us");
+  std::vector<double> counted;
+  int counted_rooms = 0, counted_sent = 0;
+  for (const MeasuredRoom& room : rooms) {
+    const std::vector<float> response = LoadImpulseResponse(room.path, room.channel, fs);
+    const double edge = LeadingEdge(response, fs);
+    RoomOptions o;
+    o.response = response;
+    o.noise = RoomOptions::Noise::kWhite;
+    o.snr_db = request.snr_db;
+    o.seed = request.seed + 11;
+    const std::vector<float> heard = RenderRoom(clean.samples, fs, o);
+    std::vector<RxEvent> events;
+    const auto receiver = profile->MakeReceiver(ReceiverOptions{});
+    receiver->Process(heard.data(), heard.size(), events);
+    receiver->Flush(events);
+    std::vector<double> errors;
+    for (const RxEvent& e : events) {
+      if (e.kind != RxEvent::Kind::kPacket || std::isnan(e.arrival)) continue;
+      // The packet sent nearest before its arrival, and only if it carries the same data.
+      const auto after = std::upper_bound(starts.begin(), starts.end(), e.arrival - edge + 0.05);
+      if (after == starts.begin()) continue;
+      const std::size_t p = static_cast<std::size_t>(after - starts.begin()) - 1;
+      if (HexBytes(e.data) != clean.sent[p]) continue;
+      errors.push_back(e.arrival - (starts[p] + edge));
+    }
+    const bool counts = room.figures.drr_db >= request.min_drr_db;
+    if (counts) {
+      counted.insert(counted.end(), errors.begin(), errors.end());
+      ++counted_rooms;
+      counted_sent += request.packets;
+    }
+    std::printf("%-44s %+7.1f %6.2f %4zu/%-2d %10.1f %10.1f %10.1f%s\n", room.name.c_str(), room.figures.drr_db,
+                room.figures.rt60_s, errors.size(), request.packets, AbsQuantile(errors, 0.5) * 1e6,
+                AbsQuantile(errors, 0.9) * 1e6, AbsQuantile(errors, 1.0) * 1e6, counts ? "" : "  (below --min-drr)");
+  }
+  const double median = AbsQuantile(counted, 0.5), p90 = AbsQuantile(counted, 0.9);
+  std::printf("rooms with DRR >= %+.1f dB: %d, packets timed %zu/%d, median %.1f us, p90 %.1f us\n", request.min_drr_db,
+              counted_rooms, counted.size(), counted_sent, median * 1e6, p90 * 1e6);
+  std::printf("target: median <= %.0f us and p90 <= %.0f us: %s\n", kTargetMedianS * 1e6, kTargetP90S * 1e6,
+              median <= kTargetMedianS && p90 <= kTargetP90S ? "yes" : "NO");
+  return 0;
+}
+
+}  // namespace nava_modem::tools

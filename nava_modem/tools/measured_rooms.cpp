@@ -1,0 +1,52 @@
+#include "measured_rooms.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+
+#include "nava_modem/wav_file.h"
+
+namespace nava_modem::tools {
+
+using multirobot_audio::tools::ToolUsage;
+
+std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const ToolUsage& usage) {
+  std::vector<std::string> files;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    std::string ext = entry.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (entry.is_regular_file() && (ext == ".wav" || ext == ".flac" || ext == ".aif" || ext == ".aiff")) {
+      files.push_back(entry.path().string());
+    }
+  }
+  if (error) usage.Fail("--rir-dir " + dir + ": " + error.message());
+  if (files.empty()) usage.Fail("--rir-dir " + dir + ": no audio files (.wav, .flac, .aif): expected impulse responses");
+  std::sort(files.begin(), files.end());
+  std::vector<MeasuredRoom> rooms;
+  for (const std::string& path : files) {
+    MultiAudio audio;
+    try {
+      audio = ReadAudioChannels(path);
+    } catch (const std::exception& e) {
+      usage.Fail(std::string("--rir-dir: ") + e.what());
+    }
+    const int channels = static_cast<int>(audio.channels.size());
+    for (int c = 0; c < channels; ++c) {
+      MeasuredRoom room;
+      room.path = path;
+      room.channel = c;
+      room.name = std::filesystem::path(path).filename().string() + (channels > 1 ? ":" + std::to_string(c) : "");
+      try {
+        room.figures = MeasureResponse(LoadImpulseResponse(path, c, audio.sample_rate), audio.sample_rate);
+      } catch (const std::exception& e) {
+        usage.Fail(std::string("--rir-dir: ") + path + " channel " + std::to_string(c) + ": " + e.what());
+      }
+      rooms.push_back(room);
+    }
+  }
+  return rooms;
+}
+
+}  // namespace nava_modem::tools

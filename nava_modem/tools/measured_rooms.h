@@ -1,0 +1,26 @@
+#pragma once
+
+// The measured rooms of a folder of impulse responses (nava_bench --rir-dir): every channel of
+// every audio file a room, with its figures in the modems' band.
+#include <string>
+#include <vector>
+
+#include "nava_modem/measured_response.h"
+#include "tool_args/usage_error.h"
+
+namespace nava_modem::tools {
+
+// One measured room: a channel of a response file, with its figures in the modems' band.
+struct MeasuredRoom {
+  std::string name;  // file name, and ":K" for channel K of a file with several
+  std::string path;
+  int channel = 0;
+  ResponseMeasures figures;
+};
+
+// Every channel of every audio file in `dir` (sorted by name), each a room; other files (a
+// README) are passed over. A folder without audio files, or a file that cannot serve, fails the
+// tool through `usage`, naming it.
+std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const multirobot_audio::tools::ToolUsage& usage);
+
+}  // namespace nava_modem::tools
