@@ -24,6 +24,7 @@ LEVELS = {
     "bench_support": 1,   # what the benches of several components share
     "grid": 2,            # maps, line of sight, the input checks everyone shares
     "nava_modem": 2,      # the audio link: modem profiles, framing, MAC, audio I/O
+    "ranging": 2,         # two-way acoustic ranging from timings of packets
     "behaviours": 3,      # reactive robot behaviours (the wanderer)
     "world_sim": 4,       # the simulated world
     "local_navigation": 5,  # driving with no global map (and world_sim's readings for it)
