@@ -54,7 +54,9 @@ double HalfPeakEdge(const std::vector<double>& env) {
 
 }  // namespace
 
-double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate) {
+double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
+                    double* clarity) {
+  if (clarity) *clarity = 0.0;
   if (reference.empty()) throw std::invalid_argument("first arrival: expected a reference sound, got none");
   if (count < reference.size()) {
     throw std::invalid_argument("first arrival: " + std::to_string(count) + " samples received, expected at least the reference's " +
@@ -96,8 +98,14 @@ double FirstArrival(const float* received, std::size_t count, const std::vector<
   const std::size_t lags = count - reference.size() + 1;
   std::vector<double> env(lags);
   for (std::size_t i = 0; i < lags; ++i) env[i] = std::abs(analytic.complex_output()[i]);
-  const double edge = HalfPeakEdge(env);
-  return edge / sample_rate;
+  if (clarity && !env.empty()) {
+    std::vector<double> sorted = env;
+    const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+    std::nth_element(sorted.begin(), mid, sorted.end());
+    const double largest = *std::max_element(env.begin(), env.end());
+    *clarity = *mid > 0.0 ? largest / *mid : (largest > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  }
+  return HalfPeakEdge(env) / sample_rate;
 }
 
 double LeadingEdge(const std::vector<float>& response, double sample_rate) {

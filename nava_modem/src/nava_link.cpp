@@ -48,6 +48,9 @@ void ValidateLinkOptions(const LinkOptions& o) {
   if (!(o.max_capture_lag > 0.0 && o.max_capture_lag <= 10.0)) {
     throw std::invalid_argument("max capture lag " + std::to_string(o.max_capture_lag) + " s: expected above 0 and at most 10");
   }
+  if (!(o.max_loop > 0.0 && o.max_loop <= 10.0)) {
+    throw std::invalid_argument("max loop " + std::to_string(o.max_loop) + " s: expected above 0 and at most 10");
+  }
 }
 
 NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock)
@@ -59,6 +62,7 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock
       samples_per_tick_(mac_.tick_seconds() * options_.modem.sample_rate),
       block_(static_cast<std::size_t>(std::max(1.0, std::round(kBlockSeconds * options_.modem.sample_rate)))),
       channels_(static_cast<std::size_t>(device.capture_channels())),
+      self_timer_(*profile_, options_.max_loop),
       clock_(clock),
       reopen_(options_.reopen) {
   if (options_.microphones.size() >= 2) {
@@ -105,6 +109,9 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
   const std::size_t first_new = events.size();
   receiver_->Process(in_.data(), count, events);
   if (estimator_) EstimateDirections(events, first_new);
+  std::vector<OwnTiming> own;
+  self_timer_.Heard(in_.data(), count, own);
+  KeepOwnTimings(own);
   // The thesis's receiver threshold is the MAC's, known once calibration ends: from then on,
   // busy air with no packet is ZERO_BYTE noise.
   if (!threshold_shared_ && before != MacState::kCalibrating) {
@@ -116,6 +123,7 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
   const bool may_send = !behind_ || samples_done_ - behind_since_ > std::llround(kLongestHoldSeconds * options_.modem.sample_rate);
   if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db(), may_send)) {
     burst_ = profile_->ModulatePacket(*packet);
+    self_timer_.Sent(*packet, burst_, time());
     // It starts with this tick's playback.
     in_flight_.push_back({std::move(*packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
     burst_at_ = 0;
@@ -249,6 +257,8 @@ void NavaLink::EndHearing(std::vector<RxEvent>& events) {
   const double rate = options_.modem.sample_rate;
   const std::size_t unheard = captured_.size() - captured_at_;
   receiver_->Process(captured_.data() + captured_at_, unheard, events);
+  std::vector<OwnTiming> own;
+  self_timer_.Heard(captured_.data() + captured_at_, unheard, own);
   captured_.clear();
   captured_at_ = 0;
   const double before = receiver_->time();
@@ -261,6 +271,8 @@ void NavaLink::EndHearing(std::vector<RxEvent>& events) {
   }
   frames_read_ += silence;
   samples_flushed_ += static_cast<std::int64_t>(unheard) + silence;
+  self_timer_.Skip(static_cast<double>(silence) / rate, own);
+  KeepOwnTimings(own);
   if (estimator_) EstimateDirections(events, first);
 }
 
@@ -280,6 +292,21 @@ void NavaLink::TryReopen() {
   device_down_ = false;
   ++reopens_;
   underruns_seen_ = device_.underruns();
+}
+
+void NavaLink::KeepOwnTimings(std::vector<OwnTiming>& fresh) {
+  for (OwnTiming& t : fresh) own_timings_.push_back(std::move(t));
+  if (own_timings_.size() > kMaxOwnTimings) {
+    const std::size_t extra = own_timings_.size() - kMaxOwnTimings;
+    own_timings_.erase(own_timings_.begin(), own_timings_.begin() + static_cast<std::ptrdiff_t>(extra));
+    own_timings_dropped_ += extra;
+  }
+}
+
+std::vector<OwnTiming> NavaLink::TakeOwnTimings() {
+  std::vector<OwnTiming> out;
+  out.swap(own_timings_);
+  return out;
 }
 
 }  // namespace nava_modem

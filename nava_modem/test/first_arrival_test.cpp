@@ -166,6 +166,18 @@ TEST(FirstArrivalTest, SilenceHasNoArrivalAndBadCallsAreRefused) {
   const std::vector<float> chirp = room_phy::Chirp(kRate);
   const std::vector<float> silence(chirp.size() * 2, 0.0f);
   EXPECT_TRUE(std::isnan(FirstArrival(silence.data(), silence.size(), chirp, kRate)));
+  // Noise without the chirp in it stands out far less than the chirp in the same noise.
+  std::vector<float> noise(chirp.size() * 4);
+  std::mt19937 rng(3);
+  std::normal_distribution<float> gauss(0.0f, 0.1f);
+  for (float& v : noise) v = gauss(rng);
+  double without = 0.0, with = 0.0;
+  FirstArrival(noise.data(), noise.size(), chirp, kRate, &without);
+  for (std::size_t k = 0; k < chirp.size(); ++k) noise[1000 + k] += 0.1f * chirp[k];
+  const double arrival = FirstArrival(noise.data(), noise.size(), chirp, kRate, &with);
+  EXPECT_LT(without, 6.0);
+  EXPECT_GT(with, 30.0);
+  EXPECT_NEAR(arrival, 1000.0 / kRate, 2e-4);
   EXPECT_THROW(FirstArrival(silence.data(), chirp.size() - 1, chirp, kRate), std::invalid_argument);
   EXPECT_THROW(FirstArrival(silence.data(), silence.size(), {}, kRate), std::invalid_argument);
   EXPECT_THROW(FirstArrival(silence.data(), silence.size(), chirp, 0.0), std::invalid_argument);

@@ -23,10 +23,13 @@ constexpr double kDirectWithinDb = 12.0;
 // Seconds from received[0] at which `reference`'s first sample reached the microphone: the
 // leading edge of the impulse response found by dividing received's spectrum by reference's in
 // the band (regularised where the reference is weak), looked for at delays 0 to
-// `count - reference.size()` samples. NaN when nothing stands out there (silence). Throws
+// `count - reference.size()` samples; NaN for silence. With `clarity`, also how far the
+// response's largest envelope stands above its median over the search (an amplitude ratio):
+// noise without the reference in it gives a few; a sound that arrived, tens to thousands. Throws
 // std::invalid_argument for an empty reference, a count shorter than it, or a sample rate
 // below 2 x 5400 Hz.
-double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate);
+double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
+                    double* clarity = nullptr);
 
 // The leading edge of a response's direct sound, seconds from its first sample: the truth a
 // FirstArrival through that response is judged against. Throws as FirstArrival does, and for an

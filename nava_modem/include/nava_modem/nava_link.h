@@ -12,6 +12,7 @@
 #include "nava_modem/direction_estimator.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/reopen_schedule.h"
+#include "nava_modem/self_timer.h"
 
 namespace nava_modem {
 
@@ -29,12 +30,16 @@ struct LinkOptions {
   // send (for up to 2 s) until it is within half of this again. Audio heard late makes carrier
   // sense stale and lets the link's own echo outlast its deaf time.
   double max_capture_lag = 0.1;
+  // s its own sound may take from playback to its microphone (the device's and the sound
+  // server's buffers): each packet it sends is looked for that long in what it captures, and
+  // timed (OwnTiming), for two-way ranging.
+  double max_loop = 0.5;
   std::uint32_t seed = 1;
 };
 
 // Throws std::invalid_argument naming the field, its value and what was expected, for what
 // can be judged without the device: the receiver (ValidateReceiverOptions), the reopen
-// schedule (ValidateReopenOptions), max_capture_lag above 0 and at most 10 s. The profile
+// schedule (ValidateReopenOptions), max_capture_lag and max_loop above 0 and at most 10 s. The profile
 // checks the modem, and the MAC its options once given the profile's timing.
 void ValidateLinkOptions(const LinkOptions& options);
 
@@ -85,6 +90,11 @@ class NavaLink {
   std::uint64_t reopens() const { return reopens_; }
   int failed_reopens() const { return reopen_.failed_tries(); }
   std::uint64_t packets_requeued() const { return mac_.requeued(); }
+  // Its own packets as its microphone heard them (SelfTimer), on the receiver's clock, since the
+  // last call; at most kMaxOwnTimings wait, and the oldest beyond are dropped and counted.
+  std::vector<OwnTiming> TakeOwnTimings();
+  std::uint64_t own_timings_dropped() const { return own_timings_dropped_; }
+  static constexpr std::size_t kMaxOwnTimings = 64;
 
  private:
   LinkOptions options_;
@@ -136,6 +146,11 @@ class NavaLink {
   };
   std::deque<InFlight> in_flight_;
   std::int64_t queued_out_ = 0, written_ = 0, played_ = 0;
+
+  SelfTimer self_timer_;
+  std::vector<OwnTiming> own_timings_;
+  std::uint64_t own_timings_dropped_ = 0;
+  void KeepOwnTimings(std::vector<OwnTiming>& fresh);
 
   Clock& clock_;
   ReopenSchedule reopen_;
