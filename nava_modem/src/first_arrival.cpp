@@ -21,6 +21,10 @@ constexpr double kRollOffHz = 300.0;
 // Where the reference is weaker than this share of its strongest in-band power, the division
 // is held back (a Wiener-like regularisation): its noise would swamp the response there.
 constexpr double kRegularisation = 1e-3;
+// An earlier peak counts as the direct sound only if it stands this far above the largest
+// sidelobe the reference itself makes (nava's tones repeat their patterns bit by bit, and a
+// reverberant room lifts those sidelobes); kDirectWithinDb where the reference has none.
+constexpr double kSidelobeMargin = 1.5;
 // (The envelope is read on the sample grid: a 4.8 kHz band sampled at 11 kHz or more is smooth
 // between samples, and the half-peak crossing interpolated linearly moves with a fractional
 // delay to within a microsecond, as first_arrival_test checks.)
@@ -35,28 +39,62 @@ double BandWeight(double f) {
   return 0.5 - 0.5 * std::cos(M_PI * from_edge / kRollOffHz);
 }
 
-// The first peak of `env` within kDirectWithinDb of its largest, then the point (in units of
+// `power` is an envelope squared (no square roots for every lag). The first peak of the envelope
+// within kDirectWithinDb (or `within`, an amplitude ratio) of its largest, then the point (in units of
 // env's samples, interpolated) where the envelope rising to it first reaches half of it. NaN
 // for an envelope that is zero everywhere.
-double HalfPeakEdge(const std::vector<double>& env) {
-  const double largest = env.empty() ? 0.0 : *std::max_element(env.begin(), env.end());
+double HalfPeakEdge(const std::vector<double>& power, double within = std::pow(10.0, -kDirectWithinDb / 20.0)) {
+  const double largest = power.empty() ? 0.0 : *std::max_element(power.begin(), power.end());
   if (!(largest > 0.0) || !std::isfinite(largest)) return std::numeric_limits<double>::quiet_NaN();
-  const double threshold = largest * std::pow(10.0, -kDirectWithinDb / 20.0);
+  const double threshold = largest * within * within;
   std::size_t p = 0;
-  while (env[p] < threshold) ++p;
-  while (p + 1 < env.size() && env[p + 1] >= env[p]) ++p;
-  const double half = 0.5 * env[p];
+  while (power[p] < threshold) ++p;
+  while (p + 1 < power.size() && power[p + 1] >= power[p]) ++p;
+  const double quarter = 0.25 * power[p];  // half the amplitude
   std::size_t j = p;
-  while (j > 0 && env[j - 1] >= half) --j;
+  while (j > 0 && power[j - 1] >= quarter) --j;
   if (j == 0) return 0.0;  // already above half where the search begins
-  return static_cast<double>(j - 1) + (half - env[j - 1]) / (env[j] - env[j - 1]);
+  // Interpolated on the envelope itself, not its square.
+  const double a = std::sqrt(power[j - 1]), b = std::sqrt(power[j]), half = std::sqrt(quarter);
+  return static_cast<double>(j - 1) + (half - a) / (b - a);
+}
+
+// A pulse centred on lag 0 (a circular response of size n): where its half-peak edge lies, in
+// samples from lag 0 (negative: before it), and its largest sidelobe over its peak (beyond the
+// main lobe's first minima either side).
+struct Pulse {
+  double rise = 0.0;
+  double sidelobe = 0.0;
+};
+Pulse ReadPulse(const std::complex<double>* pulse, std::size_t n) {
+  const std::size_t half = n / 2;
+  std::vector<double> env(n);
+  for (std::size_t i = 0; i < n; ++i) env[i] = std::norm(pulse[(i + n - half) % n]);  // lags -half..half-1, squared
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(env.begin(), env.end()) - env.begin());
+  std::size_t lo = peak, hi = peak;
+  while (lo > 0 && env[lo - 1] <= env[lo]) --lo;
+  while (hi + 1 < n && env[hi + 1] <= env[hi]) ++hi;
+  double side = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i < lo || i > hi) side = std::max(side, env[i]);
+  }
+  Pulse p;
+  p.sidelobe = env[peak] > 0.0 ? std::sqrt(side / env[peak]) : 0.0;
+  p.rise = HalfPeakEdge(env, std::max(std::pow(10.0, -kDirectWithinDb / 20.0), std::min(0.9, kSidelobeMargin * p.sidelobe))) -
+           static_cast<double>(half);
+  return p;
 }
 
 }  // namespace
 
-double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
-                    double* clarity) {
-  if (clarity) *clarity = 0.0;
+// The transforms of the window's size, planned once.
+struct ArrivalTimer::Plans {
+  explicit Plans(std::size_t n) : rx(FftKind::kRealToComplex, n), analytic(FftKind::kComplexBackward, n) {}
+  FftPlan rx, analytic;
+};
+
+ArrivalTimer::ArrivalTimer(const std::vector<float>& reference, std::size_t count, double sample_rate)
+    : rate_(sample_rate), count_(count), reference_length_(reference.size()) {
   if (reference.empty()) throw std::invalid_argument("first arrival: expected a reference sound, got none");
   if (count < reference.size()) {
     throw std::invalid_argument("first arrival: " + std::to_string(count) + " samples received, expected at least the reference's " +
@@ -68,44 +106,78 @@ double FirstArrival(const float* received, std::size_t count, const std::vector<
   }
   // Linear, not circular, correlation at delays 0..count - reference.size().
   const std::size_t n = PowerOfTwoAtLeast(static_cast<double>(count + reference.size()));
-  FftPlan rx(FftKind::kRealToComplex, n), ref(FftKind::kRealToComplex, n);
-  std::fill(rx.real_input(), rx.real_input() + n, 0.0);
+  plans_ = std::make_unique<Plans>(n);
+  FftPlan ref(FftKind::kRealToComplex, n);
   std::fill(ref.real_input(), ref.real_input() + n, 0.0);
-  std::copy(received, received + count, rx.real_input());
   std::copy(reference.begin(), reference.end(), ref.real_input());
-  rx.Execute();
   ref.Execute();
-
   const std::size_t bins = n / 2 + 1;
   const double bin_hz = sample_rate / static_cast<double>(n);
   double strongest = 0.0;
   for (std::size_t k = 0; k < bins; ++k) {
     if (BandWeight(static_cast<double>(k) * bin_hz) > 0.0) strongest = std::max(strongest, std::norm(ref.complex_output()[k]));
   }
-  if (!(strongest > 0.0)) return std::numeric_limits<double>::quiet_NaN();  // no reference in the band
+  if (!(strongest > 0.0)) return;  // no reference in the band: every time is NaN
   const double floor = kRegularisation * strongest;
-  // The analytic response: positive frequencies only.
-  FftPlan analytic(FftKind::kComplexBackward, n);
-  std::complex<double>* z = analytic.complex_input();
-  std::fill(z, z + n, std::complex<double>(0.0, 0.0));
+  // The division by the reference's spectrum, in the band, once; and two pulses on the same
+  // grid: the band's own (what LeadingEdge reads a bare delay through) and the one a bare delay
+  // gives through this reference (the band as the reference fills it).
+  inverse_.assign(bins, std::complex<double>(0.0, 0.0));
+  FftPlan band(FftKind::kComplexBackward, n), through(FftKind::kComplexBackward, n);
+  std::complex<double>* zb = band.complex_input();
+  std::complex<double>* zt = through.complex_input();
+  std::fill(zb, zb + n, std::complex<double>(0.0, 0.0));
+  std::fill(zt, zt + n, std::complex<double>(0.0, 0.0));
   for (std::size_t k = 0; k < bins; ++k) {
     const double w = BandWeight(static_cast<double>(k) * bin_hz);
     if (w == 0.0) continue;
     const std::complex<double> c = ref.complex_output()[k];
-    z[k] = w * rx.complex_output()[k] * std::conj(c) / (std::norm(c) + floor);
+    inverse_[k] = w * std::conj(c) / (std::norm(c) + floor);
+    zb[k] = w;
+    zt[k] = w * std::norm(c) / (std::norm(c) + floor);
   }
-  analytic.Execute();
-  const std::size_t lags = count - reference.size() + 1;
-  std::vector<double> env(lags);
-  for (std::size_t i = 0; i < lags; ++i) env[i] = std::abs(analytic.complex_output()[i]);
-  if (clarity && !env.empty()) {
-    std::vector<double> sorted = env;
-    const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
-    std::nth_element(sorted.begin(), mid, sorted.end());
-    const double largest = *std::max_element(env.begin(), env.end());
-    *clarity = *mid > 0.0 ? largest / *mid : (largest > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  band.Execute();
+  through.Execute();
+  // A reference that fills only part of the band (nava's two tones) gives a wider pulse, whose
+  // half-peak comes earlier before the arrival than the band's: its rise is taken out and the
+  // band's put in, so that a bare delay arrives where LeadingEdge puts it, whatever the reference.
+  const Pulse own = ReadPulse(through.complex_output(), n);
+  rise_correction_ = ReadPulse(band.complex_output(), n).rise - own.rise;
+  within_ = std::max(std::pow(10.0, -kDirectWithinDb / 20.0), std::min(0.9, kSidelobeMargin * own.sidelobe));
+}
+
+ArrivalTimer::~ArrivalTimer() = default;
+
+double ArrivalTimer::Time(const float* received, double* clarity) {
+  if (clarity) *clarity = 0.0;
+  if (inverse_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  Plans& p = *plans_;
+  const std::size_t n = p.rx.size();
+  std::fill(p.rx.real_input() + count_, p.rx.real_input() + n, 0.0);
+  std::copy(received, received + count_, p.rx.real_input());
+  p.rx.Execute();
+  // The analytic response: positive frequencies only.
+  std::complex<double>* z = p.analytic.complex_input();
+  std::fill(z, z + n, std::complex<double>(0.0, 0.0));
+  for (std::size_t k = 0; k < inverse_.size(); ++k) z[k] = p.rx.complex_output()[k] * inverse_[k];
+  p.analytic.Execute();
+  const std::size_t lags = count_ - reference_length_ + 1;
+  power_.resize(lags);
+  for (std::size_t i = 0; i < lags; ++i) power_[i] = std::norm(p.analytic.complex_output()[i]);
+  if (clarity && !power_.empty()) {
+    sorted_ = power_;
+    const auto mid = sorted_.begin() + static_cast<std::ptrdiff_t>(sorted_.size() / 2);
+    std::nth_element(sorted_.begin(), mid, sorted_.end());
+    const double largest = *std::max_element(power_.begin(), power_.end());
+    *clarity = *mid > 0.0 ? std::sqrt(largest / *mid) : (largest > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   }
-  return HalfPeakEdge(env) / sample_rate;
+  return (HalfPeakEdge(power_, within_) + rise_correction_) / rate_;
+}
+
+double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
+                    double* clarity) {
+  ArrivalTimer timer(reference, count, sample_rate);
+  return timer.Time(received, clarity);
 }
 
 double LeadingEdge(const std::vector<float>& response, double sample_rate) {

@@ -3,13 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
+#include "nava_modem/first_arrival.h"
 #include "nava_modem/power_of_two.h"
+#include "nava_modem/timing_reference.h"
 
 namespace nava_modem {
 namespace {
 
 constexpr double kTiny = 1e-20;
+// A packet's first arrival is looked for from this long before the start the decoder placed (its
+// filters' delay, and a direct sound before a stronger reflection) to this long after it.
+constexpr double kArrivalBefore = 0.015, kArrivalAfter = 0.010;
 // Per-sample in-band power below which the break detector sees silence (-70 dB of full scale):
 // the ratios it takes are meaningless on digital silence.
 constexpr double kSilence = 1e-7;
@@ -131,6 +137,10 @@ std::size_t RingSize(double per_bit) { return PowerOfTwoAtLeast(150.0 * per_bit 
 
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem), options_(options), filters_(modem),
+      reference_(PacketTimingReference(Profile::kNava, modem)),
+      arrival_timer_(reference_.sound,
+                     reference_.sound.size() + static_cast<std::size_t>(std::lround((kArrivalBefore + kArrivalAfter) * modem.sample_rate)),
+                     modem.sample_rate),
       per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
       equalizer_(modem) {
   ValidateModemOptions(modem_);
@@ -144,6 +154,10 @@ FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& optio
   mask_ = size - 1;
   // Busy air with no frame, at least a bit long, ends after a bit of quiet.
   busy_ = BusyAir(Seconds(per_bit_), Seconds(per_bit_));
+  // A packet is reported well within a second of its end.
+  const std::size_t raw = PowerOfTwoAtLeast((kPacketBits / modem.baud * (1.0 + options_.max_rate_error) + 1.5) * modem.sample_rate);
+  raw_.assign(raw, 0.0f);
+  raw_mask_ = raw - 1;
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
 
@@ -165,6 +179,7 @@ void FskReceiver::SetMuted(bool muted) {
 
 void FskReceiver::Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) {
   for (std::size_t k = 0; k < count; ++k) {
+    raw_[static_cast<std::size_t>(samples_++) & raw_mask_] = samples[k];
     if (filters_.Push(samples[k])) Step(events);
   }
 }
@@ -247,6 +262,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
       } else if (n >= decode_at_) {
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
+        if (events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
         busy_.FrameFound();
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step. Not after a faint step that decoded to
@@ -593,6 +609,20 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
     ev.noise = RxEvent::Noise::kBadCrc;
   }
   return ev;
+}
+
+// The packet's known start (PacketTimingReference) timed in the input around where the decoder
+// placed its start.
+double FskReceiver::Arrival(const RxEvent& packet) {
+  const double fs = modem_.sample_rate;
+  const std::int64_t from = std::llround((packet.start - kArrivalBefore) * fs + reference_.offset);
+  const std::size_t count = arrival_timer_.count();
+  if (from < 0 || from < samples_ - static_cast<std::int64_t>(raw_.size()) || from + static_cast<std::int64_t>(count) > samples_) {
+    return std::numeric_limits<double>::quiet_NaN();  // not all of it is still (or yet) held
+  }
+  std::vector<float> heard(count);
+  for (std::size_t k = 0; k < count; ++k) heard[k] = raw_[static_cast<std::size_t>(from + static_cast<std::int64_t>(k)) & raw_mask_];
+  return (static_cast<double>(from) - reference_.offset) / fs + arrival_timer_.Time(heard.data());
 }
 
 }  // namespace nava_modem

@@ -63,6 +63,8 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
       options_(options),
       chirp_((ValidateRoomRate(modem.sample_rate), Chirp(modem.sample_rate))),
       detector_(chirp_, modem.sample_rate, ChirpDetectorOptions{}),
+      arrival_timer_(chirp_, detector_.length() + static_cast<std::size_t>(std::lround((kArrivalBefore + kArrivalAfter) * modem.sample_rate)),
+                     modem.sample_rate),
       level_(modem.sample_rate, kChirpLowHz - 100.0, kHighestHz + 600.0, kLevelSeconds),
       busy_(kBusyRelease, kBusyMinimum),
       packet_length_(kPostChirpStart * modem.sample_rate) {
@@ -376,13 +378,13 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   return ev;
 }
 
-double RoomReceiver::Arrival(const ChirpPeak& pre) const {
+double RoomReceiver::Arrival(const ChirpPeak& pre) {
   const double fs = modem_.sample_rate;
   const std::int64_t from = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(pre.sample - kArrivalBefore * fs)));
-  const std::size_t count = detector_.length() + static_cast<std::size_t>(std::lround((kArrivalBefore + kArrivalAfter) * fs));
+  const std::size_t count = arrival_timer_.count();
   std::vector<float> heard(count);
   for (std::size_t k = 0; k < count; ++k) heard[k] = Sample(from + static_cast<std::int64_t>(k));
-  return static_cast<double>(from) / fs + FirstArrival(heard.data(), count, chirp_, fs);
+  return static_cast<double>(from) / fs + arrival_timer_.Time(heard.data());
 }
 
 }  // namespace nava_modem

@@ -8,7 +8,7 @@
 
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/power_of_two.h"
-#include "nava_modem/room_phy.h"
+#include "nava_modem/timing_reference.h"
 
 namespace nava_modem {
 namespace {
@@ -19,27 +19,31 @@ constexpr double kLeadS = 0.02;
 // (FirstArrival's clarity): noise alone gives a few.
 constexpr double kHeardClarity = 10.0;
 
-}  // namespace
-
-SelfTimer::SelfTimer(const ModemProfile& profile, double max_loop)
-    : profile_(profile.profile()), rate_(profile.options().sample_rate), max_loop_(max_loop) {
+double CheckedLoop(double max_loop) {
   if (!(max_loop > 0.0 && max_loop <= 10.0)) {
     throw std::invalid_argument("self timer: longest loop " + std::to_string(max_loop) + " s: expected above 0 and at most 10");
   }
-  // The room profile is timed on its first chirp, made for it; the nava profile's packet starts
-  // with a steady tone that tells no time, so it is timed on all of its sound.
-  if (profile_ == Profile::kRoom) chirp_ = room_phy::Chirp(rate_);
+  return max_loop;
+}
+
+}  // namespace
+
+SelfTimer::SelfTimer(const ModemProfile& profile, double max_loop)
+    : rate_(profile.options().sample_rate),
+      max_loop_(CheckedLoop(max_loop)),
+      reference_(PacketTimingReference(profile.profile(), profile.options())),
+      arrival_timer_(reference_.sound, reference_.sound.size() + static_cast<std::size_t>(std::lround((max_loop_ + 2.0 * kLeadS) * rate_)),
+                     rate_) {
   const std::size_t size = PowerOfTwoAtLeast((profile.Airtime() * 1.1 + max_loop + 2.0 * kLeadS + 0.5) * rate_);
   ring_.assign(size, 0.0f);
   mask_ = size - 1;
 }
 
-void SelfTimer::Sent(std::vector<std::uint8_t> data, const std::vector<float>& burst, double sent) {
+void SelfTimer::Sent(std::vector<std::uint8_t> data, double sent) {
   Pending p;
   p.data = std::move(data);
-  p.reference = chirp_.empty() ? burst : chirp_;
-  p.from = std::llround((sent - kLeadS) * rate_);
-  p.to = std::llround((sent + max_loop_ + kLeadS) * rate_) + static_cast<std::int64_t>(p.reference.size());
+  p.from = std::llround((sent - kLeadS) * rate_ + reference_.offset);
+  p.to = p.from + static_cast<std::int64_t>(arrival_timer_.count());
   pending_.push_back(std::move(p));
 }
 
@@ -63,14 +67,13 @@ void SelfTimer::Judge(std::vector<OwnTiming>& out) {
   while (!pending_.empty() && pending_.front().to <= n_) {
     Pending& p = pending_.front();
     const std::int64_t oldest = n_ - static_cast<std::int64_t>(ring_.size());
-    const std::int64_t from = std::max({p.from, oldest, std::int64_t{0}});
     OwnTiming t{std::move(p.data), std::numeric_limits<double>::quiet_NaN()};
-    if (p.to - from >= static_cast<std::int64_t>(p.reference.size())) {
-      std::vector<float> heard(static_cast<std::size_t>(p.to - from));
-      for (std::size_t k = 0; k < heard.size(); ++k) heard[k] = ring_[static_cast<std::size_t>(from + static_cast<std::int64_t>(k)) & mask_];
+    if (p.from >= std::max<std::int64_t>(oldest, 0)) {  // all of its window still held
+      heard_.resize(arrival_timer_.count());
+      for (std::size_t k = 0; k < heard_.size(); ++k) heard_[k] = ring_[static_cast<std::size_t>(p.from + static_cast<std::int64_t>(k)) & mask_];
       double clarity = 0.0;
-      const double edge = FirstArrival(heard.data(), heard.size(), p.reference, rate_, &clarity);
-      if (clarity >= kHeardClarity) t.arrival = static_cast<double>(from) / rate_ + edge;
+      const double edge = arrival_timer_.Time(heard_.data(), &clarity);
+      if (clarity >= kHeardClarity) t.arrival = (static_cast<double>(p.from) - reference_.offset) / rate_ + edge;
     }
     out.push_back(std::move(t));
     pending_.pop_front();

@@ -10,7 +10,7 @@
 
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/nava_link.h"
-#include "nava_modem/room_phy.h"
+#include "nava_modem/timing_reference.h"
 
 namespace nava_modem {
 namespace {
@@ -67,13 +67,11 @@ TEST(SelfTimerTest, ALinkTimesItsOwnPacketsThroughAnUnknownLoop) {
     const double rate = o.modem.sample_rate;
     std::size_t searched = 0;
     for (const OwnTiming& t : timings) {
-      const std::vector<float> reference =
-          profile == Profile::kRoom ? room_phy::Chirp(rate) : link.profile().ModulatePacket(t.data);
-      const std::size_t span = reference.size() + static_cast<std::size_t>(2.5 * rate);
+      const TimingReference reference = PacketTimingReference(profile, o.modem);
+      const std::size_t span = reference.sound.size() + static_cast<std::size_t>(2.5 * rate);
       ASSERT_LE(searched + span, device.played().size());
-      double clarity = 0.0;
-      const double played = static_cast<double>(searched) / rate +
-                            FirstArrival(device.played().data() + searched, span, reference, rate, &clarity);
+      const double played = static_cast<double>(searched) / rate - reference.offset / rate +
+                            FirstArrival(device.played().data() + searched, span, reference.sound, rate);
       ASSERT_FALSE(std::isnan(t.arrival)) << ProfileName(profile);
       EXPECT_NEAR(t.arrival, played + static_cast<double>(loop) / rate, 2e-5) << ProfileName(profile);
       searched = static_cast<std::size_t>((played + link.profile().Airtime()) * rate);
@@ -85,8 +83,7 @@ TEST(SelfTimerTest, ALinkTimesItsOwnPacketsThroughAnUnknownLoop) {
 TEST(SelfTimerTest, AnUnheardPacketIsReportedWithoutATime) {
   const std::unique_ptr<ModemProfile> room = MakeProfile(Profile::kRoom, ModemOptions{});
   SelfTimer timer(*room, 0.3);
-  const std::vector<float> burst = room->ModulatePacket({9, 9, 9, 9});
-  timer.Sent({9, 9, 9, 9}, burst, 0.0);
+  timer.Sent({9, 9, 9, 9}, 0.0);
   std::mt19937 rng(1);
   std::normal_distribution<float> noise(0.0f, 0.01f);
   std::vector<float> heard(static_cast<std::size_t>(1.0 * 48000.0));
@@ -97,7 +94,7 @@ TEST(SelfTimerTest, AnUnheardPacketIsReportedWithoutATime) {
   EXPECT_EQ(out[0].data, std::vector<std::uint8_t>({9, 9, 9, 9}));
   EXPECT_TRUE(std::isnan(out[0].arrival));
   // A failure's gap: what was pending is reported unheard, and the clock moves on.
-  timer.Sent({1, 1, 1, 1}, burst, timer.time());
+  timer.Sent({1, 1, 1, 1}, timer.time());
   timer.Skip(2.0, out);
   ASSERT_EQ(out.size(), 2u);
   EXPECT_TRUE(std::isnan(out[1].arrival));

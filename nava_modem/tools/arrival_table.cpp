@@ -32,16 +32,16 @@ int ArrivalTable(const ArrivalRequest& request, const multirobot_audio::tools::T
   const ModemOptions& options = request.options;
   const double fs = options.sample_rate;
   const std::vector<MeasuredRoom> rooms = MeasuredRooms(request.rir_dir, usage);
-  const std::unique_ptr<ModemProfile> profile = MakeProfile(Profile::kRoom, options);
+  const std::unique_ptr<ModemProfile> profile = MakeProfile(request.profile, options);
   std::mt19937 rng(request.seed);
   const CleanSignal clean = RandomPackets(*profile, request.packets, 0.6, 0.4, rng);
   std::vector<double> starts;  // where each packet begins in the clean signal, s
   for (int p = 0; p < request.packets; ++p) {
     starts.push_back(p == 0 ? std::floor(0.6 * fs) / fs : static_cast<double>(clean.ends[static_cast<std::size_t>(p) - 1]) / fs);
   }
-  std::printf("first arrivals (%s): %d room packets per room at %.0f Hz, white noise at SNR %.0f dB; "
+  std::printf("first arrivals (%s): %d %s packets per room at %.0f Hz, white noise at SNR %.0f dB; "
               "error = arrival - (sent + the response's leading edge)\n",
-              request.rir_dir.c_str(), request.packets, fs, request.snr_db);
+              request.rir_dir.c_str(), request.packets, ProfileName(request.profile), fs, request.snr_db);
   std::printf("%-44s %7s %6s %7s %10s %10s %10s\n", "room", "drr_dB", "rt60_s", "timed", "median_us", "p90_us", "worst_us");
   std::vector<double> counted;
   int counted_rooms = 0, counted_sent = 0;

@@ -48,6 +48,7 @@ struct ArrivalRequest {
   double snr_db = 10.0;     // white noise, full band
   double min_drr_db = -8.0;  // rooms below this DRR are listed, not counted in the targets
   unsigned seed = 1;
+  Profile profile = Profile::kRoom;  // the targets are the room profile's
   ModemOptions options;
 };
 

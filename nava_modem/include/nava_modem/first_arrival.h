@@ -11,7 +11,9 @@
 // to that peak, first reaches half of it. (For a bare delay that is a little before the delay
 // itself: the band's pulse rises over about 0.1 ms. Ranging takes differences, and both sides of
 // a check use the same definition, so the offset cancels.)
+#include <complex>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace nava_modem {
@@ -30,6 +32,29 @@ constexpr double kDirectWithinDb = 12.0;
 // below 2 x 5400 Hz.
 double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
                     double* clarity = nullptr);
+
+// FirstArrival of one reference in windows of one length, again and again (a receiver timing
+// its packets): the reference's spectrum, its pulse and the transforms are made once. Throws as
+// FirstArrival does. Not thread-safe (one per receiver).
+class ArrivalTimer {
+ public:
+  ArrivalTimer(const std::vector<float>& reference, std::size_t count, double sample_rate);
+  ~ArrivalTimer();
+  ArrivalTimer(const ArrivalTimer&) = delete;
+  ArrivalTimer& operator=(const ArrivalTimer&) = delete;
+  // As FirstArrival, on `count()` samples from `received`.
+  double Time(const float* received, double* clarity = nullptr);
+  std::size_t count() const { return count_; }
+
+ private:
+  struct Plans;
+  double rate_;
+  std::size_t count_, reference_length_;
+  std::unique_ptr<Plans> plans_;
+  std::vector<std::complex<double>> inverse_;  // per bin: the band over the reference, regularised
+  double rise_correction_ = 0.0, within_ = 0.0;
+  std::vector<double> power_, sorted_;  // scratch
+};
 
 // The leading edge of a response's direct sound, seconds from its first sample: the truth a
 // FirstArrival through that response is judged against. Throws as FirstArrival does, and for an

@@ -2,14 +2,17 @@
 
 #include <complex>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "nava_modem/bit_clock.h"
+#include "nava_modem/first_arrival.h"
 #include "nava_modem/busy_air.h"
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
+#include "nava_modem/timing_reference.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
 
@@ -102,6 +105,8 @@ class FskReceiver : public PacketReceiver {
   ModemOptions modem_;
   ReceiverOptions options_;
   ToneFilters filters_;
+  TimingReference reference_;  // what each packet is timed on
+  ArrivalTimer arrival_timer_;
   // Time inside the receiver runs in the filters' steps (a few samples each).
   double per_bit_;    // steps per bit
   double seconds_per_step_;
@@ -124,6 +129,11 @@ class FskReceiver : public PacketReceiver {
   std::int64_t normalized_start_ = 0;
   bool muted_ = false;
   BusyAir busy_{0.0, 0.0};  // for ZERO_BYTE reports
+  // The input itself, a ring, for timing each packet's first arrival (RxEvent::arrival).
+  double Arrival(const RxEvent& packet);
+  std::vector<float> raw_;
+  std::size_t raw_mask_ = 0;
+  std::int64_t samples_ = 0;  // samples processed
 };
 
 }  // namespace nava_modem

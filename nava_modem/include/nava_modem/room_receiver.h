@@ -10,6 +10,7 @@
 #include "nava_modem/band_level.h"
 #include "nava_modem/busy_air.h"
 #include "nava_modem/chirp_detector.h"
+#include "nava_modem/first_arrival.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/room_phy.h"
@@ -66,7 +67,7 @@ class RoomReceiver : public PacketReceiver {
   // stands out from the output before them (see kSearchRatio).
   std::optional<ChirpPeak> StrongestIn(double from, double to) const;
   // When the packet whose first chirp peaked at `pre` first arrived (RxEvent::arrival).
-  double Arrival(const ChirpPeak& pre) const;
+  double Arrival(const ChirpPeak& pre);
   // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
   void SymbolEnergies(std::int64_t first, int length, double* energies);
   // The largest clock error a decode accepts: the pairing's, and the alignment's reach.
@@ -77,6 +78,7 @@ class RoomReceiver : public PacketReceiver {
   ReceiverOptions options_;
   std::vector<float> chirp_;  // as sent
   ChirpDetector detector_;
+  ArrivalTimer arrival_timer_;
   BandLevel level_;
   BusyAir busy_;
   double packet_length_;  // samples from a packet's first chirp to its second, at our clock

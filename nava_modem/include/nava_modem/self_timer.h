@@ -8,7 +8,9 @@
 #include <deque>
 #include <vector>
 
+#include "nava_modem/first_arrival.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/timing_reference.h"
 
 namespace nava_modem {
 
@@ -24,9 +26,8 @@ class SelfTimer {
   // was sent. Throws std::invalid_argument for a loop not above 0 or beyond 10 s.
   SelfTimer(const ModemProfile& profile, double max_loop);
 
-  // A packet whose first sample was handed to playback when the receiver's clock read `sent`
-  // (s); `burst` is its sound as played.
-  void Sent(std::vector<std::uint8_t> data, const std::vector<float>& burst, double sent);
+  // A packet whose first sample was handed to playback when the receiver's clock read `sent` (s).
+  void Sent(std::vector<std::uint8_t> data, double sent);
   // The microphone's samples, in order, from the receiver's clock `time()` on; appends the own
   // packets whose search window has now been heard.
   void Heard(const float* samples, std::size_t count, std::vector<OwnTiming>& out);
@@ -39,15 +40,15 @@ class SelfTimer {
  private:
   struct Pending {
     std::vector<std::uint8_t> data;
-    std::vector<float> reference;
     std::int64_t from, to;  // the samples to search, [from, to)
   };
   void Judge(std::vector<OwnTiming>& out);
 
-  Profile profile_;
   double rate_;
   double max_loop_;
-  std::vector<float> chirp_;  // the room profile's timing sound; empty for nava (the whole packet)
+  TimingReference reference_;
+  ArrivalTimer arrival_timer_;
+  std::vector<float> heard_;  // scratch
   std::vector<float> ring_;
   std::size_t mask_;
   std::int64_t n_ = 0;  // samples heard
