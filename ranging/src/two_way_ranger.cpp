@@ -46,14 +46,31 @@ TwoWayRanger::TwoWayRanger(std::string self, std::vector<std::string> team, cons
     : self_(std::move(self)), team_(std::move(team)), options_(options) {
   ValidateRangerOptions(options_);
   if (self_.empty()) throw std::invalid_argument("ranger: expected this robot's name, got none");
-  if (std::find(team_.begin(), team_.end(), self_) == team_.end()) team_.push_back(self_);
+  if (!team_.empty() && std::find(team_.begin(), team_.end(), self_) == team_.end()) team_.push_back(self_);
 }
 
 void TwoWayRanger::Add(const Timing& t) {
-  const auto known = [&](const std::string& robot) { return std::find(team_.begin(), team_.end(), robot) != team_.end(); };
+  const auto known = [&](const std::string& robot) {
+    return !robot.empty() && (team_.empty() || std::find(team_.begin(), team_.end(), robot) != team_.end());
+  };
   if (!known(t.sender) || !known(t.listener)) {
     ++refused_.unknown_robot;
     return;
+  }
+  if (IsAnnouncement(t)) {
+    Packet* p = Find(t.sender, t.data);
+    if (!p) p = &NewPacket(t.sender, t.data);
+    p->announced = latest_announcement_ += 1.0;
+    return;
+  }
+  const auto epoch = epoch_.find(t.listener);
+  if (epoch != epoch_.end() && t.clock_epoch < epoch->second) {
+    ++refused_.backwards;
+    return;
+  }
+  if (epoch == epoch_.end() || t.clock_epoch > epoch->second) {
+    if (epoch != epoch_.end()) Restart(t.listener);
+    epoch_[t.listener] = t.clock_epoch;
   }
   if (!std::isfinite(t.arrival)) {
     ++refused_.backwards;
@@ -72,14 +89,8 @@ void TwoWayRanger::Add(const Timing& t) {
   last_arrival_[t.listener] = t.arrival;
   Forget();
 
-  auto it = std::find_if(packets_.begin(), packets_.end(),
-                         [&](const Packet& p) { return p.sender == t.sender && p.data == t.data; });
-  if (it == packets_.end()) {
-    if (packets_.size() == kMaxPackets) packets_.erase(packets_.begin());
-    packets_.push_back(Packet{t.sender, t.data, {}, false});
-    it = packets_.end() - 1;
-  }
-  Packet& packet = *it;
+  Packet* found = Find(t.sender, t.data);
+  Packet& packet = found ? *found : NewPacket(t.sender, t.data);
   const auto before = packet.heard.find(t.listener);
   if (before != packet.heard.end()) {
     // One listener timing one sender's payload twice within the window: the payload was sent
@@ -143,10 +154,41 @@ void TwoWayRanger::Pair(const Packet& packet, const std::string& teammate) {
   if (static_cast<int>(samples.size()) > options_.samples) samples.erase(samples.begin());
 }
 
-// Packets older than twice the window on every clock that timed them can pair with nothing new.
+TwoWayRanger::Packet* TwoWayRanger::Find(const std::string& sender, const std::vector<std::uint8_t>& data) {
+  for (auto it = packets_.rbegin(); it != packets_.rend(); ++it) {
+    if (it->sender == sender && it->data == data) return &*it;
+  }
+  return nullptr;
+}
+
+TwoWayRanger::Packet& TwoWayRanger::NewPacket(const std::string& sender, const std::vector<std::uint8_t>& data) {
+  if (packets_.size() == kMaxPackets) packets_.erase(packets_.begin());
+  packets_.push_back(Packet{sender, data, {}, false, 0.0});
+  return packets_.back();
+}
+
+std::optional<std::string> TwoWayRanger::SenderOf(const std::vector<std::uint8_t>& data) const {
+  std::optional<std::string> sender;
+  for (const Packet& p : packets_) {
+    if (p.data != data || (p.announced == 0.0 && !p.heard.count(p.sender))) continue;
+    if (sender && *sender != p.sender) return std::nullopt;  // two robots sent it
+    sender = p.sender;
+  }
+  return sender;
+}
+
+// A listener's clock restarted: its timings are on a clock that no longer runs.
+void TwoWayRanger::Restart(const std::string& listener) {
+  for (Packet& p : packets_) p.heard.erase(listener);
+  last_arrival_.erase(listener);
+}
+
+// Packets older than twice the window on every clock that timed them can pair with nothing new;
+// announced packets no one timed go after kMaxPackets newer ones.
 void TwoWayRanger::Forget() {
   packets_.erase(std::remove_if(packets_.begin(), packets_.end(),
                                 [&](const Packet& p) {
+                                  if (p.heard.empty()) return p.announced < latest_announcement_ - kMaxPackets;
                                   for (const auto& [listener, timing] : p.heard) {
                                     if (last_arrival_.at(listener) - timing.arrival <= 2.0 * options_.pair_window) return false;
                                   }

@@ -204,10 +204,10 @@ TEST(TwoWayRangerTest, BadReportsAreCountedAndNeverMakeARange) {
   // A clock that runs backwards, and one that is not a number.
   AddAll(ranger, scene.Send("a", 2, 20.0, {"a", "b"}));
   AddAll(ranger, scene.Send("b", 2, 20.5, {"b"}));
-  std::vector<Timing> back = scene.Send("b", 3, 15.0, {"b"});
+  std::vector<Timing> back = scene.Send("b", 3, 15.0, {"b", "a"});
   ranger.Add(back[0]);
-  back[0].arrival = NAN;
-  ranger.Add(back[0]);
+  back[1].arrival = NAN;  // (NaN on a robot's own timing is an announcement, not a timing)
+  ranger.Add(back[1]);
   EXPECT_EQ(ranger.refused().backwards, 2u);
   // A rate beyond any sound card's.
   std::vector<Timing> fast = scene.Send("b", 4, 21.0, {"b", "a"});
@@ -244,6 +244,50 @@ TEST(TwoWayRangerTest, APayloadSeenTwiceInTheWindowIsSkipped) {
   const auto r = ranger.RangeTo("b", scene.Clock("a", 17.0));
   ASSERT_TRUE(r);
   EXPECT_NEAR(r->range, 3.0, 1e-3);
+}
+
+// b's sound card failed and was reopened: its clock restarted, so its timings from before
+// pair with nothing after; a timing on the old clock arriving late is refused.
+TEST(TwoWayRangerTest, AClockThatRestartsPairsOnlyWithinItsLife) {
+  Scene scene(Pair(4.0));
+  TwoWayRanger ranger("a", {"a", "b"}, RangerOptions{});
+  AddAll(ranger, scene.Send("a", 1, 10.0, {"a", "b"}));
+  std::vector<Timing> reply = scene.Send("b", 1, 11.0, {"b", "a"});
+  reply[0].clock_epoch = 1;  // b's own timing, on its new clock, which now reads 1000 s less
+  reply[0].arrival -= 1000.0;
+  AddAll(ranger, reply);
+  EXPECT_FALSE(ranger.RangeTo("b", scene.Clock("a", 12.0)));  // its hearing of a's 1 was on the old clock
+  std::vector<Timing> stale = scene.Send("a", 9, 11.5, {"b"});
+  ranger.Add(stale[0]);  // epoch 0: older than b's clock now
+  EXPECT_EQ(ranger.refused().backwards, 1u);
+  std::vector<Timing> again = scene.Send("a", 2, 13.0, {"a", "b"});
+  again[1].clock_epoch = 1;
+  again[1].arrival -= 1000.0;
+  AddAll(ranger, again);
+  const auto r = ranger.RangeTo("b", scene.Clock("a", 14.0));
+  ASSERT_TRUE(r);
+  EXPECT_NEAR(r->range, 4.0, 1e-3);
+}
+
+TEST(TwoWayRangerTest, ReceptionsAreToldTheirSenderByItsAnnouncementOrItsOwnTiming) {
+  Scene scene(Pair(4.0));
+  TwoWayRanger ranger("a", {"a", "b", "c"}, RangerOptions{});
+  const std::vector<std::uint8_t> payload = {'b', 7, 0xAB, 0xCD};
+  EXPECT_FALSE(ranger.SenderOf(payload));
+  Timing announcement;
+  announcement.sender = announcement.listener = "b";
+  announcement.data = payload;
+  announcement.arrival = NAN;
+  ranger.Add(announcement);
+  ASSERT_TRUE(ranger.SenderOf(payload));
+  EXPECT_EQ(*ranger.SenderOf(payload), "b");
+  EXPECT_EQ(ranger.refused().total(), 0u);
+  // Its own timing tells the same; a second robot sending the same payload makes it unknown.
+  AddAll(ranger, scene.Send("b", 8, 10.0, {"b"}));
+  EXPECT_EQ(*ranger.SenderOf({'b', 8, 0xAB, 0xCD}), "b");
+  announcement.sender = announcement.listener = "c";
+  ranger.Add(announcement);
+  EXPECT_FALSE(ranger.SenderOf(payload));
 }
 
 TEST(TwoWayRangerTest, ImpossibleOptionsAreRefusedByName) {

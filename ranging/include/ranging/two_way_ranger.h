@@ -55,7 +55,14 @@ struct Timing {
   // The sender's clock over the listener's, minus 1, as the listener's receiver measured it;
   // 0 for a robot's own packet.
   double rate_error = 0.0;
+  // The listener's clock's life: it goes up when the clock restarts (a sound card reopened after
+  // a failure), and the listener's earlier timings then pair with nothing new.
+  std::uint32_t clock_epoch = 0;
 };
+
+// A sender's word that it is sending a payload (before any timing of it): a timing with NaN
+// arrival and listener == sender. It tells receptions of that payload whose they are.
+inline bool IsAnnouncement(const Timing& t) { return t.sender == t.listener && t.arrival != t.arrival; }
 
 // A teammate's range as this robot knows it.
 struct Range {
@@ -69,7 +76,8 @@ struct Range {
 // Timings refused, by reason (each counted, never turned into a range).
 struct Refused {
   std::uint64_t unknown_robot = 0;     // a sender or listener not in the team
-  std::uint64_t backwards = 0;         // a listener's clock earlier than its last timing's, or not finite
+  std::uint64_t backwards = 0;         // a listener's clock earlier than its last timing's (or an older
+                                       // epoch), or not finite
   std::uint64_t bad_rate = 0;          // a rate error beyond max_rate_error, or not finite
   std::uint64_t repeated_payload = 0;  // one sender's payload twice within the window
   std::uint64_t implausible = 0;       // a pairing whose range is beyond max_range
@@ -78,12 +86,17 @@ struct Refused {
 
 class TwoWayRanger {
  public:
-  // `self` is this robot; `team` every robot's name (this one's may be among them). Throws
-  // std::invalid_argument for impossible options or an empty self.
+  // `self` is this robot; `team` every robot's name (this one's may be among them); an empty team
+  // takes any robot's timings. Throws std::invalid_argument for impossible options or an empty
+  // self.
   TwoWayRanger(std::string self, std::vector<std::string> team, const RangerOptions& options);
 
-  // A timing by any robot of the team (this one's own included), in each listener's order.
+  // A timing by any robot of the team (this one's own included), in each listener's order; or an
+  // announcement (IsAnnouncement).
   void Add(const Timing& timing);
+  // Who sent the latest packet carrying `data` within the window, if one robot did (an
+  // announcement or a timing of its own); none if no one or several did.
+  std::optional<std::string> SenderOf(const std::vector<std::uint8_t>& data) const;
   // Every teammate with a range, by name; `now` is this robot's clock (for ages and expiry).
   std::vector<Range> Ranges(double now) const;
   std::optional<Range> RangeTo(const std::string& teammate, double now) const;
@@ -100,15 +113,21 @@ class TwoWayRanger {
     std::vector<std::uint8_t> data;
     std::map<std::string, Timing> heard;
     bool repeated = false;
+    double announced = 0.0;  // this robot's clock when the sender announced it (0: never)
   };
   void Pair(const Packet& packet, const std::string& teammate);
   void Forget();
+  Packet* Find(const std::string& sender, const std::vector<std::uint8_t>& data);  // the latest
+  Packet& NewPacket(const std::string& sender, const std::vector<std::uint8_t>& data);
+  double latest_announcement_ = 0.0;  // announcements so far
 
   std::string self_;
   std::vector<std::string> team_;
   RangerOptions options_;
   std::vector<Packet> packets_;  // within the window, oldest first
   std::map<std::string, double> last_arrival_;  // per listener
+  std::map<std::string, std::uint32_t> epoch_;    // per listener
+  void Restart(const std::string& listener);
   std::map<std::string, std::vector<double>> rates_;  // per teammate: its latest rate errors heard here
   struct Sampled {
     double range, at;
