@@ -13,6 +13,9 @@ add_message_files(DIRECTORY msg FILES
   LockstepOrder.msg
   LockstepAck.msg
   RobotPoses.msg
+  PacketTiming.msg
+  Teammate.msg
+  Teammates.msg
 )
 add_action_files(DIRECTORY action FILES AcquireLock.action)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs actionlib_msgs)
@@ -32,12 +35,13 @@ add_library(multirobot_audio_ros STATIC
   src/wanderer_ros.cpp
   src/audio_propagation_ros.cpp
   src/nava_modem_ros.cpp
+  src/ranging_ros.cpp
   src/local_mutex_ros.cpp
   src/mutex_client_ros.cpp
 )
 target_include_directories(multirobot_audio_ros PUBLIC ${PROJECT_SOURCE_DIR}/src)
 target_include_directories(multirobot_audio_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem local_mutex world_sim behaviours grid
+target_link_libraries(multirobot_audio_ros PUBLIC audio_propagation nava_modem ranging local_mutex world_sim behaviours grid
                       ${catkin_LIBRARIES})
 add_dependencies(multirobot_audio_ros ${PROJECT_NAME}_generate_messages_cpp)
 # The local-map navigation's bridges (its ~params, range and map conversions), for every node

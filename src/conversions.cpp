@@ -316,6 +316,7 @@ multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, 
   msg.direction = static_cast<float>(e.direction);
   msg.direction_confidence = static_cast<float>(std::isfinite(e.direction) ? e.direction_confidence : 0.0);
   msg.path_length = std::numeric_limits<float>::quiet_NaN();
+  msg.path_length_std = std::numeric_limits<float>::quiet_NaN();
   return msg;
 }
 
@@ -332,6 +333,7 @@ multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Recep
   msg.direction_confidence = static_cast<float>(rx.direction_confidence);
   msg.quality = 1.0f;
   msg.path_length = static_cast<float>(rx.path_length);
+  msg.path_length_std = std::isfinite(rx.path_length) ? 0.0f : std::numeric_limits<float>::quiet_NaN();
   return msg;
 }
 

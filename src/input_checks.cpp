@@ -114,6 +114,7 @@ std::string ReceptionProblem(const multirobot_audio::AudioReception& msg) {
   }
   if (!std::isfinite(msg.quality)) return Is("quality", msg.quality);
   if (std::isinf(msg.path_length) || msg.path_length < 0.0f) return Is("path_length", msg.path_length);
+  if (std::isinf(msg.path_length_std) || msg.path_length_std < 0.0f) return Is("path_length_std", msg.path_length_std);
   return "";
 }
 

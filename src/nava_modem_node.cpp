@@ -10,7 +10,7 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "nava_modem");
   try {
     ros::NodeHandle pnh("~");
-    multirobot_audio::NavaModemRos node(ros::NodeHandle(), pnh, multirobot_audio::ReadNavaModemOptions(pnh));
+    multirobot_audio::NavaModemRos node(ros::NodeHandle(), pnh, multirobot_audio::ReadNavaModemOptions(ros::NodeHandle(), pnh));
     ros::spin();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nava_modem: %s\n", e.what());

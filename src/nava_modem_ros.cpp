@@ -14,7 +14,7 @@
 
 namespace multirobot_audio {
 
-NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
+NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   NavaModemOptions o;
   o.alsa.device = StringParam(pnh, "device", o.alsa.device);
   o.alsa.sample_rate = NumberParam(pnh, "sample_rate", o.alsa.sample_rate);
@@ -79,6 +79,9 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh) {
   CheckOptionParams(pnh, {"max_fixed_bits", "detect_threshold"}, [&] { nava_modem::ValidateReceiverOptions(rx); });
   o.link.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));
   o.link.max_capture_lag = NumberParam(pnh, "max_capture_lag", o.link.max_capture_lag, 0.001, 10.0);
+  // Its own sound comes back through both of the device's buffers and the sound server's.
+  o.link.max_loop = NumberParam(pnh, "max_loop", std::max(o.link.max_loop, 4.0 * o.alsa.latency + 0.2), 0.01, 10.0);
+  o.ranging = ReadRangingRosOptions(nh, pnh);
   nava_modem::ReopenOptions& reopen = o.link.reopen;
   reopen.first_wait = NumberParam(pnh, "reopen_backoff_min", reopen.first_wait, 0.001, 60.0);
   reopen.max_wait = NumberParam(pnh, "reopen_backoff_max", reopen.max_wait, reopen.first_wait, 600.0);
@@ -120,6 +123,7 @@ NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaMo
   updater_.setHardwareID("alsa:" + options_.alsa.device);
   updater_.add("audio link", this, &NavaModemRos::Diagnose);
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+  ranging_ = std::make_unique<RangingRos>(nh_, options_.ranging, guard_, options_.frame_id);
   audio_thread_ = std::thread(&NavaModemRos::AudioLoop, this);
 }
 
@@ -140,6 +144,7 @@ NavaModemRos::~NavaModemRos() {
               static_cast<unsigned long>(health_.catch_ups), static_cast<unsigned long>(health_.faults),
               static_cast<unsigned long>(health_.reopens), static_cast<unsigned long>(health_.requeued),
               health_.down ? " (the device is down)" : "", guard_.Summary().c_str());
+  std::printf("nava_modem %s\n", ranging_->Summary().c_str());
   std::fflush(stdout);
 }
 
@@ -166,6 +171,7 @@ void NavaModemRos::AudioLoop() {
         to_send.swap(inbox_);
       }
       for (auto& data : to_send) {
+        ranging_->Announce(data);
         if (!link_->Send(std::move(data))) {
           std::lock_guard<std::mutex> lock(mutex_);
           counts_.queue_drops = link_->mac().dropped();
@@ -176,6 +182,11 @@ void NavaModemRos::AudioLoop() {
       events.clear();
       if (!link_->Tick(events)) break;
       ReportDevice();
+      for (const nava_modem::OwnTiming& t : link_->TakeOwnTimings()) {
+        const double ago = std::isfinite(t.arrival) ? std::max(0.0, link_->time() - t.arrival) : 0.0;
+        ranging_->OwnTiming(t.data, t.arrival, ClockEpoch(), ros::Time::now() - ros::Duration(ago));
+      }
+      ranging_->SetClock(link_->time());
       for (const nava_modem::RxEvent& e : events) Publish(e, link_->time() - e.end);
       const bool carrier = link_->carrier();
       if (carrier != last_carrier || link_->time() - last_carrier_sent >= carrier_period) {
@@ -256,7 +267,17 @@ void NavaModemRos::ReportDevice() {
 
 void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
   const ros::Time stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
-  rx_pub_.publish(ToAudioReception(e, options_.frame_id, stamp));
+  multirobot_audio::AudioReception msg = ToAudioReception(e, options_.frame_id, stamp);
+  if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
+    const RangingRos::Known known =
+        ranging_->Heard(e.data, e.arrival, e.rate_error, e.direction, e.direction_confidence, ClockEpoch(), link_->time(),
+                        ros::Time::now() - ros::Duration(std::isfinite(e.arrival) ? std::max(0.0, link_->time() - e.arrival) : ago));
+    if (known.range) {
+      msg.path_length = static_cast<float>(known.range->range);
+      msg.path_length_std = static_cast<float>(known.range->range_std);
+    }
+  }
+  rx_pub_.publish(msg);
   if (std::isfinite(e.direction)) {
     direction_pub_.publish(ToDirectionMarker(e.direction, e.direction_confidence, e.kind == nava_modem::RxEvent::Kind::kPacket,
                                              options_.frame_id, stamp, direction_id_++ % 100));

@@ -16,6 +16,7 @@
 #include "input_guard.h"
 #include "nava_modem/alsa_device.h"
 #include "nava_modem/nava_link.h"
+#include "ranging_ros.h"
 
 namespace multirobot_audio {
 
@@ -25,9 +26,10 @@ struct NavaModemOptions {
   nava_modem::LinkOptions link;   // modem, MAC, receiver and device-fault settings (see docs/nodes.md)
   std::string frame_id = "base_link";  // ~frame_id: stamped on what is published
   double carrier_rate = 10.0;     // ~carrier_rate: Hz of audio/carrier besides every change
+  RangingRosOptions ranging;      // ~robot, ~team, ~timings_topic, ... (ranging_ros.h)
 };
 
-NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& pnh);
+NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
 
 // A robot's audio link on its sound card: audio/tx in, audio/rx and audio/carrier out (the
 // interface audio_propagation serves in simulation), diagnostics on /diagnostics. The link runs
@@ -58,6 +60,7 @@ class NavaModemRos {
   void ReportDevice();  // logs and records a failure, a reopen or a catch-up of the device
   void DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status);
   void Publish(const nava_modem::RxEvent& event, double ago);
+  std::uint32_t ClockEpoch() const { return static_cast<std::uint32_t>(link_->device_faults()); }
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   ros::NodeHandle nh_, pnh_;
@@ -68,7 +71,8 @@ class NavaModemRos {
   ros::Publisher rx_pub_, carrier_pub_, direction_pub_;  // ~directions: an arrow per reception with a direction
   std::uint32_t direction_id_ = 0;
   diagnostic_updater::Updater updater_;
-  InputGuard guard_;  // audio/tx's checks and counts, on updater_
+  InputGuard guard_;  // audio/tx's and the team's timings' checks and counts, on updater_
+  std::unique_ptr<RangingRos> ranging_;
   ros::WallTimer diagnostics_timer_;
   std::mutex mutex_;  // guards inbox_, counts_ and health_
   std::deque<std::vector<std::uint8_t>> inbox_;  // audio/tx for the audio thread; at most the MAC queue's capacity

@@ -109,6 +109,7 @@ TEST(InputChecksTest, ReceptionTakesAnUnknownDirectionButNotANanLevel) {
   EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.direction_confidence = kNan; })), "direction_confidence = nan");
   EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.kind = 7; })), "kind = 7");
   EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.path_length = -3.0f; })), "path_length = -3");
+  EXPECT_EQ(ReceptionProblem(Spoilt(r, [](auto& m) { m.path_length_std = -0.5f; })), "path_length_std = -0.5");
 }
 
 TEST(InputChecksTest, LockStatePacketAndJob) {

@@ -58,7 +58,7 @@ void TwoWayRanger::Add(const Timing& t) {
     return;
   }
   if (IsAnnouncement(t)) {
-    Packet* p = Find(t.sender, t.data);
+    Packet* p = Find(t.sender, t.data, t.stamp);
     if (!p) p = &NewPacket(t.sender, t.data);
     p->announced = latest_announcement_ += 1.0;
     return;
@@ -89,7 +89,7 @@ void TwoWayRanger::Add(const Timing& t) {
   last_arrival_[t.listener] = t.arrival;
   Forget();
 
-  Packet* found = Find(t.sender, t.data);
+  Packet* found = Find(t.sender, t.data, t.stamp);
   Packet& packet = found ? *found : NewPacket(t.sender, t.data);
   const auto before = packet.heard.find(t.listener);
   if (before != packet.heard.end()) {
@@ -154,9 +154,16 @@ void TwoWayRanger::Pair(const Packet& packet, const std::string& teammate) {
   if (static_cast<int>(samples.size()) > options_.samples) samples.erase(samples.begin());
 }
 
-TwoWayRanger::Packet* TwoWayRanger::Find(const std::string& sender, const std::vector<std::uint8_t>& data) {
+TwoWayRanger::Packet* TwoWayRanger::Find(const std::string& sender, const std::vector<std::uint8_t>& data, double stamp) {
   for (auto it = packets_.rbegin(); it != packets_.rend(); ++it) {
-    if (it->sender == sender && it->data == data) return &*it;
+    if (it->sender != sender || it->data != data) continue;
+    bool stamped = false, near = false;
+    for (const auto& [listener, timing] : it->heard) {
+      if (std::isnan(timing.stamp)) continue;
+      stamped = true;
+      near = near || std::abs(timing.stamp - stamp) <= kSamePacketS;
+    }
+    if (std::isnan(stamp) || !stamped || near) return &*it;
   }
   return nullptr;
 }

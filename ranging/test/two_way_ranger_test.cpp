@@ -290,6 +290,34 @@ TEST(TwoWayRangerTest, ReceptionsAreToldTheirSenderByItsAnnouncementOrItsOwnTimi
   EXPECT_FALSE(ranger.SenderOf(payload));
 }
 
+// A robot that says the same every few seconds (a wanderer's announcement): with stamps, each
+// sending is a packet of its own, and the ranges are right; without, they are skipped.
+TEST(TwoWayRangerTest, ThePayloadSentAgainIsAPacketOfItsOwnByItsStamps) {
+  Scene scene(Pair(5.0));
+  TwoWayRanger stamped("a", {"a", "b"}, RangerOptions{}), unstamped("a", {"a", "b"}, RangerOptions{});
+  for (int k = 0; k < 4; ++k) {
+    const double t = 10.0 + 5.0 * k;
+    std::vector<Timing> mine = scene.Send("a", 1, t, {"a", "b"}), theirs = scene.Send("b", 1, t + 2.0, {"b", "a"});
+    for (TwoWayRanger* r : {&stamped, &unstamped}) {
+      for (Timing timing : mine) {
+        if (r == &stamped) timing.stamp = 1.7e9 + t + 0.05;
+        r->Add(timing);
+      }
+      for (Timing timing : theirs) {
+        if (r == &stamped) timing.stamp = 1.7e9 + t + 2.0 + 0.05;
+        r->Add(timing);
+      }
+    }
+  }
+  const auto r = stamped.RangeTo("b", scene.Clock("a", 30.0));
+  ASSERT_TRUE(r);
+  EXPECT_NEAR(r->range, 5.0, 1e-3);
+  EXPECT_EQ(stamped.refused().total(), 0u);
+  const auto skipped = unstamped.RangeTo("b", scene.Clock("a", 30.0));
+  EXPECT_TRUE(!skipped || std::abs(skipped->range - 5.0) < 1e-3);
+  EXPECT_GT(unstamped.refused().repeated_payload, 0u);
+}
+
 TEST(TwoWayRangerTest, ImpossibleOptionsAreRefusedByName) {
   auto refuses = [](RangerOptions o, const std::string& field) {
     try {

@@ -17,6 +17,7 @@
 // every timing it is given, pairs exchanges with each teammate within a window, and keeps a
 // filtered range per teammate: the median of its latest samples, with an uncertainty. No ROS.
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -58,7 +59,14 @@ struct Timing {
   // The listener's clock's life: it goes up when the clock restarts (a sound card reopened after
   // a failure), and the listener's earlier timings then pair with nothing new.
   std::uint32_t clock_epoch = 0;
+  // When the listener heard it by its system clock (s; the team's clocks agree to well within
+  // kSamePacketS, as machines on one ROS master do): what tells two sendings of one payload
+  // apart. NaN: unknown, and one payload is then one packet within the window.
+  double stamp = std::numeric_limits<double>::quiet_NaN();
 };
+
+// Timings of one sender's payload whose stamps are this close are of one sending of it.
+constexpr double kSamePacketS = 1.0;
 
 // A sender's word that it is sending a payload (before any timing of it): a timing with NaN
 // arrival and listener == sender. It tells receptions of that payload whose they are.
@@ -79,7 +87,8 @@ struct Refused {
   std::uint64_t backwards = 0;         // a listener's clock earlier than its last timing's (or an older
                                        // epoch), or not finite
   std::uint64_t bad_rate = 0;          // a rate error beyond max_rate_error, or not finite
-  std::uint64_t repeated_payload = 0;  // one sender's payload twice within the window
+  std::uint64_t repeated_payload = 0;  // one listener timing one sending twice (or, without stamps,
+                                       // one sender's payload twice within the window)
   std::uint64_t implausible = 0;       // a pairing whose range is beyond max_range
   std::uint64_t total() const { return unknown_robot + backwards + bad_rate + repeated_payload + implausible; }
 };
@@ -117,7 +126,9 @@ class TwoWayRanger {
   };
   void Pair(const Packet& packet, const std::string& teammate);
   void Forget();
-  Packet* Find(const std::string& sender, const std::vector<std::uint8_t>& data);  // the latest
+  // The sending of `data` by `sender` that a timing stamped `stamp` belongs to: the latest whose
+  // timings are within kSamePacketS of it (or, with no stamp on either side, the latest).
+  Packet* Find(const std::string& sender, const std::vector<std::uint8_t>& data, double stamp);
   Packet& NewPacket(const std::string& sender, const std::vector<std::uint8_t>& data);
   double latest_announcement_ = 0.0;  // announcements so far
 

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <multirobot_audio/PacketTiming.h>
+#include <multirobot_audio/Teammates.h>
+#include <ros/ros.h>
+
+#include "input_guard.h"
+#include "ranging/two_way_ranger.h"
+
+namespace multirobot_audio {
+
+// Options of a robot's ranging, from the nava_modem node's private parameters.
+struct RangingRosOptions {
+  std::string robot;                // ~robot: this robot's name (default: its namespace)
+  std::vector<std::string> team;    // ~team: every robot's name; empty: any robot's reports count
+  std::string timings_topic = "/audio/timings";  // ~timings_topic: the team's shared topic
+  double teammates_rate = 1.0;      // ~teammates_rate: Hz of audio/teammates
+  ranging::RangerOptions ranger;    // ~speed_of_sound, ~ranging_window, ~ranging_samples, ~ranging_offset
+};
+RangingRosOptions ReadRangingRosOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+
+// Two-way acoustic ranging on a real link (ranging/two_way_ranger.h) over ROS: the robot's own
+// timings go out on the team's timings topic, everyone's come in, and audio/teammates says each
+// heard teammate's range and bearing. Called from the audio thread (its own sends, timings and
+// receptions) and from roscpp's (the team's reports, the timer); thread-safe.
+class RangingRos {
+ public:
+  RangingRos(ros::NodeHandle nh, const RangingRosOptions& options, InputGuard& guard, const std::string& frame_id);
+
+  // A payload queued to send: announced to the team, so that its receptions are told whose.
+  void Announce(const std::vector<std::uint8_t>& data);
+  // The robot's own packet as its microphone heard it (arrival on its capture clock, NaN if not).
+  // `stamp`: when it was heard, by the ROS clock.
+  void OwnTiming(const std::vector<std::uint8_t>& data, double arrival, std::uint32_t epoch, const ros::Time& stamp);
+  // A packet it heard: shared with the team and ranged; its sender and range where known
+  // (`now` is the capture clock, for ages; `stamp` when it was heard, by the ROS clock).
+  struct Known {
+    std::optional<std::string> sender;
+    std::optional<ranging::Range> range;
+  };
+  Known Heard(const std::vector<std::uint8_t>& data, double arrival, double rate_error, double direction,
+              double direction_confidence, std::uint32_t epoch, double now, const ros::Time& stamp);
+  // The capture clock as of the audio thread's latest tick (for audio/teammates' ages).
+  void SetClock(double now);
+  std::string Summary();  // reports in and refused, for the node's exit line
+
+ private:
+  void Share(const multirobot_audio::PacketTiming& msg);
+  InputGuard::Verdict OnTiming(const multirobot_audio::PacketTiming::ConstPtr& msg);
+  void PublishTeammates();
+
+  RangingRosOptions options_;
+  std::string frame_id_;
+  std::mutex mutex_;  // guards all below
+  ranging::TwoWayRanger ranger_;
+  struct Bearing {
+    double bearing, confidence, at;
+  };
+  std::map<std::string, Bearing> bearings_;  // per teammate: its latest packet heard
+  double now_ = 0.0;
+  std::uint64_t shared_ = 0, received_ = 0;
+  ros::Publisher timings_pub_, teammates_pub_;
+  ros::Subscriber timings_sub_;
+  ros::WallTimer timer_;
+};
+
+// A report whose numbers cannot be a timing: a NaN arrival from anyone but the sender itself,
+// an infinite arrival, a non-finite rate error, no names, or a payload not of `bytes`.
+std::string PacketTimingProblem(const multirobot_audio::PacketTiming& msg, std::size_t bytes);
+
+}  // namespace multirobot_audio
