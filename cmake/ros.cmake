@@ -187,6 +187,9 @@ if(MULTIROBOT_AUDIO_TESTS)
   # A stalled process and a sound server killed in the middle of a packet and restarted: every
   # packet is still heard exactly once.
   multirobot_audio_air_test(nava_air_faults_rostest nava_air_faults.test test/nava_air_faults_rostest.cpp)
+  # Two-way ranging between three links on the air, and after the sound server restarts.
+  multirobot_audio_air_test(ranging_air_rostest ranging_air.test test/ranging_air_rostest.cpp)
+  multirobot_audio_air_add_test(ranging_air_nava_rostest ranging_air.test profile:=nava)
   multirobot_audio_air_test(mutex_air_rostest mutex_air.test test/mutex_air_rostest.cpp test/lock_watch.cpp
                             test/rostest_main.cpp)
   add_dependencies(tests local_mutex_node)

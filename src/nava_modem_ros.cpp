@@ -265,12 +265,19 @@ void NavaModemRos::ReportDevice() {
   h.failed_reopens = link_->failed_reopens();
 }
 
+// The sender's clock as the receiver measured it, for ranging until the timings themselves tell
+// it: the room profile's chirps measure it to some 30 ppm; nava's bit clock only to 0.1 %, worse
+// than taking the sound cards as equal (they are within a few hundred ppm).
+double NavaModemRos::RangingRateError(const nava_modem::RxEvent& e) const {
+  return options_.link.profile == nava_modem::Profile::kRoom ? e.rate_error : 0.0;
+}
+
 void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
   const ros::Time stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
   multirobot_audio::AudioReception msg = ToAudioReception(e, options_.frame_id, stamp);
   if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
     const RangingRos::Known known =
-        ranging_->Heard(e.data, e.arrival, e.rate_error, e.direction, e.direction_confidence, ClockEpoch(), link_->time(),
+        ranging_->Heard(e.data, e.arrival, RangingRateError(e), e.direction, e.direction_confidence, ClockEpoch(), link_->time(),
                         ros::Time::now() - ros::Duration(std::isfinite(e.arrival) ? std::max(0.0, link_->time() - e.arrival) : ago));
     if (known.range) {
       msg.path_length = static_cast<float>(known.range->range);

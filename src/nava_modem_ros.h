@@ -60,6 +60,7 @@ class NavaModemRos {
   void ReportDevice();  // logs and records a failure, a reopen or a catch-up of the device
   void DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status);
   void Publish(const nava_modem::RxEvent& event, double ago);
+  double RangingRateError(const nava_modem::RxEvent& e) const;
   std::uint32_t ClockEpoch() const { return static_cast<std::uint32_t>(link_->device_faults()); }
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -25,6 +26,9 @@ constexpr double kRegularisation = 1e-3;
 // sidelobe the reference itself makes (nava's tones repeat their patterns bit by bit, and a
 // reverberant room lifts those sidelobes); kDirectWithinDb where the reference has none.
 constexpr double kSidelobeMargin = 1.5;
+// A pulse whose largest sidelobe is above this share of its peak rings (ReadPulse's `ring`): nava's
+// reference gives 0.4, the room chirp 0.2.
+constexpr double kRingingSidelobe = 0.3;
 // (The envelope is read on the sample grid: a 4.8 kHz band sampled at 11 kHz or more is smooth
 // between samples, and the half-peak crossing interpolated linearly moves with a fractional
 // delay to within a microsecond, as first_arrival_test checks.)
@@ -59,17 +63,32 @@ double HalfPeakEdge(const std::vector<double>& power, double within = std::pow(1
   return static_cast<double>(j - 1) + (half - a) / (b - a);
 }
 
-// A pulse centred on lag 0 (a circular response of size n): where its half-peak edge lies, in
-// samples from lag 0 (negative: before it), and its largest sidelobe over its peak (beyond the
-// main lobe's first minima either side).
+// A moving average of `power` over `width` samples, centred (width 1: unchanged).
+void Smooth(std::vector<double>& power, std::size_t width) {
+  if (width <= 1 || power.empty()) return;
+  std::vector<double> sum(power.size() + 1, 0.0);
+  for (std::size_t i = 0; i < power.size(); ++i) sum[i + 1] = sum[i] + power[i];
+  const std::size_t before = width / 2, after = width - before;
+  for (std::size_t i = 0; i < power.size(); ++i) {
+    const std::size_t lo = i > before ? i - before : 0, hi = std::min(power.size(), i + after);
+    power[i] = (sum[hi] - sum[lo]) / static_cast<double>(hi - lo);
+  }
+}
+
+// A pulse centred on lag 0 (a circular response of size n), its power smoothed over `width`:
+// where its half-peak edge lies, in samples from lag 0 (negative: before it); its largest
+// sidelobe over its peak (beyond the main lobe's first minima either side); and how far from
+// the peak the nearest other peak lies (a ringing's period; 0 if none).
 struct Pulse {
   double rise = 0.0;
   double sidelobe = 0.0;
+  std::size_t ring = 0;
 };
-Pulse ReadPulse(const std::complex<double>* pulse, std::size_t n) {
+Pulse ReadPulse(const std::complex<double>* pulse, std::size_t n, std::size_t width) {
   const std::size_t half = n / 2;
   std::vector<double> env(n);
   for (std::size_t i = 0; i < n; ++i) env[i] = std::norm(pulse[(i + n - half) % n]);  // lags -half..half-1, squared
+  Smooth(env, width);
   const std::size_t peak = static_cast<std::size_t>(std::max_element(env.begin(), env.end()) - env.begin());
   std::size_t lo = peak, hi = peak;
   while (lo > 0 && env[lo - 1] <= env[lo]) --lo;
@@ -79,6 +98,9 @@ Pulse ReadPulse(const std::complex<double>* pulse, std::size_t n) {
     if (i < lo || i > hi) side = std::max(side, env[i]);
   }
   Pulse p;
+  std::size_t next = hi;  // the next peak after the main lobe
+  while (next + 1 < n && env[next + 1] >= env[next]) ++next;
+  p.ring = next > hi ? next - peak : 0;
   p.sidelobe = env[peak] > 0.0 ? std::sqrt(side / env[peak]) : 0.0;
   p.rise = HalfPeakEdge(env, std::max(std::pow(10.0, -kDirectWithinDb / 20.0), std::min(0.9, kSidelobeMargin * p.sidelobe))) -
            static_cast<double>(half);
@@ -141,8 +163,15 @@ ArrivalTimer::ArrivalTimer(const std::vector<float>& reference, std::size_t coun
   // A reference that fills only part of the band (nava's two tones) gives a wider pulse, whose
   // half-peak comes earlier before the arrival than the band's: its rise is taken out and the
   // band's put in, so that a bare delay arrives where LeadingEdge puts it, whatever the reference.
-  const Pulse own = ReadPulse(through.complex_output(), n);
-  rise_correction_ = ReadPulse(band.complex_output(), n).rise - own.rise;
+  Pulse own = ReadPulse(through.complex_output(), n, 1);
+  // A reference whose pulse rings (nava's two tones beat at their difference), with its next
+  // peak nearly as high as its main one, would have the edge jump by a period with the noise:
+  // its envelope is read smoothed over that period.
+  if (own.sidelobe > kRingingSidelobe && own.ring > 0) {
+    smooth_ = own.ring;
+    own = ReadPulse(through.complex_output(), n, smooth_);
+  }
+  rise_correction_ = ReadPulse(band.complex_output(), n, 1).rise - own.rise;
   within_ = std::max(std::pow(10.0, -kDirectWithinDb / 20.0), std::min(0.9, kSidelobeMargin * own.sidelobe));
 }
 
@@ -164,6 +193,7 @@ double ArrivalTimer::Time(const float* received, double* clarity) {
   const std::size_t lags = count_ - reference_length_ + 1;
   power_.resize(lags);
   for (std::size_t i = 0; i < lags; ++i) power_[i] = std::norm(p.analytic.complex_output()[i]);
+  Smooth(power_, smooth_);
   if (clarity && !power_.empty()) {
     sorted_ = power_;
     const auto mid = sorted_.begin() + static_cast<std::ptrdiff_t>(sorted_.size() / 2);

@@ -16,8 +16,9 @@ namespace {
 // The search begins this long before the moment of sending (a clock read a block late).
 constexpr double kLeadS = 0.02;
 // The own sound counts as heard when its response stands this far above the search's median
-// (FirstArrival's clarity): noise alone gives a few.
-constexpr double kHeardClarity = 10.0;
+// (FirstArrival's clarity): noise alone gives 2 to 3, the own sound 9 or more (nava's reference,
+// whose packet's other bits lift the median) to hundreds (the room chirp).
+constexpr double kHeardClarity = 5.0;
 
 double CheckedLoop(double max_loop) {
   if (!(max_loop > 0.0 && max_loop <= 10.0)) {

@@ -80,6 +80,24 @@ TEST(SelfTimerTest, ALinkTimesItsOwnPacketsThroughAnUnknownLoop) {
   }
 }
 
+TEST(SelfTimerTest, NoiseAloneIsNotTakenForTheOwnPacket) {
+  for (Profile profile : {Profile::kNava, Profile::kRoom}) {
+    const std::unique_ptr<ModemProfile> p = MakeProfile(profile, ModemOptions{});
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+      SelfTimer timer(*p, 0.5);
+      timer.Sent({9, 9, 9, 9}, 0.0);
+      std::mt19937 rng(seed);
+      std::normal_distribution<float> noise(0.0f, 0.05f);
+      std::vector<float> heard(static_cast<std::size_t>(2.0 * 48000.0));
+      for (float& v : heard) v = noise(rng);
+      std::vector<OwnTiming> out;
+      timer.Heard(heard.data(), heard.size(), out);
+      ASSERT_EQ(out.size(), 1u);
+      EXPECT_TRUE(std::isnan(out[0].arrival)) << ProfileName(profile) << " seed " << seed;
+    }
+  }
+}
+
 TEST(SelfTimerTest, AnUnheardPacketIsReportedWithoutATime) {
   const std::unique_ptr<ModemProfile> room = MakeProfile(Profile::kRoom, ModemOptions{});
   SelfTimer timer(*room, 0.3);

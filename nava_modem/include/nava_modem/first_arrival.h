@@ -53,6 +53,7 @@ class ArrivalTimer {
   std::unique_ptr<Plans> plans_;
   std::vector<std::complex<double>> inverse_;  // per bin: the band over the reference, regularised
   double rise_correction_ = 0.0, within_ = 0.0;
+  std::size_t smooth_ = 1;  // samples the power envelope is averaged over (a ringing pulse's period)
   std::vector<double> power_, sorted_;  // scratch
 };
 

@@ -125,6 +125,7 @@ class TwoWayRanger {
     double announced = 0.0;  // this robot's clock when the sender announced it (0: never)
   };
   void Pair(const Packet& packet, const std::string& teammate);
+  double RateOf(const std::string& teammate) const;
   void Forget();
   // The sending of `data` by `sender` that a timing stamped `stamp` belongs to: the latest whose
   // timings are within kSamePacketS of it (or, with no stamp on either side, the latest).
