@@ -81,6 +81,8 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& nh, const ros::Node
   o.link.max_capture_lag = NumberParam(pnh, "max_capture_lag", o.link.max_capture_lag, 0.001, 10.0);
   // Its own sound comes back through both of the device's buffers and the sound server's.
   o.link.max_loop = NumberParam(pnh, "max_loop", std::max(o.link.max_loop, 4.0 * o.alsa.latency + 0.2), 0.01, 10.0);
+  o.ranging_on = BoolParam(pnh, "ranging", true);
+  rx.time_arrivals = o.ranging_on;
   o.ranging = ReadRangingRosOptions(nh, pnh);
   nava_modem::ReopenOptions& reopen = o.link.reopen;
   reopen.first_wait = NumberParam(pnh, "reopen_backoff_min", reopen.first_wait, 0.001, 60.0);
@@ -123,7 +125,7 @@ NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaMo
   updater_.setHardwareID("alsa:" + options_.alsa.device);
   updater_.add("audio link", this, &NavaModemRos::Diagnose);
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
-  ranging_ = std::make_unique<RangingRos>(nh_, options_.ranging, guard_, options_.frame_id);
+  if (options_.ranging_on) ranging_ = std::make_unique<RangingRos>(nh_, options_.ranging, guard_, options_.frame_id);
   audio_thread_ = std::thread(&NavaModemRos::AudioLoop, this);
 }
 
@@ -144,7 +146,7 @@ NavaModemRos::~NavaModemRos() {
               static_cast<unsigned long>(health_.catch_ups), static_cast<unsigned long>(health_.faults),
               static_cast<unsigned long>(health_.reopens), static_cast<unsigned long>(health_.requeued),
               health_.down ? " (the device is down)" : "", guard_.Summary().c_str());
-  std::printf("nava_modem %s\n", ranging_->Summary().c_str());
+  if (ranging_) std::printf("nava_modem %s\n", ranging_->Summary().c_str());
   std::fflush(stdout);
 }
 
@@ -171,7 +173,7 @@ void NavaModemRos::AudioLoop() {
         to_send.swap(inbox_);
       }
       for (auto& data : to_send) {
-        ranging_->Announce(data);
+        if (ranging_) ranging_->Announce(data);
         if (!link_->Send(std::move(data))) {
           std::lock_guard<std::mutex> lock(mutex_);
           counts_.queue_drops = link_->mac().dropped();
@@ -183,10 +185,11 @@ void NavaModemRos::AudioLoop() {
       if (!link_->Tick(events)) break;
       ReportDevice();
       for (const nava_modem::OwnTiming& t : link_->TakeOwnTimings()) {
+        if (!ranging_) break;
         const double ago = std::isfinite(t.arrival) ? std::max(0.0, link_->time() - t.arrival) : 0.0;
         ranging_->OwnTiming(t.data, t.arrival, ClockEpoch(), ros::Time::now() - ros::Duration(ago));
       }
-      ranging_->SetClock(link_->time());
+      if (ranging_) ranging_->SetClock(link_->time());
       for (const nava_modem::RxEvent& e : events) Publish(e, link_->time() - e.end);
       const bool carrier = link_->carrier();
       if (carrier != last_carrier || link_->time() - last_carrier_sent >= carrier_period) {
@@ -275,7 +278,7 @@ double NavaModemRos::RangingRateError(const nava_modem::RxEvent& e) const {
 void NavaModemRos::Publish(const nava_modem::RxEvent& e, double ago) {
   const ros::Time stamp = ros::Time::now() - ros::Duration(std::max(0.0, ago));
   multirobot_audio::AudioReception msg = ToAudioReception(e, options_.frame_id, stamp);
-  if (e.kind == nava_modem::RxEvent::Kind::kPacket) {
+  if (ranging_ && e.kind == nava_modem::RxEvent::Kind::kPacket) {
     const RangingRos::Known known =
         ranging_->Heard(e.data, e.arrival, RangingRateError(e), e.direction, e.direction_confidence, ClockEpoch(), link_->time(),
                         ros::Time::now() - ros::Duration(std::isfinite(e.arrival) ? std::max(0.0, link_->time() - e.arrival) : ago));

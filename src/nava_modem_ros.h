@@ -26,6 +26,7 @@ struct NavaModemOptions {
   nava_modem::LinkOptions link;   // modem, MAC, receiver and device-fault settings (see docs/nodes.md)
   std::string frame_id = "base_link";  // ~frame_id: stamped on what is published
   double carrier_rate = 10.0;     // ~carrier_rate: Hz of audio/carrier besides every change
+  bool ranging_on = true;         // ~ranging: time packets and range the team (off: no timings at all)
   RangingRosOptions ranging;      // ~robot, ~team, ~timings_topic, ... (ranging_ros.h)
 };
 
@@ -61,7 +62,9 @@ class NavaModemRos {
   void DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status);
   void Publish(const nava_modem::RxEvent& event, double ago);
   double RangingRateError(const nava_modem::RxEvent& e) const;
-  std::uint32_t ClockEpoch() const { return static_cast<std::uint32_t>(link_->device_faults()); }
+  // The capture clock's life for ranging: it restarts with the device, and loses samples (so no
+  // longer runs with true time) at a capture overrun.
+  std::uint32_t ClockEpoch() const { return static_cast<std::uint32_t>(link_->device_faults() + link_->overruns()); }
   void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   ros::NodeHandle nh_, pnh_;

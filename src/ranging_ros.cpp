@@ -16,7 +16,7 @@ ranging::Timing FromMsg(const multirobot_audio::PacketTiming& m) {
   t.arrival = m.arrival;
   t.rate_error = m.rate_error;
   t.clock_epoch = m.clock_epoch;
-  t.stamp = m.stamp.isZero() ? std::numeric_limits<double>::quiet_NaN() : m.stamp.toSec();
+  t.stamp = m.heard.isZero() ? std::numeric_limits<double>::quiet_NaN() : m.heard.toSec();
   return t;
 }
 
@@ -28,7 +28,7 @@ multirobot_audio::PacketTiming ToMsg(const ranging::Timing& t) {
   m.arrival = t.arrival;
   m.rate_error = t.rate_error;
   m.clock_epoch = t.clock_epoch;
-  if (std::isfinite(t.stamp) && t.stamp > 0.0) m.stamp = ros::Time(t.stamp);
+  if (std::isfinite(t.stamp) && t.stamp > 0.0) m.heard = ros::Time(t.stamp);
   return m;
 }
 
@@ -88,7 +88,9 @@ RangingRos::RangingRos(ros::NodeHandle nh, const RangingRosOptions& options, Inp
   timer_ = nh.createWallTimer(ros::WallDuration(1.0 / options_.teammates_rate), [this](const ros::WallTimerEvent&) { PublishTeammates(); });
 }
 
-void RangingRos::Share(const multirobot_audio::PacketTiming& msg) {
+// Called from the audio thread only, so that the reports' stamps go forward.
+void RangingRos::Share(multirobot_audio::PacketTiming msg) {
+  msg.header.stamp = ros::Time::now();
   timings_pub_.publish(msg);
   ++shared_;
 }

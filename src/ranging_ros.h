@@ -52,7 +52,7 @@ class RangingRos {
   std::string Summary();  // reports in and refused, for the node's exit line
 
  private:
-  void Share(const multirobot_audio::PacketTiming& msg);
+  void Share(multirobot_audio::PacketTiming msg);
   InputGuard::Verdict OnTiming(const multirobot_audio::PacketTiming::ConstPtr& msg);
   void PublishTeammates();
 

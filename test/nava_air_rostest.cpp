@@ -14,6 +14,7 @@
 #include <ros/ros.h>
 
 #include "nava_modem/modem_profile.h"
+#include "profile_param.h"
 #include "wait_for.h"
 
 namespace multirobot_audio {
@@ -232,14 +233,7 @@ TEST(NavaAir, AForcedCollisionIsReportedAsNoise) {
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "nava_air_rostest");
-  std::string name;
-  ros::NodeHandle("~").param<std::string>("profile", name, "nava");
-  const auto parsed = nava_modem::ParseProfile(name);
-  if (!parsed) {
-    std::fprintf(stderr, "nava_air_rostest: ~profile: expected %s, got '%s'\n", nava_modem::kProfileNames, name.c_str());
-    return 1;
-  }
-  multirobot_audio::profile = *parsed;
+  multirobot_audio::profile = multirobot_audio::testing::ProfileParam("nava_air_rostest", "nava");
   multirobot_audio::Air air;
   multirobot_audio::air = &air;
   return RUN_ALL_TESTS();

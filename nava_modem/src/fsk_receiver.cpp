@@ -262,7 +262,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
       } else if (n >= decode_at_) {
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
-        if (events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
+        if (options_.time_arrivals && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
         busy_.FrameFound();
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step. Not after a faint step that decoded to

@@ -123,7 +123,7 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
   const bool may_send = !behind_ || samples_done_ - behind_since_ > std::llround(kLongestHoldSeconds * options_.modem.sample_rate);
   if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receiver_->level_db(), may_send)) {
     burst_ = profile_->ModulatePacket(*packet);
-    self_timer_.Sent(*packet, time());
+    if (options_.receiver.time_arrivals) self_timer_.Sent(*packet, time());
     // It starts with this tick's playback.
     in_flight_.push_back({std::move(*packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
     burst_at_ = 0;

@@ -370,7 +370,7 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   if (CrcMatches(frame, modem_.crc)) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(frame.begin() + 1, frame.begin() + 1 + kDataBytes);
-    ev.arrival = Arrival(pre);
+    if (options_.time_arrivals) ev.arrival = Arrival(pre);
   } else {
     ev.kind = RxEvent::Kind::kNoise;
     ev.noise = RxEvent::Noise::kBadCrc;

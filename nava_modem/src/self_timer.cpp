@@ -13,12 +13,19 @@
 namespace nava_modem {
 namespace {
 
-// The search begins this long before the moment of sending (a clock read a block late).
+// The wide search runs from the moment of sending to this long past the longest loop. It does
+// not begin earlier: every packet of a profile begins with the same sound, and a teammate's
+// packet (or the room profile's second chirp of one) that ended just before this send would be
+// taken for it, as its sound comes first.
 constexpr double kLeadS = 0.02;
 // The own sound counts as heard when its response stands this far above the search's median
 // (FirstArrival's clarity): noise alone gives 2 to 3, the own sound 9 or more (nava's reference,
 // whose packet's other bits lift the median) to hundreds (the room chirp).
 constexpr double kHeardClarity = 5.0;
+
+// Once the loop's delay is known, the next packet is looked for only this far either side of it
+// (a sound card's latency holds still while its streams run): a transform a tenth the size.
+constexpr double kNarrowS = 0.02;
 
 double CheckedLoop(double max_loop) {
   if (!(max_loop > 0.0 && max_loop <= 10.0)) {
@@ -33,8 +40,8 @@ SelfTimer::SelfTimer(const ModemProfile& profile, double max_loop)
     : rate_(profile.options().sample_rate),
       max_loop_(CheckedLoop(max_loop)),
       reference_(PacketTimingReference(profile.profile(), profile.options())),
-      arrival_timer_(reference_.sound, reference_.sound.size() + static_cast<std::size_t>(std::lround((max_loop_ + 2.0 * kLeadS) * rate_)),
-                     rate_) {
+      wide_(reference_.sound, reference_.sound.size() + static_cast<std::size_t>(std::lround((max_loop_ + 2.0 * kLeadS) * rate_)), rate_),
+      narrow_(reference_.sound, reference_.sound.size() + static_cast<std::size_t>(std::lround(2.0 * kNarrowS * rate_)), rate_) {
   const std::size_t size = PowerOfTwoAtLeast((profile.Airtime() * 1.1 + max_loop + 2.0 * kLeadS + 0.5) * rate_);
   ring_.assign(size, 0.0f);
   mask_ = size - 1;
@@ -43,8 +50,10 @@ SelfTimer::SelfTimer(const ModemProfile& profile, double max_loop)
 void SelfTimer::Sent(std::vector<std::uint8_t> data, double sent) {
   Pending p;
   p.data = std::move(data);
-  p.from = std::llround((sent - kLeadS) * rate_ + reference_.offset);
-  p.to = p.from + static_cast<std::int64_t>(arrival_timer_.count());
+  p.sent = sent;
+  p.narrow = loop_.has_value();
+  p.from = std::llround((sent + (p.narrow ? *loop_ - kNarrowS : 0.0)) * rate_ + reference_.offset);
+  p.to = p.from + static_cast<std::int64_t>((p.narrow ? narrow_ : wide_).count());
   pending_.push_back(std::move(p));
 }
 
@@ -57,6 +66,7 @@ void SelfTimer::Heard(const float* samples, std::size_t count, std::vector<OwnTi
 void SelfTimer::Skip(double seconds, std::vector<OwnTiming>& out) {
   for (Pending& p : pending_) out.push_back({std::move(p.data), std::numeric_limits<double>::quiet_NaN()});
   pending_.clear();
+  loop_.reset();  // the device reopened: its latency is new
   const std::int64_t skipped = std::llround(seconds * rate_);
   for (std::int64_t k = 0; k < std::min<std::int64_t>(skipped, static_cast<std::int64_t>(ring_.size())); ++k) {
     ring_[static_cast<std::size_t>(n_ + k) & mask_] = 0.0f;
@@ -70,11 +80,18 @@ void SelfTimer::Judge(std::vector<OwnTiming>& out) {
     const std::int64_t oldest = n_ - static_cast<std::int64_t>(ring_.size());
     OwnTiming t{std::move(p.data), std::numeric_limits<double>::quiet_NaN()};
     if (p.from >= std::max<std::int64_t>(oldest, 0)) {  // all of its window still held
-      heard_.resize(arrival_timer_.count());
+      ArrivalTimer& timer = p.narrow ? narrow_ : wide_;
+      heard_.resize(timer.count());
       for (std::size_t k = 0; k < heard_.size(); ++k) heard_[k] = ring_[static_cast<std::size_t>(p.from + static_cast<std::int64_t>(k)) & mask_];
       double clarity = 0.0;
-      const double edge = arrival_timer_.Time(heard_.data(), &clarity);
+      const double edge = timer.Time(heard_.data(), &clarity);
       if (clarity >= kHeardClarity) t.arrival = (static_cast<double>(p.from) - reference_.offset) / rate_ + edge;
+    }
+    // Not heard where the loop was: the next is looked for over the whole of it again.
+    if (std::isnan(t.arrival)) {
+      loop_.reset();
+    } else {
+      loop_ = t.arrival - p.sent;
     }
     out.push_back(std::move(t));
     pending_.pop_front();

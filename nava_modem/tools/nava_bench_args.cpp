@@ -87,16 +87,31 @@ ArrivalRequest ParseArrival(const ToolArgs& args) {
   return r;
 }
 
+LinkCostRequest ParseLinkCost(const ToolArgs& args) {
+  LinkCostRequest r;
+  r.seconds = args.Double("--seconds", 120.0, 10.0, 3600.0);
+  r.period = args.Double("--period", 6.0, 3.0, 600.0);
+  r.runs = static_cast<int>(args.Int("--runs", 3, 1, 100));
+  const ToolModem modem = ProfileArgs(args);
+  r.profile = args.Switch("--profile") ? modem.profile : Profile::kRoom;
+  r.options = modem.options;
+  args.CheckAllUsed();
+  return r;
+}
+
 }  // namespace
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] (--profile room the default)] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] (--profile room the default) | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--link-cost", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
-  if (args.Switch("--arrival")) {
+  if (args.Switch("--link-cost")) {
+    o.mode = NavaBenchOptions::Mode::kLinkCost;
+    o.link_cost = ParseLinkCost(args);
+  } else if (args.Switch("--arrival")) {
     o.mode = NavaBenchOptions::Mode::kArrival;
     o.arrival = ParseArrival(args);
   } else if (args.Switch("--doa")) {

@@ -52,13 +52,23 @@ struct ArrivalRequest {
   ModemOptions options;
 };
 
+// nava_bench --link-cost: what timing packets for ranging adds to a link's CPU.
+struct LinkCostRequest {
+  double seconds = 120.0;  // of audio
+  double period = 6.0;     // s between one robot's packets
+  int runs = 3;
+  Profile profile = Profile::kRoom;
+  ModemOptions options;
+};
+
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival };
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLinkCost };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
   DoaRequest doa;
   ArrivalRequest arrival;
+  LinkCostRequest link_cost;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };
 

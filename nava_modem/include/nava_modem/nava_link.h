@@ -32,7 +32,7 @@ struct LinkOptions {
   double max_capture_lag = 0.1;
   // s its own sound may take from playback to its microphone (the device's and the sound
   // server's buffers): each packet it sends is looked for that long in what it captures, and
-  // timed (OwnTiming), for two-way ranging.
+  // timed (OwnTiming), for two-way ranging (unless receiver.time_arrivals is off).
   double max_loop = 0.5;
   std::uint32_t seed = 1;
 };

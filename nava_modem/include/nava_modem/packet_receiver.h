@@ -20,6 +20,9 @@ struct ReceiverOptions {
   // Every profile: in-band level (dB of full scale) above which the air counts as busy, for
   // ZERO_BYTE reports of busy air in which no frame was found. None: such air is not reported.
   std::optional<double> carrier_threshold_db;
+  // Every profile: time each packet's first arrival (RxEvent::arrival, for ranging); off, it
+  // stays NaN and costs nothing.
+  bool time_arrivals = true;
 };
 
 // Throws std::invalid_argument naming the field, its value and what was expected:

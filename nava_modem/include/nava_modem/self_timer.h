@@ -1,11 +1,13 @@
 #pragma once
 
 // A link's own packets as its own microphone hears them: the first arrival of each, on the same
-// capture clock as the packets it receives (first_arrival.h). Two-way ranging (ranging/) needs
+// capture clock as the packets it receives (first_arrival.h), looked for over the whole of the
+// longest loop until one is found, then around the loop's delay. Two-way ranging (ranging/) needs
 // both: the sound card's playback and capture latencies are unknown, but timing one's own sound
 // on the capture clock takes them out. No ROS.
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "nava_modem/first_arrival.h"
@@ -40,6 +42,8 @@ class SelfTimer {
  private:
   struct Pending {
     std::vector<std::uint8_t> data;
+    double sent;            // s, the receiver's clock when it was sent
+    bool narrow;            // searched around the last loop's delay
     std::int64_t from, to;  // the samples to search, [from, to)
   };
   void Judge(std::vector<OwnTiming>& out);
@@ -47,7 +51,8 @@ class SelfTimer {
   double rate_;
   double max_loop_;
   TimingReference reference_;
-  ArrivalTimer arrival_timer_;
+  ArrivalTimer wide_, narrow_;  // over the whole of max_loop, and around the last loop's delay
+  std::optional<double> loop_;  // s from sending to hearing, as last timed
   std::vector<float> heard_;  // scratch
   std::vector<float> ring_;
   std::size_t mask_;
