@@ -46,6 +46,7 @@ WorldSimOptions ReadWorldSimOptions(const ros::NodeHandle& pnh) {
   o.lockstep = BoolParam(pnh, "lockstep", o.lockstep);
   o.lockstep_timeout = NumberParam(pnh, "lockstep_timeout", o.lockstep_timeout, 1e-3, 1e6);
   o.lockstep_start_timeout = NumberParam(pnh, "lockstep_start_timeout", o.lockstep_start_timeout, 1e-3, 1e6);
+  o.lockstep_start_delay = NumberParam(pnh, "lockstep_start_delay", o.lockstep_start_delay, 0.0, 600.0);
   if (pnh.hasParam("lockstep_participants") && !pnh.getParam("lockstep_participants", o.participants)) {
     throw ParamError(pnh.resolveName("lockstep_participants") + ": expected a list of node names");
   }
@@ -195,6 +196,10 @@ void WorldSimRos::StartLockstep() {
     }
     ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.01));
   }
+  // What is outside the lockstep (a recorder) connects to the team's publishers meanwhile; a
+  // message sent before a subscriber's connection stands is lost to it.
+  const ros::WallTime start = ros::WallTime::now() + ros::WallDuration(options_.lockstep_start_delay);
+  while (ros::ok() && ros::WallTime::now() < start) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.01));
   ROS_INFO("world_sim: lockstep with %zu participants", options_.participants.size() - lockstep_->dropped().size());
 }
 

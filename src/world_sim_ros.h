@@ -33,6 +33,9 @@ struct WorldSimOptions {
   bool lockstep = false;
   double lockstep_timeout = 5.0;          // ~lockstep_timeout: wall s before a silent participant is dropped
   double lockstep_start_timeout = 60.0;   // ~lockstep_start_timeout: wall s to wait for them all at the start
+  // ~lockstep_start_delay: wall s to wait once they are all ready, before the first step, for
+  // observers outside the lockstep (a recorder) to connect to the team's publishers
+  double lockstep_start_delay = 0.0;
   std::vector<std::string> participants;  // ~lockstep_participants: node names
 };
 

@@ -49,8 +49,10 @@ for run in 1 2; do
   rosrun rosbag record -O "$dir/run$run.bag" "${topics[@]}" __name:=lockstep_recorder >"$dir/record$run.log" 2>&1 &
   recorder=$!
   sleep 2
+  # The world waits 3 s once the team is ready, for the recorder to connect to its publishers
+  # (on a busy machine that took more than the whole run once).
   roslaunch multirobot_audio sim_team.launch robots:="$robots" duration:="$duration" speed:=0 seed:=1 \
-    announce_period:=2 "${common[@]}" "${own[@]}" >"$dir/run$run.log" 2>&1
+    announce_period:=2 lockstep_start_delay:=3 "${common[@]}" "${own[@]}" >"$dir/run$run.log" 2>&1
   kill -INT "$recorder"
   wait "$recorder" || true
   recorder=""
