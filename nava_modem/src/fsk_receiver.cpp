@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "nava_modem/first_arrival.h"
+#include "nava_modem/measured_response.h"
 #include "nava_modem/power_of_two.h"
 #include "nava_modem/timing_reference.h"
 
@@ -138,9 +139,12 @@ std::size_t RingSize(double per_bit) { return PowerOfTwoAtLeast(150.0 * per_bit 
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem), options_(options), filters_(modem),
       reference_(PacketTimingReference(Profile::kNava, modem)),
-      arrival_timer_(reference_.sound,
-                     reference_.sound.size() + static_cast<std::size_t>(std::lround((kArrivalBefore + kArrivalAfter) * modem.sample_rate)),
-                     modem.sample_rate),
+      arrival_timer_(modem.sample_rate >= 2.0 * kResponseBandHighHz
+                         ? std::make_unique<ArrivalTimer>(reference_.sound,
+                                                          reference_.sound.size() + static_cast<std::size_t>(std::lround(
+                                                                                        (kArrivalBefore + kArrivalAfter) * modem.sample_rate)),
+                                                          modem.sample_rate)
+                         : nullptr),
       per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
       equalizer_(modem) {
   ValidateModemOptions(modem_);
@@ -262,7 +266,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
       } else if (n >= decode_at_) {
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
-        if (options_.time_arrivals && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
+        if (options_.time_arrivals && arrival_timer_ && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
         busy_.FrameFound();
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step. Not after a faint step that decoded to
@@ -616,13 +620,13 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
 double FskReceiver::Arrival(const RxEvent& packet) {
   const double fs = modem_.sample_rate;
   const std::int64_t from = std::llround((packet.start - kArrivalBefore) * fs + reference_.offset);
-  const std::size_t count = arrival_timer_.count();
+  const std::size_t count = arrival_timer_->count();
   if (from < 0 || from < samples_ - static_cast<std::int64_t>(raw_.size()) || from + static_cast<std::int64_t>(count) > samples_) {
     return std::numeric_limits<double>::quiet_NaN();  // not all of it is still (or yet) held
   }
   std::vector<float> heard(count);
   for (std::size_t k = 0; k < count; ++k) heard[k] = raw_[static_cast<std::size_t>(from + static_cast<std::int64_t>(k)) & raw_mask_];
-  return (static_cast<double>(from) - reference_.offset) / fs + arrival_timer_.Time(heard.data());
+  return (static_cast<double>(from) - reference_.offset) / fs + arrival_timer_->Time(heard.data());
 }
 
 }  // namespace nava_modem

@@ -106,7 +106,8 @@ class FskReceiver : public PacketReceiver {
   ReceiverOptions options_;
   ToneFilters filters_;
   TimingReference reference_;  // what each packet is timed on
-  ArrivalTimer arrival_timer_;
+  // None when the rate cannot carry the timing band (below 2 x 5400 Hz): packets go untimed.
+  std::unique_ptr<ArrivalTimer> arrival_timer_;
   // Time inside the receiver runs in the filters' steps (a few samples each).
   double per_bit_;    // steps per bit
   double seconds_per_step_;
