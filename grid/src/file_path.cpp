@@ -1,14 +1,22 @@
 #include "grid/file_path.h"
 
 #include <filesystem>
+#include <system_error>
 
 namespace grid {
 
 std::string CanonicalPath(const std::string& path) {
   if (path.empty()) return path;
   namespace fs = std::filesystem;
+  std::error_code error;
   // absolute() first: weakly_canonical leaves a relative path relative when none of it exists.
-  return fs::weakly_canonical(fs::absolute(path)).string();
+  fs::path absolute = fs::absolute(path, error);
+  if (error) absolute = fs::path(path);
+  const fs::path canonical = fs::weakly_canonical(absolute, error);
+  // A name the file system cannot resolve (too long, a folder we may not enter) is kept as
+  // written, tidied: whoever opens it reports the file and why it cannot be read.
+  if (error) return absolute.lexically_normal().string();
+  return canonical.string();
 }
 
 }  // namespace grid
