@@ -111,14 +111,16 @@ void TwoWayRanger::Add(const Timing& t) {
     if (rates.size() > kRateHistory) rates.erase(rates.begin());
   }
   if (packet.repeated) return;
-  // The teammates whose exchange with this robot this timing may complete.
-  if (t.listener == self_) {
+  // The teammates whose exchange with this robot this timing may complete, each once (one
+  // exchange is one sample, however many others timed the packet).
+  if (t.listener != self_) {
+    if (packet.sender == self_ || packet.sender == t.listener) Pair(packet, t.listener);
+  } else if (packet.sender != self_) {
+    Pair(packet, packet.sender);
+  } else {
     for (const auto& [listener, timing] : packet.heard) {
-      if (listener != self_) Pair(packet, packet.sender == self_ ? listener : packet.sender);
+      if (listener != self_) Pair(packet, listener);
     }
-    if (packet.sender != self_) Pair(packet, packet.sender);
-  } else if (packet.sender == self_ || packet.sender == t.listener) {
-    Pair(packet, t.listener);
   }
 }
 

@@ -141,6 +141,23 @@ TEST(TwoWayRangerTest, NoRangeUntilAnExchangeBothWays) {
   EXPECT_NEAR(ranger.RangeTo("b", scene.Clock("a", 30.0))->range, 5.0, 1e-3);
 }
 
+// One exchange is one sample, whoever else timed its packets and in whatever order the
+// timings come (a sample counted twice would halve the reported uncertainty).
+TEST(TwoWayRangerTest, OneExchangeIsOneSample) {
+  Scene scene({{"a", Robot{}}, {"b", Robot{4.0, 0.0, 3.0, 40e-6, 0.0}}, {"c", Robot{0.0, 3.0, -2.0, -30e-6, 0.0}}});
+  TwoWayRanger ranger("a", {"a", "b", "c"}, RangerOptions{});
+  AddAll(ranger, scene.Send("a", 1, 10.0, {"c", "a", "b"}));
+  AddAll(ranger, scene.Send("b", 2, 12.0, {"b", "c", "a"}));
+  ASSERT_TRUE(ranger.RangeTo("b", scene.Clock("a", 13.0)));
+  EXPECT_EQ(ranger.RangeTo("b", scene.Clock("a", 13.0))->samples, 1);
+  TwoWayRanger other_order("a", {"a", "b", "c"}, RangerOptions{});
+  AddAll(other_order, scene.Send("a", 1, 10.0, {"a", "b", "c"}));
+  AddAll(other_order, scene.Send("b", 2, 12.0, {"a", "c", "b"}));
+  ASSERT_TRUE(other_order.RangeTo("b", scene.Clock("a", 13.0)));
+  EXPECT_EQ(other_order.RangeTo("b", scene.Clock("a", 13.0))->samples, 1);
+  EXPECT_NEAR(other_order.RangeTo("b", scene.Clock("a", 13.0))->range, 4.0, 1e-3);
+}
+
 TEST(TwoWayRangerTest, ExchangesFurtherApartThanTheWindowArePairedWithNothing) {
   Scene scene(Pair(5.0));
   RangerOptions o;
