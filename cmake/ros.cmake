@@ -36,6 +36,7 @@ add_library(multirobot_audio_ros STATIC
   src/audio_propagation_ros.cpp
   src/nava_modem_ros.cpp
   src/ranging_ros.cpp
+  src/simulated_ranging_ros.cpp
   src/local_mutex_ros.cpp
   src/mutex_client_ros.cpp
 )
@@ -83,7 +84,7 @@ if(MULTIROBOT_AUDIO_TESTS)
   find_package(rostest REQUIRED)
   find_package(roslaunch REQUIRED)
 
-  catkin_add_gtest(conversions_test test/conversions_test.cpp)
+  catkin_add_gtest(conversions_test test/conversions_test.cpp test/ranging_conversions_test.cpp)
   target_link_libraries(conversions_test multirobot_audio_ros)
   catkin_add_gtest(input_checks_test test/input_checks_test.cpp)
   target_link_libraries(input_checks_test multirobot_audio_ros)
@@ -137,6 +138,9 @@ if(MULTIROBOT_AUDIO_TESTS)
   target_link_libraries(audio_propagation_rostest ${catkin_LIBRARIES})
   add_dependencies(audio_propagation_rostest world_sim_node audio_propagation_node)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
+  add_rostest_gtest(sim_ranging_rostest test/sim_ranging.test test/sim_ranging_rostest.cpp test/rostest_main.cpp)
+  target_link_libraries(sim_ranging_rostest ${catkin_LIBRARIES})
+  add_dependencies(sim_ranging_rostest world_sim_node audio_propagation_node)
 
   # A broken peer against every simulated node: garbage, floods, a robot missing from TF.
   add_rostest_gtest(hostile_input_rostest test/hostile_input.test test/hostile_input_rostest.cpp test/hostile_peer.cpp)

@@ -67,6 +67,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   o.robot_poses = StringParam(pnh, "robot_poses", o.robot_poses);
   o.delivery_map_period = NumberParam(pnh, "delivery_map_period", o.delivery_map_period, 0.1, 1e6);
   o.delivery_map_resolution = NumberParam(pnh, "delivery_map_resolution", o.delivery_map_resolution, 0.01, 100.0);
+  o.ranging = ReadSimRangingOptions(pnh, c.speed_of_sound);
   return o;
 }
 
@@ -115,6 +116,11 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
 
     sim_.channel->SetPose(k, {kUnknown, kUnknown, 0.0});
   }
+  ranging_ = std::make_unique<SimulatedRangingRos>(nh_, pnh_, lockstep_, sim_.robots, options_.ranging, options_.channel.profile,
+                                                   static_cast<std::uint32_t>(options_.channel.seed));
+  if (!ranging_->arrival_errors().empty()) {
+    ROS_INFO("audio_propagation: ranging measured, arrival errors from %s", ranging_->arrival_errors().c_str());
+  }
   if (lockstep_.enabled()) {
     // The whole team's poses in one message a step (a hundred robots' ground_truth would be a
     // hundred); passive: they alone do not call the node to a step.
@@ -142,14 +148,15 @@ AudioPropagationRos::~AudioPropagationRos() {
   for (const std::uint64_t m : missing_poses_) missing += m;
   std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; %s; %lu packets found "
               "their robot's queue full; %lu pose look-ups failed; updates %lu (%lu of them resting); "
-              "path cache %lu hits, %lu misses; %lu arrivals unheard (acoustic model)\n",
+              "path cache %lu hits, %lu misses; %lu arrivals unheard (acoustic model); %s\n",
               static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
               static_cast<unsigned long>(noise_heard_), guard_.Summary().c_str(),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->send_overflows() : 0), static_cast<unsigned long>(missing),
               static_cast<unsigned long>(updates_), static_cast<unsigned long>(idle_updates_),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->cache().hits() : 0),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->cache().misses() : 0),
-              static_cast<unsigned long>(sim_.channel ? sim_.channel->unheard() : 0));
+              static_cast<unsigned long>(sim_.channel ? sim_.channel->unheard() : 0),
+              ranging_ ? ranging_->Summary().c_str() : "ranging not started");
   std::fflush(stdout);
 }
 
@@ -242,6 +249,7 @@ double AudioPropagationRos::RestUntil() const {
   double next = sim_.channel->NextEventTime();
   for (const double t : carrier_published_) next = std::min(next, t + options_.carrier_refresh);
   if (delivery_pub_) next = std::min(next, next_delivery_map_);
+  if (ranging_) next = std::min(next, ranging_->next_publish());
   // (A hair early rather than a step late: the step's time and the channel's ticks are rounded
   // differently.)
   return start_.toSec() + next - 1e-6;
@@ -274,16 +282,25 @@ void AudioPropagationRos::OnTimer(const ros::TimerEvent& event) {
     PublishDeliveryMap(now);
   }
 
+  // In time order, the transmissions at their start and the receptions at their end: each
+  // robot's timings then go forward on its clock, as its sound card's do.
+  std::size_t next_started = 0;
   for (const auto& rx : events.received) {
+    while (next_started < events.started.size() && events.started[next_started].start <= rx.time) {
+      ranging_->Started(events.started[next_started++]);
+    }
     if (rx.kind == audio_propagation::Reception::Kind::kPacket) {
       ++packets_heard_;
     } else {
       ++noise_heard_;
     }
-    const multirobot_audio::AudioReception msg =
+    multirobot_audio::AudioReception msg =
         ToAudioReception(rx, sim_.robots[rx.receiver] + "/base_link", start_ + ros::Duration(rx.time));
+    ranging_->Received(rx, msg);
     rx_pubs_[rx.receiver].publish(msg);
   }
+  while (next_started < events.started.size()) ranging_->Started(events.started[next_started++]);
+  ranging_->PublishDue(sim_.channel->time(), now);
 
   PublishCarriers(now);
 }

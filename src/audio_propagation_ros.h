@@ -16,6 +16,7 @@
 #include "audio_propagation/channel_factory.h"
 #include "input_guard.h"
 #include "lockstep_participant.h"
+#include "simulated_ranging_ros.h"
 
 namespace multirobot_audio {
 
@@ -48,6 +49,9 @@ struct AudioPropagationOptions {
   // (simulated) on cells of ~delivery_map_resolution m.
   double delivery_map_period = 5.0;
   double delivery_map_resolution = 0.5;
+  // ~ranging, ~arrival_errors, ~clock_rate_error, ~teammates_rate, ~ranging_window,
+  // ~ranging_samples, ~ranging_offset: what receptions and audio/teammates say of distances.
+  SimRangingOptions ranging;
 };
 
 // Reads the node's parameters and checks them (CheckSimulatedChannelOptions for the channel's);
@@ -91,6 +95,7 @@ class AudioPropagationRos {
   ros::Subscriber truth_sub_;
   std::map<std::string, std::size_t> robot_index_;
   std::vector<CountedPublisher> rx_pubs_, carrier_pubs_;
+  std::unique_ptr<SimulatedRangingRos> ranging_;
   // In lockstep the poses come from world_sim's ~robot_poses (the same poses it sends on /tf),
   // counted like every other message, rather than from the TF listener's own thread; each is
   // handed to the channel with its stamp.

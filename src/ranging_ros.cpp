@@ -1,5 +1,6 @@
 #include "ranging_ros.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -45,12 +46,20 @@ RangingRosOptions ReadRangingRosOptions(const ros::NodeHandle& nh, const ros::No
   o.team = StringListParam(pnh, "team", "a list of the team's robot names");
   o.timings_topic = StringParam(pnh, "timings_topic", o.timings_topic);
   o.teammates_rate = NumberParam(pnh, "teammates_rate", o.teammates_rate, 0.01, 100.0);
-  ranging::RangerOptions& r = o.ranger;
-  r.speed_of_sound = NumberParam(pnh, "speed_of_sound", r.speed_of_sound);
+  o.ranger = ReadRangerParams(pnh, o.ranger, true);
+  return o;
+}
+
+ranging::RangerOptions ReadRangerParams(const ros::NodeHandle& pnh, ranging::RangerOptions r, bool read_speed) {
+  std::vector<std::string> fields = {"ranging_window", "ranging_samples", "ranging_offset"};
+  if (read_speed) {
+    r.speed_of_sound = NumberParam(pnh, "speed_of_sound", r.speed_of_sound);
+    fields.push_back("speed_of_sound");
+  }
   r.pair_window = NumberParam(pnh, "ranging_window", r.pair_window);
   r.samples = IntParam(pnh, "ranging_samples", r.samples);
   r.offset = NumberParam(pnh, "ranging_offset", r.offset);
-  CheckOptionParams(pnh, {"speed_of_sound", "ranging_window", "ranging_samples", "ranging_offset"}, [&] {
+  CheckOptionParams(pnh, fields, [&] {
     try {
       ranging::ValidateRangerOptions(r);
     } catch (const std::invalid_argument& e) {
@@ -64,7 +73,105 @@ RangingRosOptions ReadRangingRosOptions(const ros::NodeHandle& nh, const ros::No
       throw std::invalid_argument(what);
     }
   });
-  return o;
+  return r;
+}
+
+multirobot_audio::Teammates ToTeammatesMsg(const std::vector<ranging::TeammateView>& view, const std::string& frame_id,
+                                           const ros::Time& stamp) {
+  multirobot_audio::Teammates msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = frame_id;
+  for (const ranging::TeammateView& v : view) {
+    multirobot_audio::Teammate t;
+    t.name = v.name;
+    t.range = t.range_std = t.range_age = t.bearing = t.bearing_age = kNan;
+    if (v.range) {
+      t.range = static_cast<float>(v.range->range);
+      t.range_std = static_cast<float>(v.range->range_std);
+      t.range_age = static_cast<float>(v.range->age);
+      t.range_samples = static_cast<std::uint32_t>(v.range->samples);
+    }
+    if (v.bearing) {
+      t.bearing = static_cast<float>(v.bearing->bearing);
+      t.bearing_confidence = static_cast<float>(v.bearing->confidence);
+      t.bearing_age = static_cast<float>(v.bearing_age);
+    }
+    msg.teammates.push_back(t);
+  }
+  return msg;
+}
+
+namespace {
+
+// One robot's teammates as markers in its frame, namespace `ns`, appended to `out`.
+void AppendTeammateMarkers(const std::string& ns, const multirobot_audio::Teammates& msg,
+                           visualization_msgs::MarkerArray& out) {
+  int id = 0;
+  const auto marker = [&](std::uint8_t type) -> visualization_msgs::Marker& {
+    visualization_msgs::Marker m;
+    m.header = msg.header;
+    m.ns = ns;
+    m.id = id++;
+    m.type = type;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    m.color.r = 0.2f, m.color.g = 0.6f, m.color.b = 1.0f, m.color.a = 0.8f;
+    out.markers.push_back(m);
+    return out.markers.back();
+  };
+  for (const multirobot_audio::Teammate& t : msg.teammates) {
+    const bool range = std::isfinite(t.range), bearing = std::isfinite(t.bearing);
+    if (range && bearing) {
+      geometry_msgs::Point at;
+      at.x = t.range * std::cos(t.bearing);
+      at.y = t.range * std::sin(t.bearing);
+      at.z = 0.05;
+      visualization_msgs::Marker& disc = marker(visualization_msgs::Marker::CYLINDER);
+      disc.pose.position = at;
+      disc.scale.x = disc.scale.y = 2.0 * std::max(0.05, static_cast<double>(t.range_std));
+      disc.scale.z = 0.02;
+      disc.color.a = static_cast<float>(0.3 + 0.6 * std::clamp(static_cast<double>(t.bearing_confidence), 0.0, 1.0));
+      visualization_msgs::Marker& label = marker(visualization_msgs::Marker::TEXT_VIEW_FACING);
+      label.pose.position = at;
+      label.pose.position.z = 0.35;
+      label.scale.z = 0.2;
+      label.text = t.name + " " + std::to_string(static_cast<int>(std::lround(t.range * 100.0))) + " cm";
+    } else if (range) {
+      visualization_msgs::Marker& ring = marker(visualization_msgs::Marker::LINE_STRIP);
+      constexpr int kSegments = 72;
+      for (int k = 0; k <= kSegments; ++k) {
+        geometry_msgs::Point p;
+        p.x = t.range * std::cos(2.0 * M_PI * k / kSegments);
+        p.y = t.range * std::sin(2.0 * M_PI * k / kSegments);
+        p.z = 0.05;
+        ring.points.push_back(p);
+      }
+      ring.scale.x = std::max(0.02, 2.0 * static_cast<double>(t.range_std));
+      ring.color.a = 0.4f;
+    } else if (bearing) {
+      visualization_msgs::Marker& arrow = marker(visualization_msgs::Marker::ARROW);
+      geometry_msgs::Point tail, head;
+      head.x = std::cos(t.bearing);
+      head.y = std::sin(t.bearing);
+      arrow.points = {tail, head};
+      arrow.scale.x = 0.03, arrow.scale.y = 0.07, arrow.scale.z = 0.1;
+    }
+  }
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray ToTeammateMarkers(
+    const std::vector<std::pair<std::string, multirobot_audio::Teammates>>& robots) {
+  visualization_msgs::MarkerArray out;
+  if (robots.empty()) return out;
+  // (rviz's DELETEALL clears the whole display, whatever its namespace: one for all robots.)
+  visualization_msgs::Marker clear;
+  clear.header = robots.front().second.header;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  out.markers.push_back(clear);
+  for (const auto& [ns, msg] : robots) AppendTeammateMarkers(ns, msg, out);
+  return out;
 }
 
 std::string PacketTimingProblem(const multirobot_audio::PacketTiming& m, std::size_t bytes) {
@@ -82,6 +189,7 @@ RangingRos::RangingRos(ros::NodeHandle nh, const RangingRosOptions& options, Inp
     : options_(options), frame_id_(frame_id), ranger_(options.robot, options.team, options.ranger) {
   timings_pub_ = nh.advertise<multirobot_audio::PacketTiming>(options_.timings_topic, 100);
   teammates_pub_ = nh.advertise<multirobot_audio::Teammates>("audio/teammates", 10, true);
+  markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("audio/teammates_markers", 2);
   timings_sub_ = guard.Subscribe<multirobot_audio::PacketTiming>(
       nh, options_.timings_topic, 200, [](const multirobot_audio::PacketTiming& m) { return PacketTimingProblem(m, 4); },
       [this](const multirobot_audio::PacketTiming::ConstPtr& m) { return OnTiming(m); });
@@ -140,7 +248,7 @@ RangingRos::Known RangingRos::Heard(const std::vector<std::uint8_t>& data, doubl
   }
   if (known.sender) {
     known.range = ranger_.RangeTo(*known.sender, now);
-    if (std::isfinite(direction)) bearings_[*known.sender] = Bearing{direction, direction_confidence, now};
+    if (std::isfinite(direction)) bearings_[*known.sender] = ranging::HeardBearing{direction, direction_confidence, now};
   }
   return known;
 }
@@ -164,34 +272,11 @@ InputGuard::Verdict RangingRos::OnTiming(const multirobot_audio::PacketTiming::C
 }
 
 void RangingRos::PublishTeammates() {
-  multirobot_audio::Teammates msg;
-  msg.header.stamp = ros::Time::now();
-  msg.header.frame_id = frame_id_;
   std::lock_guard<std::mutex> lock(mutex_);
-  std::map<std::string, multirobot_audio::Teammate> by_name;
-  auto entry = [&](const std::string& name) -> multirobot_audio::Teammate& {
-    auto it = by_name.find(name);
-    if (it != by_name.end()) return it->second;
-    multirobot_audio::Teammate t;
-    t.name = name;
-    t.range = t.range_std = t.range_age = t.bearing = t.bearing_age = kNan;
-    return by_name.emplace(name, t).first->second;
-  };
-  for (const ranging::Range& r : ranger_.Ranges(now_)) {
-    multirobot_audio::Teammate& t = entry(r.teammate);
-    t.range = static_cast<float>(r.range);
-    t.range_std = static_cast<float>(r.range_std);
-    t.range_age = static_cast<float>(r.age);
-    t.range_samples = static_cast<std::uint32_t>(r.samples);
-  }
-  for (const auto& [name, b] : bearings_) {
-    multirobot_audio::Teammate& t = entry(name);
-    t.bearing = static_cast<float>(b.bearing);
-    t.bearing_confidence = static_cast<float>(b.confidence);
-    t.bearing_age = static_cast<float>(std::max(0.0, now_ - b.at));
-  }
-  for (auto& [name, t] : by_name) msg.teammates.push_back(t);
+  const multirobot_audio::Teammates msg =
+      ToTeammatesMsg(ranging::ViewTeammates(ranger_.Ranges(now_), bearings_, now_), frame_id_, ros::Time::now());
   teammates_pub_.publish(msg);
+  if (markers_pub_.getNumSubscribers() > 0) markers_pub_.publish(ToTeammateMarkers({{options_.robot, msg}}));
 }
 
 std::string RangingRos::Summary() {

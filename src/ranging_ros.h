@@ -10,8 +10,10 @@
 #include <multirobot_audio/PacketTiming.h>
 #include <multirobot_audio/Teammates.h>
 #include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "input_guard.h"
+#include "ranging/teammate_view.h"
 #include "ranging/two_way_ranger.h"
 
 namespace multirobot_audio {
@@ -25,6 +27,15 @@ struct RangingRosOptions {
   ranging::RangerOptions ranger;    // ~speed_of_sound, ~ranging_window, ~ranging_samples, ~ranging_offset
 };
 RangingRosOptions ReadRangingRosOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+
+// The ranger's parameters, shared by nava_modem and the simulation's audio_propagation:
+// ~ranging_window, ~ranging_samples, ~ranging_offset (and ~speed_of_sound with `read_speed`),
+// over `defaults`; throws ParamError naming the parameter.
+ranging::RangerOptions ReadRangerParams(const ros::NodeHandle& pnh, ranging::RangerOptions defaults, bool read_speed);
+
+// audio/teammates: each teammate's range and bearing where known (NaN where not).
+multirobot_audio::Teammates ToTeammatesMsg(const std::vector<ranging::TeammateView>& view, const std::string& frame_id,
+                                           const ros::Time& stamp);
 
 // Two-way acoustic ranging on a real link (ranging/two_way_ranger.h) over ROS: the robot's own
 // timings go out on the team's timings topic, everyone's come in, and audio/teammates says each
@@ -60,16 +71,20 @@ class RangingRos {
   std::string frame_id_;
   std::mutex mutex_;  // guards all below
   ranging::TwoWayRanger ranger_;
-  struct Bearing {
-    double bearing, confidence, at;
-  };
-  std::map<std::string, Bearing> bearings_;  // per teammate: its latest packet heard
+  std::map<std::string, ranging::HeardBearing> bearings_;  // per teammate: its latest packet heard
   double now_ = 0.0;
   std::uint64_t shared_ = 0, received_ = 0;
-  ros::Publisher timings_pub_, teammates_pub_;
+  ros::Publisher timings_pub_, teammates_pub_, markers_pub_;
   ros::Subscriber timings_sub_;
   ros::WallTimer timer_;
 };
+
+// rviz: where each robot believes its teammates are, drawn in its frame (its message's
+// header.frame_id) in a namespace of its name: with range and bearing, a disc at the estimate as
+// wide as twice the range's standard deviation (at least 10 cm), faint as the bearing is unsure,
+// and the teammate's name and range; with a range alone, a ring of that radius round the robot;
+// with a bearing alone, an arrow. The first marker deletes the display's earlier ones.
+visualization_msgs::MarkerArray ToTeammateMarkers(const std::vector<std::pair<std::string, multirobot_audio::Teammates>>& robots);
 
 // A report whose numbers cannot be a timing: a NaN arrival from anyone but the sender itself,
 // an infinite arrival, a non-finite rate error, no names, or a payload not of `bytes`.

@@ -85,7 +85,7 @@ grid::Pose2D PoseAt(const SceneRobot& robot, double t) {
 
 Scene LoadScene(const std::string& path) {
   const grid::YamlFields f = grid::YamlFields::Load(path, "scene file");
-  f.ExpectOnlyKeys({"profile", "start", "duration", "robots", "packets"});
+  f.ExpectOnlyKeys({"profile", "start", "duration", "robots", "packets", "own_packets", "self_distance", "sound_cards"});
   Scene scene;
   const std::string profile = f.String("profile", "nava");
   const auto parsed = nava_modem::ParseProfile(profile);
@@ -145,7 +145,41 @@ Scene LoadScene(const std::string& path) {
     }
     scene.packets.push_back(packet);
   }
+  if (f.Has("own_packets")) {
+    try {
+      scene.own_packets = f.node()["own_packets"].as<bool>();
+    } catch (const YAML::Exception&) {
+      f.Fail("own_packets", "expected true or false, got " + Text(f.node()["own_packets"]));
+    }
+  }
+  scene.self_distance = f.Number("self_distance", scene.self_distance);
+  if (!(scene.self_distance >= 0.01 && scene.self_distance <= 2.0)) {
+    f.Fail("self_distance", "expected 0.01 to 2 m, got " + Number(scene.self_distance));
+  }
+  if (f.Has("sound_cards")) {
+    if (!f.node()["sound_cards"].IsMap()) f.Fail("sound_cards", "expected a mapping of robot names to {rate_ppm, latency}");
+    const grid::YamlFields cards = f.Child("sound_cards");
+    for (const auto& entry : f.node()["sound_cards"]) {
+      const std::string name = entry.first.as<std::string>();
+      const bool known = std::any_of(scene.robots.begin(), scene.robots.end(), [&](const SceneRobot& r) { return r.name == name; });
+      if (!known) cards.Fail(name, "'" + name + "' is not one of the scene's robots");
+      const grid::YamlFields card = cards.Child(name);
+      card.ExpectOnlyKeys({"rate_ppm", "latency"});
+      SceneSoundCard c;
+      const double ppm = card.Number("rate_ppm", 0.0);
+      if (!(std::abs(ppm) <= 1000.0)) card.Fail("rate_ppm", "expected -1000 to 1000 ppm, got " + Number(ppm));
+      c.rate_error = ppm * 1e-6;
+      c.latency = card.Number("latency", 0.0);
+      if (!(c.latency >= 0.0 && c.latency <= 1.0)) card.Fail("latency", "expected 0 to 1 s, got " + Number(c.latency));
+      scene.sound_cards[name] = c;
+    }
+  }
   return scene;
+}
+
+SceneSoundCard Scene::CardOf(const std::string& robot) const {
+  const auto it = sound_cards.find(robot);
+  return it == sound_cards.end() ? SceneSoundCard{} : it->second;
 }
 
 void CheckScene(const std::string& file, const Scene& scene, const std::vector<std::string>& world_robots,
@@ -317,20 +351,35 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
     const std::vector<Eigen::Vector2d> sent_at = Positions(scene, scene_robot, packet.time);
     std::size_t sender = 0;
     while (robot_names_[sender] != packet.sender) ++sender;
+    const SceneSoundCard speaker = scene.CardOf(packet.sender);
     for (std::size_t h = 0; h < heard.size(); ++h) {
       const std::size_t listener = team_index[heard[h]];
-      if (listener == sender) continue;  // it is sending: its own packets are left out
+      const bool own = listener == sender;
+      if (own && !scene.own_packets) continue;
       PacketHearing hearing;
       hearing.packet = p;
       hearing.listener = robot_names_[listener];
-      const SoundPath path = propagation.Path(sent_at[sender], sent_at[listener]);
+      SoundPath path;
+      if (own) {
+        // Its microphone hears its speaker directly, a hand's breadth away.
+        path.reachable = path.audible = true;
+        path.length = scene.self_distance;
+        path.travel_time = path.length / propagation.options().speed_of_sound;
+        path.polyline = {sent_at[sender], sent_at[sender]};
+      } else {
+        path = propagation.Path(sent_at[sender], sent_at[listener]);
+      }
       hearing.reachable = path.reachable;
       if (!path.reachable) {
         out.hearings.push_back(hearing);
         continue;
       }
+      hearing.path_length = path.length;
+      hearing.corners = path.bends;
       hearing.travel_time = path.travel_time;
-      hearing.arrival = packet.time + path.travel_time;
+      hearing.arrival = packet.time + speaker.latency + path.travel_time;
+      const SceneSoundCard microphone = scene.CardOf(hearing.listener);
+      hearing.arrival_clock = (hearing.arrival - scene.start) * (1.0 + microphone.rate_error);
       // The model's figures as the channel takes them: the path at send time, the noise over the
       // arrival (the robots where they are in its middle).
       const double middle = hearing.arrival + 0.5 * airtime;
@@ -347,6 +396,8 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       room.rt60 = levels.rt60;
       room.drr_db = std::clamp(levels.drr_db, -40.0, 40.0);
       room.seed = SeedOf(options_.seed, kRoomSeeds, static_cast<std::uint32_t>(p * robot_names_.size() + listener));
+      // The speaker's card plays at its rate, the microphone's samples at its own.
+      room.clock_offset = (1.0 + speaker.rate_error) / (1.0 + microphone.rate_error) - 1.0;
       nava_modem::RoomRenderInfo info;
       const std::vector<float> rendered = nava_modem::RenderRoom(burst, rate, room, {}, &info);
       const double gain = std::sqrt(LevelToPower(levels.total_db) / info.signal_power) / info.output_gain;
@@ -359,7 +410,7 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
         ++count;
       }
       hearing.signal_power = count ? sum / static_cast<double>(count) : 0.0;
-      const double first = std::round((hearing.arrival - scene.start) * rate);
+      const double first = std::round(hearing.arrival_clock * rate);
       hearing.in_scene = first >= 0.0 && first < static_cast<double>(n);
       hearing.first_sample = static_cast<std::size_t>(std::max(first, 0.0));
       std::vector<double>& stem = packet_stems[h];

@@ -9,6 +9,7 @@
 
 #include "flat_table.h"
 #include "grid/input_error.h"
+#include "nava_modem/first_arrival.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "world_sim/world_file.h"
@@ -143,6 +144,52 @@ TEST(SceneRender, ARobotDoesNotHearItsOwnPacketsAndALevelOf100DbIsAMeanSquareOf1
   EXPECT_THROW(renderer.Render(hall.OnePacket(nava_modem::Profile::kRoom)), std::invalid_argument);
 }
 
+// For ranging: a robot hears its own packet through its speaker-to-microphone path, a sender's
+// card plays late by its latency, and each card samples at its own rate (the packet arrives
+// where the listener's clock puts it, stretched by the two rates' ratio).
+TEST(SceneRender, OwnPacketsAndSoundCardsPlaceEveryArrivalOnTheListenersClock) {
+  const nava_modem::Profile room = nava_modem::Profile::kRoom;
+  const Hall hall(Noisy(), room);
+  const SceneRenderer renderer(*hall.model, hall.names, hall.resting, {});
+  Scene scene = hall.OnePacket(room);
+  scene.own_packets = true;
+  scene.self_distance = 0.2;
+  scene.sound_cards["a"] = SceneSoundCard{80e-6, 0.0123};
+  scene.sound_cards["b"] = SceneSoundCard{-90e-6, 0.0};
+  const SceneRendering r = renderer.Render(scene, {"a", "b"});
+  ASSERT_EQ(r.hearings.size(), 2u);
+  const PacketHearing& own = r.hearings[0];
+  const PacketHearing& far = r.hearings[1];
+  ASSERT_EQ(own.listener, "a");
+  ASSERT_TRUE(own.reachable);
+  EXPECT_DOUBLE_EQ(own.path_length, 0.2);
+  EXPECT_EQ(own.corners, 0);
+  EXPECT_NEAR(own.arrival, 0.5 + 0.0123 + 0.2 / 343.0, 1e-9);
+  EXPECT_NEAR(own.arrival_clock, own.arrival * (1.0 + 80e-6), 1e-9);
+  EXPECT_GT(own.prediction.signal.total_db, far.prediction.signal.total_db + 10.0);  // its speaker is near
+  EXPECT_NEAR(far.arrival, 0.5 + 0.0123 + 6.0 / 343.0, 1e-9);
+  EXPECT_NEAR(far.arrival_clock, far.arrival * (1.0 - 90e-6), 1e-9);
+
+  // The real receiver times each packet where the listener's clock puts it. By first_arrival.h's
+  // definition an arrival is where the in-band envelope of the direct sound reaches half its
+  // peak: some 130 us before the direct sound's sample, as for a bare impulse.
+  std::vector<float> impulse(8000, 0.0f);
+  impulse[2000] = 1.0f;
+  const double rise = nava_modem::LeadingEdge(impulse, 48000.0) - 2000.0 / 48000.0;
+  EXPECT_LT(rise, -50e-6);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::vector<float> mix = r.listeners[k].Mix();
+    nava_modem::ModemOptions modem;
+    const auto receiver = nava_modem::MakeProfile(room, modem)->MakeReceiver(nava_modem::ReceiverOptions{});
+    std::vector<nava_modem::RxEvent> events;
+    receiver->Process(mix.data(), mix.size(), events);
+    receiver->Flush(events);
+    ASSERT_EQ(events.size(), 1u) << r.listeners[k].robot;
+    EXPECT_EQ(events[0].data, std::vector<std::uint8_t>({1, 2, 3, 4}));
+    EXPECT_NEAR(events[0].arrival, r.hearings[k].arrival_clock + rise, 30e-6) << r.listeners[k].robot;
+  }
+}
+
 TEST(SceneRender, ANoiseSourceSoundsAtItsLevelWhileOnAndNotWhileOff) {
   world_sim::Acoustics a = Noisy();
   a.noise_sources.resize(1);
@@ -269,6 +316,16 @@ TEST(SceneRender, BadScenesAreRefusedWithTheFileFieldAndValue) {
   EXPECT_NE(e.find("packets[0].sender: 'robot_1' is not one of the scene's robots"), std::string::npos) << e;
   e = load("late", head + "packets:\n  - {time: 2.5, sender: robot_0, data: [1, 2, 3, 4]}\n");
   EXPECT_NE(e.find("packets[0].time: 2.5 s"), std::string::npos) << e;
+  e = load("card", head + "sound_cards:\n  robot_0: {rate_ppm: 5000}\n");
+  EXPECT_NE(e.find("card.yaml: sound_cards.robot_0.rate_ppm: expected -1000 to 1000 ppm, got 5000"), std::string::npos) << e;
+  e = load("card_owner", head + "sound_cards:\n  robot_1: {latency: 0.01}\n");
+  EXPECT_NE(e.find("sound_cards.robot_1: 'robot_1' is not one of the scene's robots"), std::string::npos) << e;
+  e = load("latency", head + "sound_cards:\n  robot_0: {latency: -0.01}\n");
+  EXPECT_NE(e.find("sound_cards.robot_0.latency: expected 0 to 1 s"), std::string::npos) << e;
+  e = load("own", head + "own_packets: perhaps\n");
+  EXPECT_NE(e.find("own.yaml: own_packets: expected true or false"), std::string::npos) << e;
+  e = load("self", head + "self_distance: 5\n");
+  EXPECT_NE(e.find("self_distance: expected 0.01 to 2 m, got 5"), std::string::npos) << e;
   e = ErrorOf([] { LoadScene("/nonexistent/scene.yaml"); });
   EXPECT_NE(e.find("/nonexistent/scene.yaml: scene file not found"), std::string::npos) << e;
 }

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "nava_modem/modem_options.h"
+#include "package_data/package_data.h"
 
 namespace audio_propagation::tools {
 namespace {
@@ -128,6 +129,48 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   v.from = ParsePoint(args, a);
   v.to = ParsePoint(args, b);
   return v;
+}
+
+}  // namespace audio_propagation::tools
+
+namespace audio_propagation::tools {
+
+RangingBenchArgs ParseRangingBenchArgs(const std::vector<std::string>& words) {
+  const ToolArgs args("ranging_bench",
+                      "ranging_bench [--worlds W1.yaml,W2.yaml] [--teams 2,5,10,20] [--scenes 2] [--rounds 2] "
+                      "[--profile room|nava] [--rate 48000] [--seed 1] [--threads 2] [--plot FILE.png]",
+                      words);
+  RangingBenchArgs r;
+  const auto split = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+    return out;
+  };
+  r.worlds = split(args.String("--worlds", package_data::DataFile("maps/office_team20_world.yaml") + "," +
+                                               package_data::DataFile("maps/campus_team60_world.yaml")));
+  for (const std::string& w : r.worlds) {
+    if (w.empty()) args.Fail("--worlds: expected world files separated by commas, got an empty name");
+  }
+  const std::string teams = args.String("--teams", "");
+  if (!teams.empty()) {
+    r.teams.clear();
+    for (const std::string& t : split(teams)) {
+      char* end = nullptr;
+      const long n = std::strtol(t.c_str(), &end, 10);
+      if (t.empty() || *end || n < 2 || n > 100) args.Fail("--teams: expected robot counts from 2 to 100 separated by commas, got " + teams);
+      r.teams.push_back(static_cast<int>(n));
+    }
+  }
+  r.scenes = static_cast<int>(args.Int("--scenes", r.scenes, 1, 1000));
+  r.rounds = static_cast<int>(args.Int("--rounds", r.rounds, 1, 100));
+  r.profile = Profile(args, args.String("--profile", "room"));
+  r.rate = args.Double("--rate", r.rate, nava_modem::kMinSampleRate, nava_modem::kMaxSampleRate);
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.threads = static_cast<int>(args.Int("--threads", r.threads, 1, 64));
+  r.plot = args.String("--plot", "");
+  args.CheckAllUsed();
+  return r;
 }
 
 }  // namespace audio_propagation::tools

@@ -42,6 +42,20 @@ struct SceneRenderArgs {
 };
 SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words);
 
+// ranging_bench: two-way ranging on rendered scenes (tools/ranging_bench.cpp).
+struct RangingBenchArgs {
+  std::vector<std::string> worlds;  // world files with acoustics
+  std::vector<int> teams = {2, 5, 10, 20};  // robots per scene
+  int scenes = 2;                   // per world and team size
+  int rounds = 2;                   // packets each robot sends in a scene
+  nava_modem::Profile profile = nava_modem::Profile::kRoom;
+  double rate = 48000.0;
+  unsigned seed = 1;
+  int threads = 2;
+  std::string plot;                 // PNG of the error against distance ("" for none)
+};
+RangingBenchArgs ParseRangingBenchArgs(const std::vector<std::string>& words);
+
 struct ValidateArgs {
   std::string world_file, map_file, profile_name, table_file, out;
   ValidationOptions validation;  // links, packets, seed, threads, profile

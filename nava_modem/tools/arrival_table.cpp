@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "measured_rooms.h"
@@ -24,6 +25,32 @@ double AbsQuantile(std::vector<double> errors, double q) {
   std::sort(errors.begin(), errors.end());
   const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(errors.size())));
   return errors[std::min(errors.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+// The table the simulation's ranging draws timing errors from: the signed errors at 21 evenly
+// spaced probabilities (linear between order statistics), with how they were measured.
+void WriteErrors(const ArrivalRequest& r, std::vector<double> errors, int rooms, int sent) {
+  std::sort(errors.begin(), errors.end());
+  FILE* f = std::fopen(r.errors_out.c_str(), "w");
+  if (!f) throw std::runtime_error("--errors-out " + r.errors_out + ": cannot write it");
+  std::fprintf(f, "# First-arrival timing errors (arrival - (sent + the response's leading edge)) of the %s receiver\n"
+                  "# through measured rooms: what the simulated team's ranging draws each timing's error from.\n",
+               ProfileName(r.profile));
+  std::fprintf(f, "profile: %s\n", ProfileName(r.profile));
+  std::fprintf(f, "command: \"nava_bench --arrival --rir-dir %s --profile %s --packets %d --snr %g --min-drr %g --seed %u "
+                  "--errors-out %s\"\n",
+               r.rir_dir.c_str(), ProfileName(r.profile), r.packets, r.snr_db, r.min_drr_db, r.seed, r.errors_out.c_str());
+  std::fprintf(f, "rooms: %d\npackets_sent: %d\npackets_timed: %zu\nsnr_db: %g\nmin_drr_db: %g\nquantiles_s: [", rooms, sent,
+               errors.size(), r.snr_db, r.min_drr_db);
+  constexpr int kQuantiles = 21;
+  for (int k = 0; k < kQuantiles; ++k) {
+    const double at = static_cast<double>(k) / (kQuantiles - 1) * static_cast<double>(errors.size() - 1);
+    const std::size_t i = std::min(errors.size() - 2, static_cast<std::size_t>(at));
+    const double q = errors[i] + (at - static_cast<double>(i)) * (errors[i + 1] - errors[i]);
+    std::fprintf(f, "%s%.3e", k ? ", " : "", q);
+  }
+  std::fprintf(f, "]\n");
+  if (std::fclose(f) != 0) throw std::runtime_error("--errors-out " + r.errors_out + ": writing it failed");
 }
 
 }  // namespace
@@ -83,6 +110,15 @@ int ArrivalTable(const ArrivalRequest& request, const multirobot_audio::tools::T
               counted_rooms, counted.size(), counted_sent, median * 1e6, p90 * 1e6);
   std::printf("target: median <= %.0f us and p90 <= %.0f us: %s\n", kTargetMedianS * 1e6, kTargetP90S * 1e6,
               median <= kTargetMedianS && p90 <= kTargetP90S ? "yes" : "NO");
+  if (!request.errors_out.empty()) {
+    if (counted.size() < 2) {
+      std::fprintf(stderr, "nava_bench: --errors-out %s: only %zu packets timed, expected at least 2\n",
+                   request.errors_out.c_str(), counted.size());
+      return 1;
+    }
+    WriteErrors(request, counted, counted_rooms, counted_sent);
+    std::printf("wrote %s\n", request.errors_out.c_str());
+  }
   return 0;
 }
 

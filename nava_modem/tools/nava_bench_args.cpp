@@ -79,6 +79,7 @@ ArrivalRequest ParseArrival(const ToolArgs& args) {
   r.snr_db = args.Double("--snr", 10.0, -60.0, 100.0);
   r.min_drr_db = args.Double("--min-drr", -8.0, -60.0, 60.0);
   r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.errors_out = args.String("--errors-out", "");
   const ToolModem modem = ProfileArgs(args);
   r.profile = args.Switch("--profile") ? modem.profile : Profile::kRoom;
   r.options = modem.options;
@@ -103,7 +104,7 @@ LinkCostRequest ParseLinkCost(const ToolArgs& args) {
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] (--profile room the default) | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
   const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--link-cost", "--measured-only"});
   NavaBenchOptions o;

@@ -49,6 +49,9 @@ struct ArrivalRequest {
   double min_drr_db = -8.0;  // rooms below this DRR are listed, not counted in the targets
   unsigned seed = 1;
   Profile profile = Profile::kRoom;  // the targets are the room profile's
+  // --errors-out FILE: the signed errors' quantiles over the counted rooms, the table the
+  // simulation's ranging draws from (audio_propagation/arrival_errors_file.h); "" for none.
+  std::string errors_out;
   ModemOptions options;
 };
 

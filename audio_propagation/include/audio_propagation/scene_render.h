@@ -36,10 +36,23 @@
 //     robot_1: [[0.0, 12.0, 6.75, 3.1416]]                         # held before and after
 //   packets:
 //     - {time: 0.5, sender: robot_0, data: [1, 2, 3, 4]}           # 4 bytes, 0-255
+//   own_packets: true            # optional (default false): each robot hears its own packets
+//   self_distance: 0.15          # optional, m from a robot's speaker to its microphone
+//   sound_cards:                 # optional, per robot (default: an ideal card)
+//     robot_0: {rate_ppm: 40, latency: 0.012}
 // Robots of the world not in the scene stand at their world pose (carrying any motors they
 // have) and are not rendered.
+//
+// Sound cards, for ranging: a robot's card plays each of its packets `latency` s after the
+// scene's time for it (the playback latency no robot knows), and samples at its own rate,
+// (1 + rate_ppm / 10^6) times the nominal: a listener's recording starts at the scene's start and
+// its sample i is at true time start + i / (rate (1 + rate_ppm / 10^6)); a packet reaches it
+// stretched by the ratio of the two cards' rates (RoomOptions::clock_offset). With own_packets a
+// robot hears its own packets through a direct path of self_distance m in its room (as a real
+// robot's microphone hears its speaker), which two-way ranging times them by.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,11 +81,20 @@ struct ScenePacket {
   std::string sender;
   std::array<std::uint8_t, 4> data{};
 };
+struct SceneSoundCard {
+  double rate_error = 0.0;  // its clock over true time, minus 1 (rate_ppm / 10^6)
+  double latency = 0.0;     // s from the scene's time of a packet to its first sample leaving the speaker
+};
 struct Scene {
   nava_modem::Profile profile = nava_modem::Profile::kNava;
   double start = 0.0, duration = 0.0;  // s
   std::vector<SceneRobot> robots;      // in file order
   std::vector<ScenePacket> packets;
+  bool own_packets = false;
+  double self_distance = 0.15;  // m
+  std::map<std::string, SceneSoundCard> sound_cards;  // by robot; absent: ideal
+  // A robot's card (ideal when it has none given).
+  SceneSoundCard CardOf(const std::string& robot) const;
 };
 
 // A robot's pose at `t`: linear between keyframes (yaw the short way round), held before the
@@ -94,7 +116,11 @@ struct PacketHearing {
   std::size_t packet = 0;  // index into Scene::packets
   std::string listener;
   bool reachable = false;      // a path exists; when false nothing else is set
-  double arrival = 0.0;        // s of simulated time the direct sound starts
+  double arrival = 0.0;        // s of simulated time the direct sound starts (the sender's latency included)
+  // The same instant on the listener's sound-card clock: s from its recording's first sample.
+  double arrival_clock = 0.0;
+  double path_length = 0.0;    // m (self_distance for a robot's own packet)
+  int corners = 0;             // the path's corners
   std::size_t first_sample = 0;  // of the arrival in the recording (it may start before the scene)
   bool in_scene = false;       // the arrival starts within the recording
   double travel_time = 0.0;    // s
