@@ -15,10 +15,15 @@
 //   ranging: line of sight median X cm, p90 Y cm; round corners median Z % of path; bearing+range
 //   position median W cm at <= 5 m
 // and the targets (line of sight up to 15 m: median <= 3 cm, p90 <= 10 cm; round corners: median
-// within 3 % of the path). The PNG shows the error's median and 90th percentile against distance.
+// within 3 % of the path; position median <= 10 cm). Round-corner pairs whose direct sound is
+// within 20 dB of the reverberation are also reported apart. A position is the two-way range
+// along the bearing a 10 cm square of four microphones gives on the teammate's packet rendered
+// through the same link (RenderRoomArray, the real direction estimator). The PNG shows the
+// error's median and 90th percentile against distance.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -28,7 +33,9 @@
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/scene_render.h"
 #include "audio_propagation_args.h"
+#include "nava_modem/array_decode.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/room_array.h"
 #include "ranging/two_way_ranger.h"
 #include "tool_args/line_chart.h"
 #include "tool_args/parallel_for.h"
@@ -40,12 +47,22 @@ using namespace audio_propagation;
 constexpr double kMaxLineOfSight = 15.0;  // m: the line-of-sight target's reach
 constexpr double kTeamRadius = 12.0;      // m: robots are placed within this of the first
 constexpr double kWallClearance = 0.4;    // m
+constexpr double kPositionReach = 5.0;    // m: the position target's reach
+constexpr double kSquareHalf = 0.05;      // m: the array, a 10 cm square as nava_bench --doa's
+// Round a corner the direct sound is found while it is no more than about 20 dB under the
+// reverberation (first_arrival.h's 12 dB rule against the loudest reflection); the pairs above
+// this are reported apart.
+constexpr double kClearDrrDb = -20.0;
 
 struct Pair {
   std::size_t team = 0;  // robots in the scene
   double truth = 0.0;    // m, the shortest way
   int corners = 0;
-  double error = 0.0;  // m, range - truth
+  double drr_db = 0.0;  // the weaker direction's direct-to-reverberant ratio, as the model predicts it
+  double error = 0.0;   // m, range - truth
+  // m: the teammate's place from the range and the bearing a 4-microphone square gives, against
+  // its true place (line of sight within kPositionReach only; NaN otherwise or without a bearing)
+  double position_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SceneResult {
@@ -75,6 +92,39 @@ double Quantile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
   return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+// Where robot r puts teammate o (`offset`, its true place from r; r faces +x): o's packet as a
+// 10 cm square of four microphones on r hears it in the scene's room (RenderRoomArray: the
+// link's DRR and SNR as the model gives them), its bearing from the real direction estimator
+// (DecodeArray), at the two-way range. NaN when no direction comes out.
+double PositionError(const nava_modem::ModemProfile& profile, double rate, const PacketHearing& link,
+                     const ScenePacket& packet, double rt60, const ranging::Range& range, const Eigen::Vector2d& offset,
+                     std::uint32_t seed) {
+  const std::vector<nava_modem::Microphone2D> mics = {
+      {kSquareHalf, kSquareHalf}, {-kSquareHalf, kSquareHalf}, {-kSquareHalf, -kSquareHalf}, {kSquareHalf, -kSquareHalf}};
+  std::vector<float> clean(static_cast<std::size_t>(0.2 * rate), 0.0f);
+  const std::vector<float> burst = profile.ModulatePacket({packet.data.begin(), packet.data.end()});
+  clean.insert(clean.end(), burst.begin(), burst.end());
+  clean.resize(clean.size() + static_cast<std::size_t>(0.5 * rate), 0.0f);
+  nava_modem::RoomOptions room;
+  room.rt60 = rt60;
+  room.drr_db = std::clamp(link.prediction.signal.drr_db, -40.0, 40.0);
+  room.noise = nava_modem::RoomOptions::Noise::kPink;
+  room.snr_db = std::min(60.0, link.prediction.snr_db);
+  room.seed = seed + static_cast<std::uint32_t>(link.packet);
+  nava_modem::ArraySource source;
+  source.mics = mics;
+  source.bearing = std::atan2(offset.y(), offset.x());
+  source.distance = offset.norm();
+  const auto channels = nava_modem::RenderRoomArray(clean, rate, room, source);
+  const auto events = nava_modem::DecodeArray(profile, nava_modem::ReceiverOptions{}, channels, mics);
+  for (const nava_modem::RxEvent& e : events) {
+    if (e.kind != nava_modem::RxEvent::Kind::kPacket || !std::isfinite(e.direction)) continue;
+    const Eigen::Vector2d estimate = range.range * Eigen::Vector2d(std::cos(e.direction), std::sin(e.direction));
+    return (estimate - offset).norm();
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 SceneResult RunScene(const tools::RangingBenchArgs& args, const tools::AcousticWorld& world, std::size_t team,
@@ -185,7 +235,23 @@ SceneResult RunScene(const tools::RangingBenchArgs& args, const tools::AcousticW
       const auto range = robot.RangeTo(names[o], scene.duration);
       if (!range) continue;
       ++ranged;
-      result.pairs.push_back(Pair{team, path.length, path.bends, range->range - path.length});
+      double drr = std::numeric_limits<double>::infinity();
+      for (const PacketHearing& h : rendering.hearings) {
+        const std::string& from = scene.packets[h.packet].sender;
+        if (h.reachable && ((from == names[r] && h.listener == names[o]) || (from == names[o] && h.listener == names[r]))) {
+          drr = std::min(drr, h.prediction.signal.drr_db);
+        }
+      }
+      Pair pair{team, path.length, path.bends, drr, range->range - path.length};
+      if (path.bends == 0 && path.length <= kPositionReach) {
+        const PacketHearing* link = nullptr;
+        for (const PacketHearing& h : rendering.hearings) {
+          if (h.reachable && scene.packets[h.packet].sender == names[o] && h.listener == names[r]) link = &h;
+        }
+        if (link) pair.position_error = PositionError(*profile, args.rate, *link, scene.packets[link->packet], rt60, *range,
+                                                      places[o] - places[r], seed);
+      }
+      result.pairs.push_back(pair);
     }
   }
   std::vector<double> errors;
@@ -252,19 +318,32 @@ int Run(const tools::RangingBenchArgs& args) {
       }
     }
   }
-  std::vector<double> los, corners;
+  std::vector<double> los, corners, clear_corners, positions;
+  std::size_t position_tries = 0;
   for (const Pair& p : pairs) {
     if (p.corners == 0 && p.truth <= kMaxLineOfSight) los.push_back(std::abs(p.error) * 100.0);
     if (p.corners > 0) corners.push_back(std::abs(p.error) / p.truth * 100.0);
+    if (p.corners > 0 && p.drr_db >= kClearDrrDb) clear_corners.push_back(std::abs(p.error) / p.truth * 100.0);
+    if (p.corners == 0 && p.truth <= kPositionReach) {
+      ++position_tries;
+      if (std::isfinite(p.position_error)) positions.push_back(p.position_error * 100.0);
+    }
   }
   const double los_median = Quantile(los, 0.5), los_p90 = Quantile(los, 0.9), corner_median = Quantile(corners, 0.5);
-  std::printf("pairs ranged: %zu in line of sight up to %.0f m, %zu round corners\n", los.size(), kMaxLineOfSight,
-              corners.size());
-  std::printf("ranging: line of sight median %.1f cm, p90 %.1f cm; round corners median %.1f %% of path; "
-              "bearing+range position not measured (the scene renderer gives each robot one microphone)\n",
-              los_median, los_p90, corner_median);
-  std::printf("target: line of sight median <= 3 cm and p90 <= 10 cm: %s; round corners median <= 3 %%: %s\n",
-              los_median <= 3.0 && los_p90 <= 10.0 ? "yes" : "NO", corner_median <= 3.0 ? "yes" : "NO");
+  std::printf("pairs ranged: %zu in line of sight up to %.0f m, %zu round corners (%zu of them with DRR >= %.0f dB)\n",
+              los.size(), kMaxLineOfSight, corners.size(), clear_corners.size(), kClearDrrDb);
+  std::printf("round corners with DRR >= %.0f dB: median %.1f %% of path, p90 %.1f %%\n", kClearDrrDb,
+              Quantile(clear_corners, 0.5), Quantile(clear_corners, 0.9));
+  const double position_median = Quantile(positions, 0.5);
+  std::printf("positions from range and bearing: %zu of %zu line-of-sight pairs within %.0f m gave a bearing, p90 %.1f cm\n",
+              positions.size(), position_tries, kPositionReach, Quantile(positions, 0.9));
+  std::printf("ranging: line of sight median %.1f cm, p90 %.1f cm; round corners median %.1f %% of path; bearing+range "
+              "position median %.1f cm at <= %.0f m\n",
+              los_median, los_p90, corner_median, position_median, kPositionReach);
+  std::printf("target: line of sight median <= 3 cm and p90 <= 10 cm: %s; round corners median <= 3 %%: %s; position "
+              "median <= 10 cm: %s\n",
+              los_median <= 3.0 && los_p90 <= 10.0 ? "yes" : "NO", corner_median <= 3.0 ? "yes" : "NO",
+              position_median <= 10.0 ? "yes" : "NO");
   if (!args.plot.empty()) {
     Plot(args.plot, pairs);
     std::printf("wrote %s\n", args.plot.c_str());
