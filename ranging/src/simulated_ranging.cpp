@@ -70,21 +70,15 @@ double SimulatedRanging::Clock(std::size_t robot, double t) const {
   return c.offset + (1.0 + c.rate_error) * t;
 }
 
-void SimulatedRanging::Share(const Timing& timing, std::size_t sender, std::size_t listener) {
-  for (std::size_t r = 0; r < rangers_.size(); ++r) {
-    if (r == sender || r == listener || sender == listener) rangers_[r].Add(timing);
-  }
-}
-
 void SimulatedRanging::Sent(std::size_t sender, const std::vector<std::uint8_t>& data, double start) {
-  sendings_.push_back(Sending{sender, data, start});
-  if (sendings_.size() > kSendingsPerRobot * robots_.size()) sendings_.pop_front();
   Timing t;
   t.sender = t.listener = robots_.at(sender);
   t.data = data;
   t.arrival = Clock(sender, start) + options_.errors.Draw(rng_);
   t.stamp = start;
-  Share(t, sender, sender);
+  rangers_[sender].Add(t);
+  sendings_.push_back(Sending{sender, data, start, t});
+  if (sendings_.size() > kSendingsPerRobot * robots_.size()) sendings_.pop_front();
 }
 
 bool SimulatedRanging::Heard(std::size_t listener, std::size_t sender, const std::vector<std::uint8_t>& data,
@@ -104,7 +98,11 @@ bool SimulatedRanging::Heard(std::size_t listener, std::size_t sender, const std
     t.rate_error = truth + std::normal_distribution<double>(0.0, options_.rate_report_std)(rng_);
   }
   t.stamp = arrival;
-  Share(t, sender, listener);
+  // The listener learns the sender's own timing of the packet as it hears it (on a real team
+  // every robot gets every report; those of packets it never heard pair with nothing there).
+  rangers_[listener].Add(sending->own);
+  rangers_[listener].Add(t);
+  rangers_[sender].Add(t);
   return true;
 }
 

@@ -78,10 +78,8 @@ class SimulatedRanging {
     std::size_t sender;
     std::vector<std::uint8_t> data;
     double start;
+    Timing own;  // the sender's own timing of it
   };
-  // Hands a timing to every ranger it can matter to: the sender's, the listener's, and (a
-  // robot's own packet, what teammates fit its clock with) everyone's.
-  void Share(const Timing& timing, std::size_t sender, std::size_t listener);
 
   std::vector<std::string> robots_;
   SimulatedRangingOptions options_;
