@@ -7,7 +7,7 @@
 #
 #   scripts/screenshots.sh              every scene
 #   scripts/screenshots.sh SCENE...     some of them: sound_paths sounds_good charging_queue
-#                                       delivery_map
+#                                       delivery_map teammates
 #
 # Environment: BUILD_DIR (the catkin build folder, default build/), SHOTS_DISPLAY (the Xvfb
 # display, default :91), SHOTS_PORT (the ROS master's port, default 11391), SHOTS_OUT (where the
@@ -20,7 +20,7 @@ build_dir="${BUILD_DIR:-$here/build}"
 display="${SHOTS_DISPLAY:-:91}"
 port="${SHOTS_PORT:-11391}"
 out_dir="${SHOTS_OUT:-$here/docs/images}"
-all_scenes=(sound_paths sounds_good charging_queue delivery_map)
+all_scenes=(sound_paths sounds_good charging_queue delivery_map teammates)
 
 die() { echo "screenshots.sh: $*" >&2; exit 1; }
 
@@ -252,6 +252,12 @@ for s in "${scenes[@]}"; do
       shoot delivery_map sim_team.launch \
         "seed:=1 speed:=1 channel_model:=acoustic delivery_map_robot:=robot_0" sim.rviz "1280 640" \
         "36 17 7" "paths --robots 5 --count 1 --after 20 --timeout 900" "/audio_propagation/path_display_time=2.0" ;;
+    teammates)
+      # Each robot's estimate of where its teammates are, from two-way ranging and the bearing
+      # of their packets, beside the true robots: after a minute every pair that hears each
+      # other has exchanged packets both ways.
+      shoot teammates sim_team.launch "seed:=1 speed:=1" sim.rviz "1280 800" "44 17 7" \
+        "paths --robots 5 --count 1 --after 60 --timeout 900" "" ;;
   esac
 done
 echo "screenshots.sh: done"

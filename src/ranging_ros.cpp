@@ -134,7 +134,12 @@ void AppendTeammateMarkers(const std::string& ns, const multirobot_audio::Teamma
       visualization_msgs::Marker& label = marker(visualization_msgs::Marker::TEXT_VIEW_FACING);
       label.pose.position = at;
       label.pose.position.z = 0.35;
-      label.scale.z = 0.2;
+      label.scale.z = 0.35;
+      // Whose estimate it is: a faint line from the robot to it.
+      visualization_msgs::Marker& line = marker(visualization_msgs::Marker::LINE_STRIP);
+      line.points = {geometry_msgs::Point(), at};
+      line.scale.x = 0.03;
+      line.color.a = 0.35f;
       label.text = t.name + " " + std::to_string(static_cast<int>(std::lround(t.range * 100.0))) + " cm";
     } else if (range) {
       visualization_msgs::Marker& ring = marker(visualization_msgs::Marker::LINE_STRIP);

@@ -82,7 +82,7 @@ class RangingRos {
 // rviz: where each robot believes its teammates are, drawn in its frame (its message's
 // header.frame_id) in a namespace of its name: with range and bearing, a disc at the estimate as
 // wide as twice the range's standard deviation (at least 10 cm), faint as the bearing is unsure,
-// and the teammate's name and range; with a range alone, a ring of that radius round the robot;
+// the teammate's name and range, and a faint line from the robot to it; with a range alone, a ring of that radius round the robot;
 // with a bearing alone, an arrow. The first marker deletes the display's earlier ones.
 visualization_msgs::MarkerArray ToTeammateMarkers(const std::vector<std::pair<std::string, multirobot_audio::Teammates>>& robots);
 

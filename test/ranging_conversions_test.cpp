@@ -49,7 +49,7 @@ TEST(RangingConversions, TeammatesSayWhatIsKnownAndNaNForTheRest) {
 TEST(RangingConversions, MarkersShowEachEstimateInTheRobotsFrame) {
   const Teammates msg = ToTeammatesMsg(View(), "robot_0/base_link", ros::Time(5.0));
   const visualization_msgs::MarkerArray m = ToTeammateMarkers({{"robot_0", msg}, {"robot_9", Teammates()}});
-  ASSERT_EQ(m.markers.size(), 5u);  // clear, disc and label, ring, arrow
+  ASSERT_EQ(m.markers.size(), 6u);  // clear, disc, label and line, ring, arrow
   EXPECT_EQ(m.markers[0].action, visualization_msgs::Marker::DELETEALL);
   const visualization_msgs::Marker& disc = m.markers[1];
   EXPECT_EQ(disc.type, visualization_msgs::Marker::CYLINDER);
@@ -62,10 +62,12 @@ TEST(RangingConversions, MarkersShowEachEstimateInTheRobotsFrame) {
   EXPECT_EQ(m.markers[2].text, "robot_1 200 cm");
   EXPECT_NEAR(m.markers[2].pose.position.y, 2.0, 1e-6);
   EXPECT_NE(m.markers[1].id, m.markers[2].id);
-  const visualization_msgs::Marker& ring = m.markers[3];
+  ASSERT_EQ(m.markers[3].points.size(), 2u);  // from the robot to the estimate
+  EXPECT_NEAR(m.markers[3].points[1].y, 2.0, 1e-6);
+  const visualization_msgs::Marker& ring = m.markers[4];
   EXPECT_EQ(ring.type, visualization_msgs::Marker::LINE_STRIP);
   for (const auto& p : ring.points) EXPECT_NEAR(std::hypot(p.x, p.y), 4.0, 1e-6);
-  EXPECT_EQ(m.markers[4].type, visualization_msgs::Marker::ARROW);
+  EXPECT_EQ(m.markers[5].type, visualization_msgs::Marker::ARROW);
   EXPECT_TRUE(ToTeammateMarkers({}).markers.empty());
 }
 

@@ -270,7 +270,7 @@ void Plot(const std::string& path, const std::vector<Pair>& pairs) {
   multirobot_audio::tools::LineChart chart;
   chart.title = "two-way ranging on rendered scenes: |range - shortest path| by distance";
   chart.x_label = "shortest path, m";
-  chart.y_label = "|error|, cm";
+  chart.y_label = "|error|, cm (at most 100 drawn)";
   double top = 10.0;
   for (const bool los : {true, false}) {
     multirobot_audio::tools::LineSeries median, p90;
