@@ -2,12 +2,14 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "audio_propagation/arrival_errors_file.h"
 #include "grid/input_error.h"
 
 namespace audio_propagation {
@@ -292,6 +294,34 @@ TEST(DecodeTable, ShippedTablesLoadAndAreSane) {
 // Enable it once the receiver keeps the louder packet.
 TEST(DecodeTable, DISABLED_ShippedRoomTableDecodesAPacketWellAboveAnother) {
   ExpectLoudAndDirectDecode(LoadDecodeTable(ShippedDecodeTable("room"), "room"), Interference::kPacket);
+}
+
+// The arrival error tables the simulated ranging draws from: the shipped ones load, and a bad
+// one is refused naming the file and the field.
+TEST(ArrivalErrorsFile, ShippedTablesLoadAndBadOnesAreRefusedByName) {
+  for (const std::string profile : {"room", "nava"}) {
+    const ranging::ArrivalErrors e = LoadArrivalErrors(ShippedArrivalErrors(profile), profile);
+    ASSERT_EQ(e.quantiles.size(), 21u) << profile;
+    EXPECT_LT(std::abs(e.quantiles[10]), 100e-6) << profile;  // the median within 0.1 ms
+  }
+  const auto refused = [](const std::string& name, const std::string& text, const std::string& expected) {
+    const std::string path = TempPath(name);
+    WriteText(path, text);
+    try {
+      LoadArrivalErrors(path, "room");
+      ADD_FAILURE() << name << ": accepted";
+    } catch (const grid::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+    std::remove(path.c_str());
+  };
+  refused("profile.yaml", "profile: nava\nquantiles_s: [0, 1e-6]\n", "the table is for 'nava'");
+  refused("missing.yaml", "profile: room\n", "quantiles_s: missing");
+  refused("descending.yaml", "profile: room\nquantiles_s: [1e-6, 0]\n", "ascending");
+  refused("word.yaml", "profile: room\nquantiles_s: [0, soon]\n", "quantiles_s[1]: expected a number");
+  refused("stranger.yaml", "profile: room\nquantiles_s: [0, 1]\ncolour: red\n", "colour");
+  EXPECT_THROW(LoadArrivalErrors("/nonexistent/arrival.yaml", ""), grid::InputError);
 }
 
 }  // namespace
