@@ -107,7 +107,8 @@ namespace {
 void AppendTeammateMarkers(const std::string& ns, const multirobot_audio::Teammates& msg,
                            visualization_msgs::MarkerArray& out) {
   int id = 0;
-  const auto marker = [&](std::uint8_t type) -> visualization_msgs::Marker& {
+  // A marker of `type`, numbered in turn (by value: the caller appends it once it is whole).
+  const auto marker = [&](std::uint8_t type) {
     visualization_msgs::Marker m;
     m.header = msg.header;
     m.ns = ns;
@@ -116,8 +117,7 @@ void AppendTeammateMarkers(const std::string& ns, const multirobot_audio::Teamma
     m.action = visualization_msgs::Marker::ADD;
     m.pose.orientation.w = 1.0;
     m.color.r = 0.2f, m.color.g = 0.6f, m.color.b = 1.0f, m.color.a = 0.8f;
-    out.markers.push_back(m);
-    return out.markers.back();
+    return m;
   };
   for (const multirobot_audio::Teammate& t : msg.teammates) {
     const bool range = std::isfinite(t.range), bearing = std::isfinite(t.bearing);
@@ -126,23 +126,26 @@ void AppendTeammateMarkers(const std::string& ns, const multirobot_audio::Teamma
       at.x = t.range * std::cos(t.bearing);
       at.y = t.range * std::sin(t.bearing);
       at.z = 0.05;
-      visualization_msgs::Marker& disc = marker(visualization_msgs::Marker::CYLINDER);
+      visualization_msgs::Marker disc = marker(visualization_msgs::Marker::CYLINDER);
       disc.pose.position = at;
       disc.scale.x = disc.scale.y = 2.0 * std::max(0.05, static_cast<double>(t.range_std));
       disc.scale.z = 0.02;
       disc.color.a = static_cast<float>(0.3 + 0.6 * std::clamp(static_cast<double>(t.bearing_confidence), 0.0, 1.0));
-      visualization_msgs::Marker& label = marker(visualization_msgs::Marker::TEXT_VIEW_FACING);
+      out.markers.push_back(disc);
+      visualization_msgs::Marker label = marker(visualization_msgs::Marker::TEXT_VIEW_FACING);
       label.pose.position = at;
       label.pose.position.z = 0.35;
       label.scale.z = 0.35;
+      label.text = t.name + " " + std::to_string(static_cast<int>(std::lround(t.range * 100.0))) + " cm";
+      out.markers.push_back(label);
       // Whose estimate it is: a faint line from the robot to it.
-      visualization_msgs::Marker& line = marker(visualization_msgs::Marker::LINE_STRIP);
+      visualization_msgs::Marker line = marker(visualization_msgs::Marker::LINE_STRIP);
       line.points = {geometry_msgs::Point(), at};
       line.scale.x = 0.03;
       line.color.a = 0.35f;
-      label.text = t.name + " " + std::to_string(static_cast<int>(std::lround(t.range * 100.0))) + " cm";
+      out.markers.push_back(line);
     } else if (range) {
-      visualization_msgs::Marker& ring = marker(visualization_msgs::Marker::LINE_STRIP);
+      visualization_msgs::Marker ring = marker(visualization_msgs::Marker::LINE_STRIP);
       constexpr int kSegments = 72;
       for (int k = 0; k <= kSegments; ++k) {
         geometry_msgs::Point p;
@@ -153,13 +156,15 @@ void AppendTeammateMarkers(const std::string& ns, const multirobot_audio::Teamma
       }
       ring.scale.x = std::max(0.02, 2.0 * static_cast<double>(t.range_std));
       ring.color.a = 0.4f;
+      out.markers.push_back(ring);
     } else if (bearing) {
-      visualization_msgs::Marker& arrow = marker(visualization_msgs::Marker::ARROW);
+      visualization_msgs::Marker arrow = marker(visualization_msgs::Marker::ARROW);
       geometry_msgs::Point tail, head;
       head.x = std::cos(t.bearing);
       head.y = std::sin(t.bearing);
       arrow.points = {tail, head};
       arrow.scale.x = 0.03, arrow.scale.y = 0.07, arrow.scale.z = 0.1;
+      out.markers.push_back(arrow);
     }
   }
 }
