@@ -49,9 +49,8 @@ constexpr double kTeamRadius = 12.0;      // m: robots are placed within this of
 constexpr double kWallClearance = 0.4;    // m
 constexpr double kPositionReach = 5.0;    // m: the position target's reach
 constexpr double kSquareHalf = 0.05;      // m: the array, a 10 cm square as nava_bench --doa's
-// Round a corner the direct sound is found while it is no more than about 20 dB under the
-// reverberation (first_arrival.h's 12 dB rule against the loudest reflection); the pairs above
-// this are reported apart.
+// Round a corner, the pairs whose direct sound is within this of the reverberation are also
+// reported apart: below it the direct sound is found only where the noise is low enough.
 constexpr double kClearDrrDb = -20.0;
 
 struct Pair {

@@ -15,10 +15,10 @@
 namespace nava_modem {
 namespace {
 
-// The band's edges are rolled off over this much inside it (a raised cosine), so that the
-// envelope's ringing before a pulse stays far below the kDirectWithinDb threshold; a brick wall
-// rings at -13 dB.
-constexpr double kRollOffHz = 300.0;
+// The band is weighted by a Hann window across it, not a flat top with rolled-off edges: a flat
+// top's pulse has sidelobes that fall off over 1/(roll-off), -13 dB at 0.3 ms and -30 dB still
+// 2 ms out, and a strong reflection's would hide a weak direct sound a few milliseconds before
+// it. The Hann band's pulse is below -45 dB from 1 ms on.
 // Where the reference is weaker than this share of its strongest in-band power, the division
 // is held back (a Wiener-like regularisation): its noise would swamp the response there.
 constexpr double kRegularisation = 1e-3;
@@ -26,6 +26,15 @@ constexpr double kRegularisation = 1e-3;
 // sidelobe the reference itself makes (nava's tones repeat their patterns bit by bit, and a
 // reverberant room lifts those sidelobes); kDirectWithinDb where the reference has none.
 constexpr double kSidelobeMargin = 1.5;
+// A peak of the envelope counts as one where its power falls by this share before rising again.
+constexpr double kPeakDip = 0.5;
+// The direct sound must also stand this far above the envelope's floor: the kFloorQuantile of
+// its power over the search, which begins well before the sound arrived (the receivers look from
+// far before the strongest arrival), so the quantile is noise and whatever of the room's sound
+// the reference does not explain. A Rayleigh envelope's power has its 20th percentile at 0.22 of
+// its mean and passes 19.5 dB over it (20 x its mean) once in about 10^9 samples.
+constexpr double kFloorQuantile = 0.2;
+constexpr double kAboveFloorDb = 19.5;
 // A pulse whose largest sidelobe is above this share of its peak rings (ReadPulse's `ring`): nava's
 // reference gives 0.4, the room chirp 0.2.
 constexpr double kRingingSidelobe = 0.3;
@@ -38,22 +47,29 @@ constexpr double kResponseWindowS = 0.05;
 
 double BandWeight(double f) {
   if (f <= kResponseBandLowHz || f >= kResponseBandHighHz) return 0.0;
-  const double from_edge = std::min(f - kResponseBandLowHz, kResponseBandHighHz - f);
-  if (from_edge >= kRollOffHz) return 1.0;
-  return 0.5 - 0.5 * std::cos(M_PI * from_edge / kRollOffHz);
+  return 0.5 - 0.5 * std::cos(2.0 * M_PI * (f - kResponseBandLowHz) / (kResponseBandHighHz - kResponseBandLowHz));
 }
 
 // `power` is an envelope squared (no square roots for every lag). The first peak of the envelope
-// within kDirectWithinDb (or `within`, an amplitude ratio) of its largest, then the point (in units of
-// env's samples, interpolated) where the envelope rising to it first reaches half of it. NaN
-// for an envelope that is zero everywhere.
-double HalfPeakEdge(const std::vector<double>& power, double within = std::pow(10.0, -kDirectWithinDb / 20.0)) {
+// within kDirectWithinDb (or `within`, an amplitude ratio) of its largest and above `floor` (a
+// power), then the point (in units of env's samples, interpolated) where the envelope rising to
+// it first reaches half of it. NaN for an envelope that is zero everywhere.
+double HalfPeakEdge(const std::vector<double>& power, double within = std::pow(10.0, -kDirectWithinDb / 20.0),
+                    double floor = 0.0) {
   const double largest = power.empty() ? 0.0 : *std::max_element(power.begin(), power.end());
   if (!(largest > 0.0) || !std::isfinite(largest)) return std::numeric_limits<double>::quiet_NaN();
-  const double threshold = largest * within * within;
+  const double threshold = std::min(largest, std::max(floor, largest * within * within));
   std::size_t p = 0;
   while (power[p] < threshold) ++p;
-  while (p + 1 < power.size() && power[p + 1] >= power[p]) ++p;
+  // Up to a peak that the envelope falls from by kPeakDip before it rises above it again: a
+  // shoulder on the way up (an arrival merged into the next, the noise's ripple) is climbed past.
+  for (;;) {
+    while (p + 1 < power.size() && power[p + 1] >= power[p]) ++p;
+    std::size_t k = p + 1;
+    while (k < power.size() && power[k] <= power[p] && power[k] > kPeakDip * power[p]) ++k;
+    if (k >= power.size() || power[k] <= power[p]) break;
+    p = k;
+  }
   const double quarter = 0.25 * power[p];  // half the amplitude
   std::size_t j = p;
   while (j > 0 && power[j - 1] >= quarter) --j;
@@ -201,7 +217,11 @@ double ArrivalTimer::Time(const float* received, double* clarity) {
     const double largest = *std::max_element(power_.begin(), power_.end());
     *clarity = *mid > 0.0 ? std::sqrt(largest / *mid) : (largest > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   }
-  return (HalfPeakEdge(power_, within_) + rise_correction_) / rate_;
+  sorted_ = power_;
+  const auto low = sorted_.begin() + static_cast<std::ptrdiff_t>(kFloorQuantile * static_cast<double>(sorted_.size() - 1));
+  std::nth_element(sorted_.begin(), low, sorted_.end());
+  const double floor = *low;
+  return (HalfPeakEdge(power_, within_, floor * std::pow(10.0, kAboveFloorDb / 10.0)) + rise_correction_) / rate_;
 }
 
 double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
@@ -216,10 +236,15 @@ double LeadingEdge(const std::vector<float>& response, double sample_rate) {
   for (std::size_t k = 0; k < response.size(); ++k) {
     if (std::abs(response[k]) > std::abs(response[peak])) peak = k;
   }
+  // The window, with the silence before the response's first sample where it reaches back
+  // further (nothing arrives before a response begins, and the floor is read before the sound).
   const std::size_t half = static_cast<std::size_t>(std::lround(kResponseWindowS * sample_rate));
-  const std::size_t from = peak > half ? peak - half : 0;
   const std::size_t to = std::min(response.size(), peak + half + 1);
-  return static_cast<double>(from) / sample_rate + FirstArrival(response.data() + from, to - from, {1.0f}, sample_rate);
+  std::vector<float> window(half > peak ? half - peak : 0, 0.0f);
+  const double first = static_cast<double>(peak) - static_cast<double>(half);
+  window.insert(window.end(), response.begin() + static_cast<std::ptrdiff_t>(peak > half ? peak - half : 0),
+                response.begin() + static_cast<std::ptrdiff_t>(to));
+  return first / sample_rate + FirstArrival(window.data(), window.size(), {1.0f}, sample_rate);
 }
 
 }  // namespace nava_modem

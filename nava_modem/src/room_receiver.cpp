@@ -32,7 +32,7 @@ constexpr double kSearchRatio = 4.0;
 constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
 // A decoded packet's first arrival is looked for from this long before its first chirp's
 // strongest peak (the direct sound may precede a stronger reflection) to this long after it.
-constexpr double kArrivalBefore = 0.025, kArrivalAfter = 0.010;
+constexpr double kArrivalBefore = 0.05, kArrivalAfter = 0.010;
 
 double Median(std::vector<double>& v) {
   if (v.empty()) return 0.0;

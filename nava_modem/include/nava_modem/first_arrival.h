@@ -5,12 +5,15 @@
 // arrival is the shortest way, whatever the room adds after it. No ROS.
 //
 // The definition, the same for a measured response and for a packet heard: the channel's
-// impulse response is read in the modems' band (600-5400 Hz, as MeasureResponse reads it), its
-// envelope is the magnitude of its analytic signal, the direct sound is the earliest peak of that
-// envelope within kDirectWithinDb of its largest, and the arrival is where the envelope, rising
-// to that peak, first reaches half of it. (For a bare delay that is a little before the delay
-// itself: the band's pulse rises over about 0.1 ms. Ranging takes differences, and both sides of
-// a check use the same definition, so the offset cancels.)
+// impulse response is read in the modems' band (600-5400 Hz, as MeasureResponse reads it,
+// weighted by a Hann window across it so that a pulse has no sidelobes to speak of beyond 1 ms),
+// its envelope is the magnitude of its analytic signal, the direct sound is the earliest peak of
+// that envelope within kDirectWithinDb of its largest and well above the floor before it (noise,
+// and what of the room the reference does not explain), and the arrival is where the envelope,
+// rising to that peak, first reaches half of it. A peak is one the envelope falls from by 3 dB
+// before rising again: a shoulder on the way up is not. (For a bare delay the edge is about
+// 0.2 ms before the delay itself: the band's pulse rises over that. Ranging takes differences,
+// and both sides of a check use the same definition, so the offset cancels.)
 #include <complex>
 #include <cstddef>
 #include <memory>
@@ -18,9 +21,9 @@
 
 namespace nava_modem {
 
-// The direct sound's peak is the first within this of the largest (a reflection can be
-// stronger than the direct sound, behind a head or a corner, but not by more).
-constexpr double kDirectWithinDb = 12.0;
+// The direct sound's peak is the first within this of the largest: round a corner in a
+// reverberant hall the diffracted sound can be 30 dB under the reflections that follow it.
+constexpr double kDirectWithinDb = 40.0;
 
 // Seconds from received[0] at which `reference`'s first sample reached the microphone: the
 // leading edge of the impulse response found by dividing received's spectrum by reference's in
