@@ -26,6 +26,12 @@ constexpr double kHeardClarity = 5.0;
 // Once the loop's delay is known, the next packet is looked for only this far either side of it
 // (a sound card's latency holds still while its streams run): a transform a tenth the size.
 constexpr double kNarrowS = 0.02;
+// The narrow search's sound counts where it is within this of the last loop (a loop drifts by a
+// few samples between packets; nava's patterns repeat 2 bits, 6.7 ms, apart); elsewhere the
+// packet is looked for over the whole loop. A sound found within kEdgeGuardS of the whole
+// search's end may have been cut by it: it is not taken.
+constexpr double kNarrowAgreeS = 0.003;
+constexpr double kEdgeGuardS = 0.004;
 
 double CheckedLoop(double max_loop) {
   if (!(max_loop > 0.0 && max_loop <= 10.0)) {
@@ -78,18 +84,30 @@ void SelfTimer::Judge(std::vector<OwnTiming>& out) {
   while (!pending_.empty() && pending_.front().to <= n_) {
     Pending& p = pending_.front();
     const std::int64_t oldest = n_ - static_cast<std::int64_t>(ring_.size());
-    OwnTiming t{std::move(p.data), std::numeric_limits<double>::quiet_NaN()};
+    OwnTiming t{p.data, std::numeric_limits<double>::quiet_NaN()};
     if (p.from >= std::max<std::int64_t>(oldest, 0)) {  // all of its window still held
       ArrivalTimer& timer = p.narrow ? narrow_ : wide_;
       heard_.resize(timer.count());
       for (std::size_t k = 0; k < heard_.size(); ++k) heard_[k] = ring_[static_cast<std::size_t>(p.from + static_cast<std::int64_t>(k)) & mask_];
       double clarity = 0.0;
       const double edge = timer.Time(heard_.data(), &clarity);
-      if (clarity >= kHeardClarity) t.arrival = (static_cast<double>(p.from) - reference_.offset) / rate_ + edge;
+      // Around the last loop the sound must be where that loop puts it: one that moved reaches
+      // into the search cut, and nava's bit patterns match 2 and 4 bits off as well. Over the
+      // whole loop it must lie inside the search, not reach in over its end.
+      const double searched = static_cast<double>(timer.count() - reference_.sound.size()) / rate_;
+      const bool inside = p.narrow ? std::abs(edge - kNarrowS) <= kNarrowAgreeS : edge <= searched - kEdgeGuardS;
+      if (clarity >= kHeardClarity && inside) t.arrival = (static_cast<double>(p.from) - reference_.offset) / rate_ + edge;
     }
-    // Not heard where the loop was: the next is looked for over the whole of it again.
     if (std::isnan(t.arrival)) {
+      // Not heard where the loop was (it moved: an underrun before the packet, a sound server
+      // settling): this one is looked for over the whole of the loop, and so is the next.
       loop_.reset();
+      if (p.narrow) {
+        p.narrow = false;
+        p.from = std::llround(p.sent * rate_ + reference_.offset);
+        p.to = p.from + static_cast<std::int64_t>(wide_.count());
+        continue;
+      }
     } else {
       loop_ = t.arrival - p.sent;
     }

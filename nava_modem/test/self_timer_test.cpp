@@ -80,6 +80,53 @@ TEST(SelfTimerTest, ALinkTimesItsOwnPacketsThroughAnUnknownLoop) {
   }
 }
 
+// A sound card's loop can jump between packets (an underrun before a packet, a sound server
+// settling after a restart, a link catching up): the packet is then not where the last one
+// was. It is found over the whole loop again, never timed on the part of it that reached into
+// the narrow search.
+TEST(SelfTimerTest, ALoopThatJumpsBetweenPacketsIsFollowed) {
+  const double rate = 48000.0;
+  for (Profile profile : {Profile::kNava, Profile::kRoom}) {
+    const std::unique_ptr<ModemProfile> p = MakeProfile(profile, ModemOptions{});
+    const TimingReference reference = PacketTimingReference(profile, p->options());
+    // Each packet: when it was sent, and its loop (s).
+    const std::vector<std::pair<double, double>> packets = {
+        {0.1, 0.040}, {2.6, 0.040}, {5.1, 0.061}, {7.6, 0.089}, {10.1, 0.052}, {12.6, 0.025}};
+    std::vector<float> heard(static_cast<std::size_t>(15.5 * rate), 0.0f);
+    std::mt19937 rng(2);
+    std::normal_distribution<float> noise(0.0f, 0.002f);
+    for (float& v : heard) v = noise(rng);
+    std::vector<double> truth;
+    for (std::size_t k = 0; k < packets.size(); ++k) {
+      const std::vector<float> sound = p->ModulatePacket({static_cast<std::uint8_t>(k), 1, 2, 3});
+      const std::size_t at = static_cast<std::size_t>(std::lround((packets[k].first + packets[k].second) * rate));
+      for (std::size_t i = 0; i < sound.size(); ++i) heard[at + i] += sound[i];
+      // The same definition on the packet alone: where its reference begins, plus the band's rise.
+      std::vector<float> alone(reference.sound.size() + 4800, 0.0f);
+      std::copy(sound.begin(), sound.begin() + static_cast<std::ptrdiff_t>(std::min(sound.size(), alone.size() - 2400)), alone.begin() + 2400);
+      truth.push_back(static_cast<double>(at) / rate - 2400.0 / rate +
+                      FirstArrival(alone.data(), alone.size(), reference.sound, rate) - reference.offset / rate);
+    }
+    SelfTimer timer(*p, 0.3);
+    std::vector<OwnTiming> out;
+    std::size_t fed = 0;
+    // In blocks, as a link hears: the timer holds only a little more than a packet and a loop.
+    const auto hear_until = [&](std::size_t until) {
+      for (; fed < until; fed = std::min(until, fed + 1024)) timer.Heard(heard.data() + fed, std::min<std::size_t>(1024, until - fed), out);
+    };
+    for (std::size_t k = 0; k < packets.size(); ++k) {
+      hear_until(static_cast<std::size_t>(packets[k].first * rate));
+      timer.Sent({static_cast<std::uint8_t>(k), 1, 2, 3}, static_cast<double>(fed) / rate);
+    }
+    hear_until(heard.size());
+    ASSERT_EQ(out.size(), packets.size()) << ProfileName(profile);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      EXPECT_EQ(out[k].data[0], k);
+      EXPECT_NEAR(out[k].arrival, truth[k], 2e-5) << ProfileName(profile) << " packet " << k;
+    }
+  }
+}
+
 TEST(SelfTimerTest, NoiseAloneIsNotTakenForTheOwnPacket) {
   for (Profile profile : {Profile::kNava, Profile::kRoom}) {
     const std::unique_ptr<ModemProfile> p = MakeProfile(profile, ModemOptions{});

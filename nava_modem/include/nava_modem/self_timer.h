@@ -2,7 +2,8 @@
 
 // A link's own packets as its own microphone hears them: the first arrival of each, on the same
 // capture clock as the packets it receives (first_arrival.h), looked for over the whole of the
-// longest loop until one is found, then around the loop's delay. Two-way ranging (ranging/) needs
+// longest loop until one is found, then around the loop's delay (and over the whole loop again
+// when the sound is not just where that delay puts it). Two-way ranging (ranging/) needs
 // both: the sound card's playback and capture latencies are unknown, but timing one's own sound
 // on the capture clock takes them out. No ROS.
 #include <cstdint>
