@@ -189,7 +189,7 @@ void NavaModemRos::AudioLoop() {
         const double ago = std::isfinite(t.arrival) ? std::max(0.0, link_->time() - t.arrival) : 0.0;
         ranging_->OwnTiming(t.data, t.arrival, ClockEpoch(), ros::Time::now() - ros::Duration(ago));
       }
-      if (ranging_) ranging_->SetClock(link_->time());
+      if (ranging_) ranging_->SetClock(link_->time(), link_->card_rate_error());
       for (const nava_modem::RxEvent& e : events) Publish(e, link_->time() - e.end);
       const bool carrier = link_->carrier();
       if (carrier != last_carrier || link_->time() - last_carrier_sent >= carrier_period) {

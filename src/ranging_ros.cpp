@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "params.h"
@@ -263,9 +264,11 @@ RangingRos::Known RangingRos::Heard(const std::vector<std::uint8_t>& data, doubl
   return known;
 }
 
-void RangingRos::SetClock(double now) {
+void RangingRos::SetClock(double now, double card_rate_error) {
   std::lock_guard<std::mutex> lock(mutex_);
   now_ = now;
+  card_rate_error_ = card_rate_error;
+  ranger_.SetOwnRateError(std::isfinite(card_rate_error) ? card_rate_error : 0.0);
 }
 
 InputGuard::Verdict RangingRos::OnTiming(const multirobot_audio::PacketTiming::ConstPtr& msg) {
@@ -289,6 +292,14 @@ void RangingRos::PublishTeammates() {
   if (markers_pub_.getNumSubscribers() > 0) markers_pub_.publish(ToTeammateMarkers({{options_.robot, msg}}));
 }
 
+namespace {
+std::string FormatPpm(double rate_error) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.1f ppm", rate_error * 1e6);
+  return text;
+}
+}  // namespace
+
 std::string RangingRos::Summary() {
   std::lock_guard<std::mutex> lock(mutex_);
   const ranging::Refused& r = ranger_.refused();
@@ -296,7 +307,8 @@ std::string RangingRos::Summary() {
          std::to_string(r.total()) + " (unknown robot " + std::to_string(r.unknown_robot) + ", backwards " +
          std::to_string(r.backwards) + ", bad rate " + std::to_string(r.bad_rate) + ", repeated payload " +
          std::to_string(r.repeated_payload) + ", implausible " + std::to_string(r.implausible) + "), teammates ranged " +
-         std::to_string(ranger_.Ranges(now_).size());
+         std::to_string(ranger_.Ranges(now_).size()) + ", sound card rate " +
+         (std::isfinite(card_rate_error_) ? FormatPpm(card_rate_error_) : std::string("not yet known"));
 }
 
 }  // namespace multirobot_audio

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -58,8 +59,10 @@ class RangingRos {
   };
   Known Heard(const std::vector<std::uint8_t>& data, double arrival, double rate_error, double direction,
               double direction_confidence, std::uint32_t epoch, double now, const ros::Time& stamp);
-  // The capture clock as of the audio thread's latest tick (for audio/teammates' ages).
-  void SetClock(double now);
+  // The capture clock as of the audio thread's latest tick (for audio/teammates' ages), and the
+  // sound card's rate over its nominal one minus 1 (NaN while unknown: taken as 0), which
+  // scales every range.
+  void SetClock(double now, double card_rate_error);
   std::string Summary();  // reports in and refused, for the node's exit line
 
  private:
@@ -73,6 +76,7 @@ class RangingRos {
   ranging::TwoWayRanger ranger_;
   std::map<std::string, ranging::HeardBearing> bearings_;  // per teammate: its latest packet heard
   double now_ = 0.0;
+  double card_rate_error_ = std::numeric_limits<double>::quiet_NaN();
   std::uint64_t shared_ = 0, received_ = 0;
   ros::Publisher timings_pub_, teammates_pub_, markers_pub_;
   ros::Subscriber timings_sub_;

@@ -64,6 +64,7 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock
       channels_(static_cast<std::size_t>(device.capture_channels())),
       self_timer_(*profile_, options_.max_loop),
       clock_(clock),
+      card_rate_(CardRateOptions{options_.modem.sample_rate}),
       reopen_(options_.reopen) {
   if (options_.microphones.size() >= 2) {
     estimator_ = std::make_unique<DirectionEstimator>(DirectionOptionsFor(options_.profile, options_.modem, options_.microphones));
@@ -166,6 +167,8 @@ bool NavaLink::Take(float* out, std::size_t count) {
       }
     }
     frames_read_ += static_cast<std::int64_t>(block_);
+    card_frames_ += static_cast<std::int64_t>(block_);
+    card_rate_.Add(clock_.Now(), card_frames_ + static_cast<std::int64_t>(device_.CaptureLag()));
     const double lag = static_cast<double>(device_.CaptureLag()) / options_.modem.sample_rate;
     if (!behind_ && lag > options_.max_capture_lag) {
       behind_ = true;
@@ -231,6 +234,8 @@ void NavaLink::Fail(const std::string& error, std::vector<RxEvent>& events) {
   ++device_faults_;
   device_error_ = error;
   device_down_ = true;
+  card_rate_.Reset();  // the reopened device's frames count from 0
+  card_frames_ = 0;
   // The playback position is known as of the last write: a packet whose end played after it
   // goes again (listeners that lost the same sound server most likely missed that end too).
   std::vector<CsmaMac::Packet> unsent;

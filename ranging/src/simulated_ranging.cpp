@@ -70,7 +70,22 @@ double SimulatedRanging::Clock(std::size_t robot, double t) const {
   return c.offset + (1.0 + c.rate_error) * t;
 }
 
+// What nava_modem's CardRateTracker needs before it gives a rate (its min_span), and how far
+// off its rate then is (card_rate_test: within 3 to 5 ppm from reads through a sound server).
+constexpr double kCardRateSpanS = 30.0;
+constexpr double kCardRateStd = 3e-6;
+
+void SimulatedRanging::TrackCardRate(std::size_t robot, double t) {
+  SoundCard& card = clocks_.at(robot);
+  if (card.rate_known) return;
+  if (std::isnan(card.first_seen)) card.first_seen = t;
+  if (t - card.first_seen < kCardRateSpanS) return;
+  rangers_[robot].SetOwnRateError(card.rate_error + std::normal_distribution<double>(0.0, kCardRateStd)(rng_));
+  card.rate_known = true;
+}
+
 void SimulatedRanging::Sent(std::size_t sender, const std::vector<std::uint8_t>& data, double start) {
+  TrackCardRate(sender, start);
   Timing t;
   t.sender = t.listener = robots_.at(sender);
   t.data = data;
@@ -88,6 +103,7 @@ bool SimulatedRanging::Heard(std::size_t listener, std::size_t sender, const std
   });
   if (sending == sendings_.rend() || listener == sender || !std::isfinite(path_length)) return false;
   const double arrival = sending->start + path_length / options_.ranger.speed_of_sound;
+  TrackCardRate(listener, arrival);
   Timing t;
   t.sender = robots_.at(sender);
   t.listener = robots_.at(listener);

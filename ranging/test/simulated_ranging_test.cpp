@@ -80,6 +80,25 @@ TEST(SimulatedRangingTest, ThreeRobotsRangeEachOtherDespiteTheirClocks) {
   EXPECT_EQ(sim.refused().total(), 0u);
 }
 
+// A sound card 1000 ppm off makes every range 1000 ppm long or short until its robot has learnt
+// its rate, some 30 s after it started (as a real link does against its host's clock).
+TEST(SimulatedRangingTest, ARobotLearnsItsOwnCardsRate) {
+  SimulatedRangingOptions o = Options();
+  o.max_clock_rate_error = 1e-3;
+  o.rate_report_std = 0.0;  // the teammate's rate is known exactly, and the timings too: only
+  o.errors = ArrivalErrors{{0.0, 0.0}};  // the own card's rate is left
+  o.ranger.samples = 1;
+  SimulatedRanging sim({"a", "b"}, o);
+  const double d = 150.0;
+  Exchange(sim, {{0, d}, {d, 0}}, 1, 2.0, 0.0);
+  const double early = sim.RangeTo(0, 1, 5.0)->range - d;
+  Exchange(sim, {{0, d}, {d, 0}}, 1, 2.0, 40.0);
+  const double late = sim.RangeTo(0, 1, 45.0)->range - d;
+  EXPECT_NEAR(early, d * sim.clock_rate_error(0), 0.002);
+  EXPECT_GT(std::abs(early), 0.01);  // the draw put this card well off
+  EXPECT_LT(std::abs(late), 0.002);
+}
+
 TEST(SimulatedRangingTest, ArrivalErrorsShowInTheRanges) {
   SimulatedRangingOptions o = Options();
   o.errors = ArrivalErrors{{-2e-3, -1e-3, 0.0, 1e-3, 2e-3}};  // +-1 ms: tens of cm

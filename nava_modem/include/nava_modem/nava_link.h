@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nava_modem/audio_device.h"
+#include "nava_modem/card_rate.h"
 #include "nava_modem/clock.h"
 #include "nava_modem/csma_mac.h"
 #include "nava_modem/direction_estimator.h"
@@ -95,6 +96,9 @@ class NavaLink {
   std::vector<OwnTiming> TakeOwnTimings();
   std::uint64_t own_timings_dropped() const { return own_timings_dropped_; }
   static constexpr std::size_t kMaxOwnTimings = 64;
+  // The sound card's capture rate over its nominal one, minus 1, against the host's steady
+  // clock (card_rate.h); NaN until some 30 s after the device (re)opened.
+  double card_rate_error() const { return card_rate_.rate_error(); }
 
  private:
   LinkOptions options_;
@@ -153,6 +157,8 @@ class NavaLink {
   void KeepOwnTimings(std::vector<OwnTiming>& fresh);
 
   Clock& clock_;
+  CardRateTracker card_rate_;
+  std::int64_t card_frames_ = 0;  // frames read since the device (re)opened
   ReopenSchedule reopen_;
   bool device_down_ = false;
   std::string device_error_;

@@ -7,9 +7,11 @@
 // plus the path's length over the speed of sound) with an error drawn from what the real
 // receiver shows through measured rooms (ArrivalErrors). A range therefore exists only after
 // an exchange both ways, carries the real one's errors, and drifts like it where the clocks
-// do. No ROS.
+// do. Each robot learns its own card's rate some 30 s after it starts, to a few ppm, as
+// nava_modem's CardRateTracker does against the host's clock. No ROS.
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
@@ -73,7 +75,10 @@ class SimulatedRanging {
  private:
   struct SoundCard {
     double rate_error, offset;
+    double first_seen = std::numeric_limits<double>::quiet_NaN();  // true s its robot first sent or heard
+    bool rate_known = false;  // its robot has learnt its rate (as nava_modem's CardRateTracker)
   };
+  void TrackCardRate(std::size_t robot, double t);
   struct Sending {
     std::size_t sender;
     std::vector<std::uint8_t> data;
