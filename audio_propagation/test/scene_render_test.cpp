@@ -1,5 +1,6 @@
 #include "audio_propagation/scene_render.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -9,9 +10,12 @@
 
 #include "flat_table.h"
 #include "grid/input_error.h"
+#include "audio_propagation/arrival_errors_file.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
+#include "ranging/simulated_ranging.h"
+#include "ranging/two_way_ranger.h"
 #include "world_sim/world_file.h"
 
 namespace audio_propagation {
@@ -188,6 +192,107 @@ TEST(SceneRender, OwnPacketsAndSoundCardsPlaceEveryArrivalOnTheListenersClock) {
     EXPECT_EQ(events[0].data, std::vector<std::uint8_t>({1, 2, 3, 4}));
     EXPECT_NEAR(events[0].arrival, r.hearings[k].arrival_clock + rise, 30e-6) << r.listeners[k].robot;
   }
+}
+
+// The simulation's ranging (audio_propagation's: SimulatedRanging with the real receiver's
+// errors through measured rooms) against the real ranging on the same rendered scene (the room
+// receiver decoding and timing every robot's own recording, own packets included, on sound
+// cards of their own; one TwoWayRanger per robot): a range shows up for the same pairs after
+// the same packets (only after an exchange both ways), and the ranges are as close to the
+// truth in both.
+TEST(SceneRender, SimulatedRangingHasTheRealRangingsAvailabilityAndErrors) {
+  const nava_modem::Profile room = nava_modem::Profile::kRoom;
+  const Hall hall(Noisy(), room);
+  const SceneRenderer renderer(*hall.model, hall.names, hall.resting, {});
+  Scene scene = hall.OnePacket(room);
+  scene.packets.clear();
+  scene.own_packets = true;
+  scene.self_distance = 0.15;
+  scene.sound_cards["a"] = SceneSoundCard{80e-6, 0.0123};
+  scene.sound_cards["b"] = SceneSoundCard{-90e-6, 0.031};
+  scene.sound_cards["c"] = SceneSoundCard{25e-6, 0.0047};
+  const double period = 2.3;
+  for (std::uint8_t round = 0; round < 2; ++round) {
+    for (std::uint8_t s = 0; s < 3; ++s) {
+      scene.packets.push_back({0.3 + period * (3 * round + s), hall.names[s], {s, round, 7, 9}});
+    }
+  }
+  scene.duration = 0.3 + period * 6 + 0.5;
+  const SceneRendering r = renderer.Render(scene, hall.names);
+
+  // Every robot's recording through the real receiver.
+  std::vector<std::vector<nava_modem::RxEvent>> heard(3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::vector<float> mix = r.listeners[k].Mix();
+    const auto receiver = nava_modem::MakeProfile(room, nava_modem::ModemOptions{})->MakeReceiver(nava_modem::ReceiverOptions{});
+    receiver->Process(mix.data(), mix.size(), heard[k]);
+    receiver->Flush(heard[k]);
+    ASSERT_EQ(heard[k].size(), scene.packets.size()) << hall.names[k];
+  }
+  ranging::RangerOptions real_options;
+  real_options.offset = scene.self_distance;  // a robot's calibration of its own speaker-to-microphone way
+  std::vector<ranging::TwoWayRanger> real;
+  for (const std::string& name : hall.names) real.emplace_back(name, hall.names, real_options);
+  ranging::SimulatedRangingOptions sim_options;
+  sim_options.errors = LoadArrivalErrors(ShippedArrivalErrors("room"), "room");
+  sim_options.rate_report_std = 30e-6;
+  ranging::SimulatedRanging sim(hall.names, sim_options);
+
+  std::vector<double> real_errors, sim_errors;
+  for (std::size_t p = 0; p < scene.packets.size(); ++p) {
+    const ScenePacket& packet = scene.packets[p];
+    const std::vector<std::uint8_t> data(packet.data.begin(), packet.data.end());
+    const std::size_t sender = packet.data[0];
+    sim.Sent(sender, data, packet.time + scene.sound_cards.at(packet.sender).latency);
+    double latest = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const nava_modem::RxEvent& e = heard[k][p];
+      ASSERT_EQ(e.data, data) << hall.names[k] << " packet " << p;
+      ranging::Timing t;
+      t.sender = packet.sender;
+      t.listener = hall.names[k];
+      t.data = data;
+      t.arrival = e.arrival;
+      t.rate_error = k == sender ? 0.0 : e.rate_error;
+      for (ranging::TwoWayRanger& ranger : real) ranger.Add(t);
+      const PacketHearing* hearing = nullptr;
+      for (const PacketHearing& h : r.hearings) {
+        if (h.packet == p && h.listener == hall.names[k]) hearing = &h;
+      }
+      ASSERT_NE(hearing, nullptr);
+      latest = std::max(latest, hearing->arrival);
+      if (k != sender) sim.Heard(k, sender, data, hearing->path_length, hearing->arrival);
+    }
+    // The same pairs are ranged after every packet.
+    for (std::size_t a = 0; a < 3; ++a) {
+      for (std::size_t b = 0; b < 3; ++b) {
+        if (a == b) continue;
+        // Each on its own robot's clock (the renderer's sound card; the simulation's own).
+        const double real_now = (latest - scene.start) * (1.0 + scene.sound_cards.at(hall.names[a]).rate_error);
+        const auto real_range = real[a].RangeTo(hall.names[b], real_now);
+        const auto sim_range = sim.RangeTo(a, b, latest);
+        ASSERT_EQ(real_range.has_value(), sim_range.has_value()) << hall.names[a] << " -> " << hall.names[b] << " after packet " << p;
+        if (!real_range) continue;
+        const double truth = (hall.resting[a] - hall.resting[b]).norm();
+        if (p + 1 == scene.packets.size()) {
+          real_errors.push_back(real_range->range - truth);
+          sim_errors.push_back(sim_range->range - truth);
+        }
+      }
+    }
+  }
+  ASSERT_EQ(real_errors.size(), 6u);  // every pair ranged by the end
+  // Line of sight in a hall: both within the line-of-sight target, and alike.
+  const auto median_abs = [](std::vector<double> v) {
+    for (double& x : v) x = std::abs(x);
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_LT(std::abs(real_errors[k]), 0.03) << "real pair " << k;
+    EXPECT_LT(std::abs(sim_errors[k]), 0.03) << "simulated pair " << k;
+  }
+  EXPECT_NEAR(median_abs(real_errors), median_abs(sim_errors), 0.01);
 }
 
 TEST(SceneRender, ANoiseSourceSoundsAtItsLevelWhileOnAndNotWhileOff) {
