@@ -210,16 +210,16 @@ double ArrivalTimer::Time(const float* received, double* clarity) {
   power_.resize(lags);
   for (std::size_t i = 0; i < lags; ++i) power_[i] = std::norm(p.analytic.complex_output()[i]);
   Smooth(power_, smooth_);
-  if (clarity && !power_.empty()) {
-    sorted_ = power_;
-    const auto mid = sorted_.begin() + static_cast<std::ptrdiff_t>(sorted_.size() / 2);
-    std::nth_element(sorted_.begin(), mid, sorted_.end());
+  // One partial sort gives both the median (clarity) and, below it, the floor's quantile.
+  sorted_ = power_;
+  const auto mid = sorted_.begin() + static_cast<std::ptrdiff_t>(sorted_.size() / 2);
+  std::nth_element(sorted_.begin(), mid, sorted_.end());
+  if (clarity) {
     const double largest = *std::max_element(power_.begin(), power_.end());
     *clarity = *mid > 0.0 ? std::sqrt(largest / *mid) : (largest > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   }
-  sorted_ = power_;
   const auto low = sorted_.begin() + static_cast<std::ptrdiff_t>(kFloorQuantile * static_cast<double>(sorted_.size() - 1));
-  std::nth_element(sorted_.begin(), low, sorted_.end());
+  std::nth_element(sorted_.begin(), low, mid + 1);
   const double floor = *low;
   return (HalfPeakEdge(power_, within_, floor * std::pow(10.0, kAboveFloorDb / 10.0)) + rise_correction_) / rate_;
 }

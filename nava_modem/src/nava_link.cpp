@@ -168,8 +168,9 @@ bool NavaLink::Take(float* out, std::size_t count) {
     }
     frames_read_ += static_cast<std::int64_t>(block_);
     card_frames_ += static_cast<std::int64_t>(block_);
-    card_rate_.Add(clock_.Now(), card_frames_ + static_cast<std::int64_t>(device_.CaptureLag()));
-    const double lag = static_cast<double>(device_.CaptureLag()) / options_.modem.sample_rate;
+    const std::size_t waiting = device_.CaptureLag();  // one query of the device a block
+    card_rate_.Add(clock_.Now(), card_frames_ + static_cast<std::int64_t>(waiting));
+    const double lag = static_cast<double>(waiting) / options_.modem.sample_rate;
     if (!behind_ && lag > options_.max_capture_lag) {
       behind_ = true;
       behind_since_ = samples_done_;
