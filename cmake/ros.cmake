@@ -13,12 +13,14 @@ add_message_files(DIRECTORY msg FILES
   LockstepOrder.msg
   LockstepAck.msg
   RobotPoses.msg
+  RobotScans.msg
+  RobotCommands.msg
   PacketTiming.msg
   Teammate.msg
   Teammates.msg
 )
 add_action_files(DIRECTORY action FILES AcquireLock.action)
-generate_messages(DEPENDENCIES std_msgs geometry_msgs actionlib_msgs)
+generate_messages(DEPENDENCIES std_msgs geometry_msgs sensor_msgs actionlib_msgs)
 
 catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sensor_msgs nav_msgs
                visualization_msgs rosgraph_msgs tf2_msgs diagnostic_msgs actionlib actionlib_msgs std_srvs)
@@ -33,6 +35,7 @@ add_library(multirobot_audio_ros STATIC
   src/lockstep_participant.cpp
   src/world_sim_ros.cpp
   src/wanderer_ros.cpp
+  src/wanderer_team_ros.cpp
   src/audio_propagation_ros.cpp
   src/nava_modem_ros.cpp
   src/ranging_ros.cpp
@@ -115,6 +118,10 @@ if(MULTIROBOT_AUDIO_TESTS)
   # step: the same world_sim summary and the same bag, on a busy team of 20.
   add_test(NAME lockstep_update_modes COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 20 20
            world:=${PROJECT_SOURCE_DIR}/maps/office_team20_world.yaml -- update:=every_step -- update:=events)
+  # A team driven by one process (the wanderer's ~robots, on world_sim's team topics) gives the
+  # same run as a wanderer per robot.
+  add_test(NAME lockstep_one_process COMMAND ${PROJECT_SOURCE_DIR}/test/lockstep_repro.sh 20 20
+           world:=${PROJECT_SOURCE_DIR}/maps/office_team20_world.yaml -- one_process:=false -- one_process:=true)
   # The lockstep bench runs and prints its figures (no timing is asserted).
   add_test(NAME lockstep_bench_quick COMMAND ${PROJECT_SOURCE_DIR}/scripts/lockstep_bench.sh 20 5)
   set_tests_properties(lockstep_bench_quick PROPERTIES PASS_REGULAR_EXPRESSION "real_time_factor [0-9.]+")
@@ -208,6 +215,8 @@ if(MULTIROBOT_AUDIO_TESTS)
   foreach(launch_file sim_team.launch)
     roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
   endforeach()
+  roslaunch_add_file_check(launch/sim_team.launch one_process:=true
+                           DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
   roslaunch_add_file_check(launch/include/wanderers.launch count:=2 DEPENDENCIES wanderer_node)
   roslaunch_add_file_check(launch/nava_robot.launch DEPENDENCIES nava_modem_node)
   roslaunch_add_file_check(launch/mutex_sim.launch

@@ -11,7 +11,8 @@
 # The world: maps/office_team20_world.yaml up to 20 robots, maps/campus_team60_world.yaml up to
 # 60, maps/campus_team100_world.yaml up to 100, and beyond that one written for the run by
 # scripts/make_team_world.py on the campus map. Launch arguments go to sim_team.launch (for
-# example channel_model:=acoustic, or update:=every_step for audio_propagation's old cadence).
+# example channel_model:=acoustic, update:=every_step for audio_propagation's old cadence, or
+# one_process:=false for a wanderer node per robot instead of the default one process for all).
 # Needs the built workspace (scripts/demo.sh or scripts/test.sh build it).
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
@@ -59,6 +60,9 @@ run() {  # name speed duration
   fi
   grep -E '^world_sim (summary|timing):' "$dir/$1.log" | sed "s/^/$1: /"
 }
+# The team's wanderers in one process unless the arguments say otherwise (one_process:=false: a
+# wanderer node per robot, as robots run them).
+case " $* " in *" one_process:="*) ;; *) set -- one_process:=true "$@" ;; esac
 echo "lockstep_bench: $robots robots, $(basename "$world"), $seconds s simulated${*:+, $*}"
 run lockstep 0 "$seconds" "$@"
 [ "$real_seconds" != 0 ] && run realtime 1 "$real_seconds" "$@"
@@ -76,7 +80,7 @@ sim0, dist0, wall0, rtf0, text = figures(sys.argv[1])
 waits = re.search(r'world_sim lockstep waits \(wall s\):(.*)', text)
 pairs = re.findall(r'(\S+) ([\d.]+)', waits.group(1)) if waits else []
 audio = sum(float(s) for n, s in pairs if n == '/audio_propagation')
-wanderers = [float(s) for n, s in pairs if n.endswith('/wanderer')]
+wanderers = [float(s) for n, s in pairs if n.endswith('/wanderer') or n == '/wanderers']
 updates = re.search(r'audio_propagation summary:.*updates (\d+)', text)
 print('real_time_factor %.1f (wall %.1f s for %.0f s simulated)' % (rtf0, wall0, sim0))
 print('kept_waiting audio_propagation %.1f s%s; wanderers %.1f s in all, worst %.2f s'

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
+#include <vector>
 
 #include "conversions.h"
 #include "grid/pose2d.h"
@@ -84,6 +86,43 @@ std::string ScanProblem(const sensor_msgs::LaserScan& msg) {
     if (msg.ranges[k] < 0.0f && std::isfinite(msg.ranges[k])) return Is("ranges[" + std::to_string(k) + "]", msg.ranges[k]);
   }
   return "";
+}
+
+namespace {
+
+// What is wrong with the names of a message that carries one `what` per name.
+std::string NamesProblem(const std::vector<std::string>& names, std::size_t items, const std::string& what) {
+  if (names.size() != items) {
+    return "names and " + what + "s: one " + what + " per name expected, got " + std::to_string(names.size()) +
+           " names and " + std::to_string(items) + " " + what + "s";
+  }
+  std::set<std::string> seen;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (!seen.insert(names[k]).second) return "names[" + std::to_string(k) + "] = '" + names[k] + "': given twice";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string RobotScansProblem(const multirobot_audio::RobotScans& msg) {
+  std::string p = NamesProblem(msg.names, msg.scans.size(), "scan");
+  for (std::size_t k = 0; k < msg.scans.size() && p.empty(); ++k) {
+    const std::string problem = ScanProblem(msg.scans[k]);
+    if (!problem.empty()) p = "scans[" + std::to_string(k) + "] (" + msg.names[k] + ")." + problem;
+  }
+  return p;
+}
+
+std::string RobotCommandsProblem(const multirobot_audio::RobotCommands& msg,
+                                 const std::function<bool(const std::string&)>& is_robot) {
+  std::string p = NamesProblem(msg.names, msg.commands.size(), "command");
+  for (std::size_t k = 0; k < msg.commands.size() && p.empty(); ++k) {
+    const std::string at = "commands[" + std::to_string(k) + "] (" + msg.names[k] + ")";
+    if (!is_robot(msg.names[k])) return "names[" + std::to_string(k) + "] = '" + msg.names[k] + "': not a robot of the world";
+    p = TwistFields(at + ".", msg.commands[k]);
+  }
+  return p;
 }
 
 std::string FiducialsProblem(const multirobot_audio::FiducialArray& msg) {

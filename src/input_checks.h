@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include <geometry_msgs/Twist.h>
@@ -9,7 +10,9 @@
 #include <multirobot_audio/FiducialArray.h>
 #include <multirobot_audio/Job.h>
 #include <multirobot_audio/LockState.h>
+#include <multirobot_audio/RobotCommands.h>
 #include <multirobot_audio/RobotPoses.h>
+#include <multirobot_audio/RobotScans.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/LaserScan.h>
@@ -29,6 +32,12 @@ std::string RobotPosesProblem(const multirobot_audio::RobotPoses& msg);
 // angle_increment gives (to one either way), and no range negative: NaN and +-inf are readings
 // (REP 117: nothing in reach, too close).
 std::string ScanProblem(const sensor_msgs::LaserScan& msg);
+// One scan per name, no name twice, every scan as ScanProblem wants it.
+std::string RobotScansProblem(const multirobot_audio::RobotScans& msg);
+// One command per name, no name twice, each one of the world's robots (`is_robot`) and as
+// TwistProblem wants it.
+std::string RobotCommandsProblem(const multirobot_audio::RobotCommands& msg,
+                                 const std::function<bool(const std::string&)>& is_robot);
 // Each marker at a finite, non-negative range and a finite bearing.
 std::string FiducialsProblem(const multirobot_audio::FiducialArray& msg);
 // A level (percentage, or charge / capacity) that is finite and not negative.

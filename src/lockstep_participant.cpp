@@ -14,7 +14,7 @@ LockstepParticipant::LockstepParticipant(ros::NodeHandle nh) : nh_(nh), node_(ro
   ros::NodeHandle pnh("~");
   hello_pub_ = nh_.advertise<multirobot_audio::LockstepHello>("/lockstep/hello", 10);
   ack_pub_ = nh_.advertise<multirobot_audio::LockstepAck>("/lockstep/ack", 100);
-  order_sub_ = pnh.subscribe("lockstep_order", 100, &LockstepParticipant::OnOrder, this);
+  order_sub_ = pnh.subscribe("lockstep_order", 100, &LockstepParticipant::OnOrder, this, LockstepTransport());
   // Repeated until the first order: a message sent before the connection stands is lost.
   hello_timer_ = nh_.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { SayHello(); });
 }

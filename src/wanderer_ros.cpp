@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 
 #include <geometry_msgs/Twist.h>
-#include <multirobot_audio/AudioPacket.h>
 
 #include "input_checks.h"
 #include "params.h"
@@ -22,6 +22,28 @@ behaviours::WanderOptions ReadWanderOptions(const ros::NodeHandle& pnh) {
   return o;
 }
 
+std::uint32_t NamespaceSeed(const std::string& ns) {
+  return static_cast<std::uint32_t>(std::hash<std::string>{}(ns) & 0x7fffffff);
+}
+
+multirobot_audio::AudioPacket AnnouncePacket(std::uint32_t seed, ros::Time stamp) {
+  multirobot_audio::AudioPacket packet;
+  packet.header.stamp = stamp;
+  packet.data = {'W', static_cast<std::uint8_t>(seed >> 16), static_cast<std::uint8_t>(seed >> 8),
+                 static_cast<std::uint8_t>(seed)};
+  return packet;
+}
+
+geometry_msgs::Twist WanderStep(behaviours::Wanderer& wanderer, ros::Time& last_scan, const sensor_msgs::LaserScan& scan) {
+  const double dt = last_scan.isZero() ? 0.1 : (scan.header.stamp - last_scan).toSec();
+  last_scan = scan.header.stamp;
+  const behaviours::VelocityCommand c = wanderer.Update(scan.ranges, std::max(dt, 0.0));
+  geometry_msgs::Twist cmd;
+  cmd.linear.x = c.v;
+  cmd.angular.z = c.w;
+  return cmd;
+}
+
 WandererRos::WandererRos(ros::NodeHandle nh, const behaviours::WanderOptions& options,
                          std::uint32_t seed, double announce_period)
     : nh_(nh), lockstep_(nh), wanderer_(options, seed), seed_(seed) {
@@ -32,11 +54,7 @@ WandererRos::WandererRos(ros::NodeHandle nh, const behaviours::WanderOptions& op
   if (announce_period > 0.0) {
     audio_pub_ = lockstep_.Advertise<multirobot_audio::AudioPacket>(nh_, "audio/tx", 10);
     announce_timer_ = lockstep_.CreateTimer(nh_, ros::Duration(announce_period), [this](const ros::TimerEvent&) {
-      multirobot_audio::AudioPacket packet;
-      packet.header.stamp = ros::Time::now();
-      packet.data = {'W', static_cast<std::uint8_t>(seed_ >> 16), static_cast<std::uint8_t>(seed_ >> 8),
-                     static_cast<std::uint8_t>(seed_)};
-      audio_pub_.publish(packet);
+      audio_pub_.publish(AnnouncePacket(seed_, ros::Time::now()));
     });
   }
 }
@@ -49,14 +67,7 @@ WandererRos::~WandererRos() {
 }
 
 void WandererRos::OnScan(const sensor_msgs::LaserScan::ConstPtr& scan) {
-  // The behaviour wants ranger 0 ahead and an even ring, which is what world_sim publishes.
-  const double dt = last_scan_.isZero() ? 0.1 : (scan->header.stamp - last_scan_).toSec();
-  last_scan_ = scan->header.stamp;
-  const behaviours::VelocityCommand c = wanderer_.Update(scan->ranges, std::max(dt, 0.0));
-  geometry_msgs::Twist cmd;
-  cmd.linear.x = c.v;
-  cmd.angular.z = c.w;
-  cmd_pub_.publish(cmd);
+  cmd_pub_.publish(WanderStep(wanderer_, last_scan_, *scan));
   ++commands_;
 }
 

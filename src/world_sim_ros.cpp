@@ -5,6 +5,7 @@
 
 #include <multirobot_audio/LockstepOrder.h>
 #include <multirobot_audio/RobotPoses.h>
+#include <multirobot_audio/RobotScans.h>
 
 #include <multirobot_audio/FiducialArray.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -18,6 +19,7 @@
 
 #include "conversions.h"
 #include "input_checks.h"
+#include "lockstep_participant.h"
 #include "params.h"
 #include "world_sim/world_file.h"
 
@@ -68,6 +70,7 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
   map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
   robot_poses_pub_ = pnh_.advertise<multirobot_audio::RobotPoses>("robot_poses", 10);
+  robot_scans_pub_ = pnh_.advertise<multirobot_audio::RobotScans>("robot_scans", 10);
 
   io_.resize(world_->robots().size());
   for (std::size_t k = 0; k < io_.size(); ++k) {
@@ -82,15 +85,33 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
     io.cmd_vel = rnh.subscribe<geometry_msgs::Twist>("cmd_vel", 100,
                                boost::function<void(const ros::MessageEvent<geometry_msgs::Twist const>&)>(
                                    [this, k, checked](const ros::MessageEvent<geometry_msgs::Twist const>& e) {
-                                     CountCommand(k, e);
+                                     CountReceived(io_[k].cmd_vel_topic, e.getPublisherName());
                                      checked(e);
-                                   }));
+                                   }),
+                               ros::VoidConstPtr(), LockstepTransport());
     io.scan = rnh.advertise<sensor_msgs::LaserScan>("scan", 10);
     io.odom = rnh.advertise<nav_msgs::Odometry>("odom", 10);
     io.ground_truth = rnh.advertise<nav_msgs::Odometry>("ground_truth", 10);
     io.fiducials = rnh.advertise<multirobot_audio::FiducialArray>("fiducials", 10);
     io.battery = rnh.advertise<sensor_msgs::BatteryState>("battery", 2);
   }
+  // The team's commands in one message (a controller driving many robots in one process).
+  for (std::size_t k = 0; k < io_.size(); ++k) robot_index_[world_->robots()[k].name] = k;
+  robot_commands_topic_ = pnh_.resolveName("robot_commands");
+  auto checked = guard_.Checked<multirobot_audio::RobotCommands>(
+      robot_commands_topic_,
+      [this](const multirobot_audio::RobotCommands& m) {
+        return RobotCommandsProblem(m, [this](const std::string& name) { return robot_index_.count(name) > 0; });
+      },
+      [this](const multirobot_audio::RobotCommands::ConstPtr& m) { OnRobotCommands(*m); });
+  robot_commands_sub_ = pnh_.subscribe<multirobot_audio::RobotCommands>(
+      "robot_commands", 100,
+      boost::function<void(const ros::MessageEvent<multirobot_audio::RobotCommands const>&)>(
+          [this, checked](const ros::MessageEvent<multirobot_audio::RobotCommands const>& e) {
+            CountReceived(robot_commands_topic_, e.getPublisherName());
+            checked(e);
+          }),
+      ros::VoidConstPtr(), LockstepTransport());
   if (options_.lockstep) SetUpLockstep();
   map_pub_.publish(ToOccupancyGrid(world_->map(), "map", ros::Time(world_->time())));
   ROS_INFO("world_sim: %zu robots on %s (%d x %d cells at %.3f m), step %.3f s, speed %g",
@@ -98,15 +119,19 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
            world_->map().height(), world_->map().resolution(), options_.world.step, options_.speed);
 }
 
-void WorldSimRos::CountCommand(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event) {
+void WorldSimRos::CountReceived(const std::string& topic, const std::string& publisher) {
   if (!lockstep_) return;
-  const world_sim::StreamId stream{io_[index].cmd_vel_topic, event.getPublisherName()};
+  const world_sim::StreamId stream{topic, publisher};
   lockstep_->OwnReceived(stream, ++cmd_received_[stream]);
 }
 
 void WorldSimRos::OnCmdVel(std::size_t index, const geometry_msgs::Twist& msg) {
   world_->SetCommand(index, msg.linear.x, msg.angular.z);
   io_[index].last_cmd_time = world_->time();
+}
+
+void WorldSimRos::OnRobotCommands(const multirobot_audio::RobotCommands& msg) {
+  for (std::size_t k = 0; k < msg.names.size(); ++k) OnCmdVel(robot_index_.at(msg.names[k]), msg.commands[k]);
 }
 
 void WorldSimRos::SetUpLockstep() {
@@ -137,11 +162,13 @@ void WorldSimRos::SetUpLockstep() {
       advertised.push_back(p->getTopic());
     }
   }
+  subscribed.push_back(robot_commands_topic_);
   advertised.push_back(robot_poses_pub_.getTopic());
+  advertised.push_back(robot_scans_pub_.getTopic());
   lockstep_->SetOwnStreams(subscribed, advertised);
   nh_.setParam("/lockstep", true);
   hello_sub_ = nh_.subscribe("/lockstep/hello", 100, &WorldSimRos::OnHello, this);
-  ack_sub_ = nh_.subscribe("/lockstep/ack", 1000, &WorldSimRos::OnAck, this);
+  ack_sub_ = nh_.subscribe("/lockstep/ack", 1000, &WorldSimRos::OnAck, this, LockstepTransport());
 }
 
 void WorldSimRos::Count(const ros::Publisher& pub) {
@@ -175,6 +202,7 @@ void WorldSimRos::OnAck(const multirobot_audio::LockstepAck::ConstPtr& msg) {
 std::map<std::string, int> WorldSimRos::OwnConnected() const {
   std::map<std::string, int> connected;
   for (const RobotIo& io : io_) connected[io.cmd_vel_topic] = static_cast<int>(io.cmd_vel.getNumPublishers());
+  connected[robot_commands_topic_] = static_cast<int>(robot_commands_sub_.getNumPublishers());
   return connected;
 }
 
@@ -252,6 +280,9 @@ void WorldSimRos::Publish() {
 
   std::vector<geometry_msgs::TransformStamped> transforms;
   multirobot_audio::RobotPoses poses;
+  // Built only for a listener: a team in one process (the wanderer's ~robots).
+  const bool team_scans = robot_scans_pub_.getNumSubscribers() > 0;
+  multirobot_audio::RobotScans scans;
   for (std::size_t k = 0; k < io_.size(); ++k) {
     const world_sim::RobotState& r = w.robots()[k];
     RobotIo& io = io_[k];
@@ -272,8 +303,13 @@ void WorldSimRos::Publish() {
       poses.poses.push_back(p);
     }
     if (r.scan_step == w.steps()) {
-      io.scan.publish(ToLaserScan(r.scan, w.config().model, io.base_frame, now));
+      sensor_msgs::LaserScan scan = ToLaserScan(r.scan, w.config().model, io.base_frame, now);
+      io.scan.publish(scan);
       Count(io.scan);
+      if (team_scans) {
+        scans.names.push_back(r.name);
+        scans.scans.push_back(std::move(scan));
+      }
     }
     if (r.fiducials_step == w.steps()) {
       io.fiducials.publish(ToFiducialArray(r.fiducials, io.base_frame, now));
@@ -283,6 +319,11 @@ void WorldSimRos::Publish() {
       io.battery.publish(ToBatteryState(r.battery, r.docked, w.config().model.battery, io.base_frame, now));
       Count(io.battery);
     }
+  }
+  if (!scans.names.empty()) {
+    scans.header.stamp = now;
+    robot_scans_pub_.publish(scans);
+    Count(robot_scans_pub_);
   }
   if (!transforms.empty()) tf_.sendTransform(transforms);
   if (!poses.names.empty()) {

@@ -12,6 +12,7 @@
 
 #include <multirobot_audio/LockstepAck.h>
 #include <multirobot_audio/LockstepHello.h>
+#include <multirobot_audio/RobotCommands.h>
 
 #include "input_guard.h"
 #include "world_sim/lockstep_coordinator.h"
@@ -43,7 +44,8 @@ struct WorldSimOptions {
 WorldSimOptions ReadWorldSimOptions(const ros::NodeHandle& pnh);
 
 // The ROS face of world_sim::World: owns /clock, publishes the map, every robot's sensors,
-// ground truth and TF, and drives the robots from their cmd_vel topics.
+// ground truth and TF (and, while someone listens, ~robot_scans: every scan in one message), and
+// drives the robots from their cmd_vel topics and ~robot_commands (several robots in one message).
 class WorldSimRos {
  public:
   // Loads the world; throws grid::InputError or std::invalid_argument on bad input.
@@ -62,9 +64,11 @@ class WorldSimRos {
     std::string odom_frame, base_frame;
   };
 
-  // Lockstep: counts a command as received, whatever the guard makes of it.
-  void CountCommand(std::size_t index, const ros::MessageEvent<geometry_msgs::Twist const>& event);
+  // Lockstep: counts a command (cmd_vel, ~robot_commands) as received, whatever the guard makes of it.
+  void CountReceived(const std::string& topic, const std::string& publisher);
   void OnCmdVel(std::size_t index, const geometry_msgs::Twist& msg);
+  // ~robot_commands: several robots' commands in one message, each as its cmd_vel.
+  void OnRobotCommands(const multirobot_audio::RobotCommands& msg);
   void Publish();
   void SetUpLockstep();
   // Lockstep: counts a message the world published on `topic`.
@@ -80,7 +84,10 @@ class WorldSimRos {
   WorldSimOptions options_;
   std::unique_ptr<world_sim::World> world_;
   std::vector<RobotIo> io_;
-  ros::Publisher clock_pub_, map_pub_, markers_pub_, robot_poses_pub_;
+  ros::Publisher clock_pub_, map_pub_, markers_pub_, robot_poses_pub_, robot_scans_pub_;
+  ros::Subscriber robot_commands_sub_;
+  std::string robot_commands_topic_;
+  std::map<std::string, std::size_t> robot_index_;  // robot name -> io_
   tf2_ros::TransformBroadcaster tf_;
   InputGuard guard_;
   std::uint64_t markers_every_ = 1;

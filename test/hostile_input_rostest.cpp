@@ -18,6 +18,8 @@
 #include <multirobot_audio/FiducialArray.h>
 #include <multirobot_audio/Job.h>
 #include <multirobot_audio/LockState.h>
+#include <multirobot_audio/RobotCommands.h>
+#include <multirobot_audio/RobotScans.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
@@ -95,6 +97,17 @@ class HostileInputTest : public ::testing::Test {
         .Bad([](auto& t) { t.angular.z = kInf; })
         .Bad([](auto& t) { t.linear.y = -kInf; });
     drive_ = &cmd;
+    // world_sim's team commands (several robots in one message), for the same robot.
+    RobotCommands team;
+    team.names = {"robot_3"};
+    team.commands.resize(1);
+    Add<RobotCommands>("world_sim", "/world_sim/robot_commands", team)
+        .Good()
+        .Good([](auto& c) { c.commands[0].linear.x = 0.2; c.commands[0].angular.z = 1.0; })
+        .Bad([](auto& c) { c.commands[0].linear.x = kNan; })
+        .Bad([](auto& c) { c.names[0] = "ghost"; })
+        .Bad([](auto& c) { c.names.push_back("robot_3"); c.commands.push_back(c.commands[0]); })
+        .Bad([](auto& c) { c.commands.clear(); });
     // audio_propagation: robot_2's link (its local_mutex sends there too).
     AudioPacket packet;
     packet.data = kJunk;
@@ -119,6 +132,18 @@ class HostileInputTest : public ::testing::Test {
           .Bad([](auto& s) { s.range_max = kInf; })
           .Backwards();
     }
+    // A team of wanderers in one process, on scans of its own (its commands go nowhere).
+    RobotScans team_scans;
+    team_scans.names = {"robot_0", "robot_1"};
+    team_scans.scans.assign(2, ToLaserScan(std::vector<float>(16, 1.5f), model, "robot_0/base_link", ros::Time()));
+    Add<RobotScans>("wanderers", "/hostile/robot_scans", team_scans)
+        .Good()
+        .Good([](auto& t) { t.names = {"robot_7"}; t.scans.resize(1); })  // a robot the team does not drive
+        .Bad([](auto& t) { t.scans[1].ranges[2] = -1.0f; })
+        .Bad([](auto& t) { t.scans[0].angle_increment = kNan; })
+        .Bad([](auto& t) { t.scans.pop_back(); })
+        .Bad([](auto& t) { t.names[1] = "robot_0"; })
+        .Backwards();
     for (const auto& [node, robot] : {std::pair<std::string, std::string>{"robot_1/sounds_good_explorer", "robot_1"},
                                       {"robot_2/charging_demo", "robot_2"}}) {
       Add<nav_msgs::Odometry>(node, "/" + robot + "/odom",
@@ -223,7 +248,8 @@ class HostileInputTest : public ::testing::Test {
 };
 
 const std::vector<std::string> kNodes = {"world_sim",           "audio_propagation",
-                                         "robot_0/wanderer",    "robot_1/sounds_good_explorer",
+                                         "robot_0/wanderer",    "wanderers",
+                                         "robot_1/sounds_good_explorer",
                                          "robot_2/charging_demo", "robot_2/local_mutex",
                                          "robot_3/local_mutex", "robot_3/mutex_client",
                                          "task_monitor"};
@@ -250,7 +276,7 @@ TEST_F(HostileInputTest, EveryNodeCountsEveryMessageAndWorksOn) {
 
   // 2. Floods, 10 kHz for 10 s on each input, in two waves (the machine has two cores).
   const std::vector<std::vector<std::string>> waves = {
-      {"world_sim", "audio_propagation", "robot_0/wanderer", "robot_3/local_mutex", "task_monitor"},
+      {"world_sim", "audio_propagation", "robot_0/wanderer", "wanderers", "robot_3/local_mutex", "task_monitor"},
       {"robot_1/sounds_good_explorer", "robot_2/charging_demo"}};
   for (const auto& wave : waves) {
     const std::vector<Feed*> feeds = Feeds(wave);

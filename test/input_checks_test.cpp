@@ -61,6 +61,35 @@ TEST(InputChecksTest, RobotPosesNeedAFinitePoseForEachName) {
             "names and poses: one pose per name expected, got 2 names and 1 poses");
 }
 
+TEST(InputChecksTest, RobotScansNeedOneGoodScanForEachNameGivenOnce) {
+  multirobot_audio::RobotScans m;
+  m.names = {"robot_0", "robot_1"};
+  m.scans.assign(2, ToLaserScan(std::vector<float>(16, 1.0f), Model(), "robot_0/base_link", ros::Time(1.0)));
+  EXPECT_EQ(RobotScansProblem(m), "");
+  EXPECT_EQ(RobotScansProblem(Spoilt(m, [](auto& r) { r.scans[1].ranges[2] = -1.0f; })),
+            "scans[1] (robot_1).ranges[2] = -1");
+  EXPECT_EQ(RobotScansProblem(Spoilt(m, [](auto& r) { r.scans.pop_back(); })),
+            "names and scans: one scan per name expected, got 2 names and 1 scans");
+  EXPECT_EQ(RobotScansProblem(Spoilt(m, [](auto& r) { r.names[1] = "robot_0"; })), "names[1] = 'robot_0': given twice");
+}
+
+TEST(InputChecksTest, RobotCommandsNeedFiniteCommandsForKnownRobotsGivenOnce) {
+  multirobot_audio::RobotCommands m;
+  m.names = {"robot_0", "robot_1"};
+  m.commands.resize(2);
+  m.commands[0].linear.x = 0.3;
+  const auto known = [](const std::string& name) { return name == "robot_0" || name == "robot_1"; };
+  EXPECT_EQ(RobotCommandsProblem(m, known), "");
+  EXPECT_EQ(RobotCommandsProblem(Spoilt(m, [](auto& r) { r.commands[1].angular.z = kNan; }), known),
+            "commands[1] (robot_1).angular.z = nan");
+  EXPECT_EQ(RobotCommandsProblem(Spoilt(m, [](auto& r) { r.names[0] = "robot_9"; }), known),
+            "names[0] = 'robot_9': not a robot of the world");
+  EXPECT_EQ(RobotCommandsProblem(Spoilt(m, [](auto& r) { r.names.push_back("robot_2"); }), known),
+            "names and commands: one command per name expected, got 3 names and 2 commands");
+  EXPECT_EQ(RobotCommandsProblem(Spoilt(m, [](auto& r) { r.names[1] = "robot_0"; }), known),
+            "names[1] = 'robot_0': given twice");
+}
+
 TEST(InputChecksTest, ScanTakesNanAndInfinityAsReadingsButNotNegativeRanges) {
   std::vector<float> ranges(16, 1.0f);
   ranges[3] = kInf;   // nothing in reach
