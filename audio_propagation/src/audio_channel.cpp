@@ -163,9 +163,10 @@ std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
   const std::size_t n = macs_.size();
   const std::vector<Eigen::Vector2d> at = Positions();
   auto compute = [&] {
-    std::vector<bool> sources(n, false);
-    sources[sender] = true;
-    return model_.Compute(at, sources)[sender];
+    // From one source, without the n x n table Compute() would fill; no path to itself.
+    std::vector<SoundPath> paths = model_.From(at[sender], at);
+    paths[sender] = SoundPath();
+    return paths;
   };
   if (cache_.capacity() == 0) return compute();
 
