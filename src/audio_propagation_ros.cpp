@@ -148,13 +148,16 @@ AudioPropagationRos::~AudioPropagationRos() {
   for (const std::uint64_t m : missing_poses_) missing += m;
   std::printf("audio_propagation summary: sent %lu, heard %lu packets and %lu noise; %s; %lu packets found "
               "their robot's queue full; %lu pose look-ups failed; updates %lu (%lu of them resting); "
-              "path cache %lu hits, %lu misses; %lu arrivals unheard (acoustic model); %s\n",
+              "path cache %lu hits, %lu misses; corner views %lu reused, %lu worked out; %lu arrivals unheard "
+              "(acoustic model); %s\n",
               static_cast<unsigned long>(sent_), static_cast<unsigned long>(packets_heard_),
               static_cast<unsigned long>(noise_heard_), guard_.Summary().c_str(),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->send_overflows() : 0), static_cast<unsigned long>(missing),
               static_cast<unsigned long>(updates_), static_cast<unsigned long>(idle_updates_),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->cache().hits() : 0),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->cache().misses() : 0),
+              static_cast<unsigned long>(sim_.channel ? sim_.channel->memo().hits() : 0),
+              static_cast<unsigned long>(sim_.channel ? sim_.channel->memo().misses() : 0),
               static_cast<unsigned long>(sim_.channel ? sim_.channel->unheard() : 0),
               ranging_ ? ranging_->Summary().c_str() : "ranging not started");
   std::fflush(stdout);

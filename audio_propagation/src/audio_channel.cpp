@@ -17,6 +17,8 @@ constexpr double kNegligibleSnrDb = -30.0;
 constexpr double kNoiseUpdateSeconds = 0.05;
 // Packets stamped for later that one robot may have waiting (far more than a step brings).
 constexpr std::size_t kMaxPendingSends = 1000;
+// Cells whose view of the corners VisibilityMemo keeps (with a path cache).
+constexpr std::size_t kMemoCells = 8192;
 
 }  // namespace
 
@@ -37,6 +39,8 @@ AudioChannel::AudioChannel(const PropagationModel& model,
       microphones_(std::move(microphones)),
       options_(options),
       cache_(options.cache_size),
+      // A cell's nodes are a few hundred bytes; a team's robots keep a few cells each busy.
+      memo_(options.cache_size > 0 ? kMemoCells : 0),
       rng_(options.seed) {
   ValidateOptions(options_);
   nava_modem::MacOptions mac = options_.mac;
@@ -164,7 +168,7 @@ std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
   const std::vector<Eigen::Vector2d> at = Positions();
   auto compute = [&] {
     // From one source, without the n x n table Compute() would fill; no path to itself.
-    std::vector<SoundPath> paths = model_.From(at[sender], at);
+    std::vector<SoundPath> paths = model_.From(at[sender], at, memo_.capacity() > 0 ? &memo_ : nullptr);
     paths[sender] = SoundPath();
     return paths;
   };

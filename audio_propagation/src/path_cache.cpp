@@ -2,47 +2,35 @@
 
 namespace audio_propagation {
 
-bool PathCache::Keyable(const Eigen::Vector2i& s, const Eigen::Vector2i& r) {
+std::optional<std::uint32_t> CellKey(const Eigen::Vector2i& cell) {
   auto ok = [](int v) { return v >= 0 && v <= 0xFFFF; };
-  return ok(s.x()) && ok(s.y()) && ok(r.x()) && ok(r.y());
+  if (!ok(cell.x()) || !ok(cell.y())) return std::nullopt;
+  return (static_cast<std::uint32_t>(cell.x()) << 16) | static_cast<std::uint32_t>(cell.y());
 }
 
-PathCache::Key PathCache::MakeKey(const Eigen::Vector2i& s, const Eigen::Vector2i& r) {
-  // 16 bits per coordinate: maps up to 65536 cells a side.
-  auto u = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint16_t>(v)); };
-  return (u(s.x()) << 48) | (u(s.y()) << 32) | (u(r.x()) << 16) | u(r.y());
+namespace {
+
+std::optional<std::uint64_t> PairKey(const Eigen::Vector2i& s, const Eigen::Vector2i& r) {
+  const std::optional<std::uint32_t> a = CellKey(s), b = CellKey(r);
+  if (!a || !b) return std::nullopt;
+  return (static_cast<std::uint64_t>(*a) << 32) | *b;
 }
 
-std::optional<SoundPath> PathCache::Find(const Eigen::Vector2i& source_cell,
-                                         const Eigen::Vector2i& listener_cell) {
-  const auto it = Keyable(source_cell, listener_cell) ? index_.find(MakeKey(source_cell, listener_cell))
-                                                      : index_.end();
-  if (it == index_.end()) {
-    ++misses_;
+}  // namespace
+
+std::optional<SoundPath> PathCache::Find(const Eigen::Vector2i& source_cell, const Eigen::Vector2i& listener_cell) {
+  const std::optional<std::uint64_t> key = PairKey(source_cell, listener_cell);
+  if (!key) {
+    paths_.CountMiss();
     return std::nullopt;
   }
-  ++hits_;
-  order_.splice(order_.begin(), order_, it->second);
-  return it->second->second;
+  const SoundPath* path = paths_.Find(*key);
+  if (!path) return std::nullopt;
+  return *path;
 }
 
-void PathCache::Insert(const Eigen::Vector2i& source_cell, const Eigen::Vector2i& listener_cell,
-                       SoundPath path) {
-  if (capacity_ == 0 || !Keyable(source_cell, listener_cell)) return;
-  const Key key = MakeKey(source_cell, listener_cell);
-  const auto it = index_.find(key);
-  if (it != index_.end()) {
-    it->second->second = std::move(path);
-    order_.splice(order_.begin(), order_, it->second);
-    return;
-  }
-  if (index_.size() >= capacity_) {
-    index_.erase(order_.back().first);
-    order_.pop_back();
-    ++evictions_;
-  }
-  order_.emplace_front(key, std::move(path));
-  index_[key] = order_.begin();
+void PathCache::Insert(const Eigen::Vector2i& source_cell, const Eigen::Vector2i& listener_cell, SoundPath path) {
+  if (const std::optional<std::uint64_t> key = PairKey(source_cell, listener_cell)) paths_.Insert(*key, std::move(path));
 }
 
 }  // namespace audio_propagation

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "audio_propagation/path_cache.h"
 #include "grid/line_of_sight.h"
 
 namespace audio_propagation {
@@ -64,6 +66,26 @@ std::vector<PropagationModel::Visible> PropagationModel::VisibleNodes(const Eige
     if (d2 > reach2 || !graph_->corner(k).Tangent(q - p) || shadows_->Hidden(k, p)) continue;
     if (!grid::FirstBlockedInCells(map_, p, q)) out.push_back({static_cast<std::int32_t>(k), std::sqrt(d2)});
   }
+  return out;
+}
+
+std::vector<PropagationModel::Visible> PropagationModel::VisibleNodes(const Eigen::Vector2d& p,
+                                                                     VisibilityMemo* memo) const {
+  const std::optional<std::uint32_t> key =
+      memo ? CellKey(Eigen::Vector2i(static_cast<int>(std::floor(p.x())), static_cast<int>(std::floor(p.y()))))
+           : std::nullopt;
+  if (!key) return VisibleNodes(p);
+  std::vector<Visible> out;
+  if (const std::vector<std::int32_t>* nodes = memo->Find(*key)) {
+    out.reserve(nodes->size());
+    for (const std::int32_t k : *nodes) out.push_back({k, (graph_->position(static_cast<std::size_t>(k)) - p).norm()});
+    return out;
+  }
+  out = VisibleNodes(p);
+  std::vector<std::int32_t> nodes;
+  nodes.reserve(out.size());
+  for (const Visible& v : out) nodes.push_back(v.node);
+  memo->Insert(*key, std::move(nodes));
   return out;
 }
 
@@ -144,12 +166,13 @@ std::vector<std::vector<SoundPath>> PropagationModel::Compute(
 }
 
 std::vector<SoundPath> PropagationModel::From(const Eigen::Vector2d& source,
-                                              const std::vector<Eigen::Vector2d>& listeners) const {
+                                              const std::vector<Eigen::Vector2d>& listeners,
+                                              VisibilityMemo* memo) const {
   const Eigen::Vector2d s = map_.WorldToCellCoords(source);
   std::vector<Visible> seen_from_s;
   bool known = false;
   auto from_s = [&]() -> const std::vector<Visible>& {
-    if (!known) seen_from_s = VisibleNodes(s), known = true;
+    if (!known) seen_from_s = VisibleNodes(s, memo), known = true;
     return seen_from_s;
   };
   std::vector<SoundPath> out;
@@ -159,7 +182,7 @@ std::vector<SoundPath> PropagationModel::From(const Eigen::Vector2d& source,
     std::vector<Visible> seen_from_r;
     bool r_known = false;
     out.push_back(Between(s, r, from_s, [&]() -> const std::vector<Visible>& {
-      if (!r_known) seen_from_r = VisibleNodes(r), r_known = true;
+      if (!r_known) seen_from_r = VisibleNodes(r, memo), r_known = true;
       return seen_from_r;
     }));
   }

@@ -206,5 +206,53 @@ TEST(PropagationModel, MatchesABruteForceReferenceOnRandomMaps) {
   }
 }
 
+// The memo reuses a cell's view of the corners for other points of the cell: the paths stay those
+// of the exact computation to within a cell, and the first point asked about in a cell gets the
+// exact path itself.
+TEST(PropagationModel, FromThroughAMemoIsExactToWithinACell) {
+  std::mt19937 rng(5);
+  grid::OccupancyMap map(40, 30, 0.25);
+  for (int j = 0; j < 22; ++j) map.set(13, j, grid::Cell::kOccupied);
+  for (int j = 8; j < 30; ++j) map.set(27, j, grid::Cell::kOccupied);
+  const PropagationModel model(map, Unlimited());
+  std::uniform_real_distribution<double> ux(0.0, 10.0), uy(0.0, 7.5), jitter(0.0, 0.25);
+  std::vector<Eigen::Vector2d> listeners;
+  while (listeners.size() < 40) {
+    const Eigen::Vector2d p(ux(rng), uy(rng));
+    if (map.IsFreeAt(p)) listeners.push_back(p);
+  }
+  VisibilityMemo memo(1000);
+  const Eigen::Vector2d source(1.0, 1.0);
+  const std::vector<SoundPath> first = model.From(source, listeners, &memo);
+  const std::vector<SoundPath> exact = model.From(source, listeners);
+  for (std::size_t k = 0; k < listeners.size(); ++k) {
+    ASSERT_EQ(first[k].reachable, exact[k].reachable) << k;
+    EXPECT_DOUBLE_EQ(first[k].length, exact[k].length) << k;
+  }
+  const std::uint64_t misses = memo.misses();
+  EXPECT_GT(misses, 0u);
+  // The same cells again, from other points in them (and another source).
+  std::vector<Eigen::Vector2d> moved;
+  for (const Eigen::Vector2d& p : listeners) {
+    const Eigen::Vector2d corner(std::floor(p.x() / 0.25) * 0.25, std::floor(p.y() / 0.25) * 0.25);
+    Eigen::Vector2d q;
+    do q = corner + Eigen::Vector2d(jitter(rng), jitter(rng)); while (!map.IsFreeAt(q));
+    moved.push_back(q);
+  }
+  const Eigen::Vector2d other(9.0, 7.0);
+  const std::vector<SoundPath> reused = model.From(other, moved, &memo);
+  const std::vector<SoundPath> truth = model.From(other, moved);
+  EXPECT_GT(memo.hits(), 0u);
+  int blocked = 0;
+  for (std::size_t k = 0; k < moved.size(); ++k) {
+    ASSERT_EQ(reused[k].reachable, truth[k].reachable) << k;
+    if (!truth[k].reachable) continue;
+    blocked += truth[k].bends > 0;
+    EXPECT_NEAR(reused[k].length, truth[k].length, 0.25 * std::sqrt(2.0)) << k;
+    EXPECT_GE(reused[k].length, (moved[k] - other).norm() - 1e-9) << k;
+  }
+  EXPECT_GT(blocked, 5) << "too few listeners behind the walls to test the memo";
+}
+
 }  // namespace
 }  // namespace audio_propagation

@@ -23,7 +23,9 @@ struct ChannelOptions {
   double direction_noise = 0.0;     // rad (standard deviation) added by omni microphones
   double noise_floor_db = 0.0;      // level reported when nothing is heard
   // Paths kept for reuse, keyed on the cells of sender and listener (0 = compute every path
-  // exactly). A reused path was computed for other points of the same two cells.
+  // exactly). A reused path was computed for other points of the same two cells. With a cache,
+  // what each robot's cell sees of the map's corners is remembered too (VisibilityMemo; robots
+  // that move still keep their cell for many packets): the paths are then exact to within a cell.
   std::size_t cache_size = 0;
   std::uint32_t seed = 1;
 };
@@ -126,6 +128,7 @@ class AudioChannel {
   std::uint64_t unheard() const { return unheard_; }
   const AcousticModel* acoustic() const { return acoustic_; }
   const PathCache& cache() const { return cache_; }
+  const VisibilityMemo& memo() const { return memo_; }
 
  private:
   struct Arrival {
@@ -189,6 +192,7 @@ class AudioChannel {
   // an arrival of its finishes: between them a tick need not look at its arrivals.
   std::vector<std::int64_t> level_edge_, finish_edge_;
   PathCache cache_;
+  VisibilityMemo memo_;
   std::mt19937 rng_;
   double tick_;
   std::int64_t ticks_ = 0;

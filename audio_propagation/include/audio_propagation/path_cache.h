@@ -1,11 +1,9 @@
 #pragma once
 
 #include <cstdint>
-#include <list>
 #include <optional>
-#include <unordered_map>
-#include <utility>
 
+#include "audio_propagation/lru_cache.h"
 #include "audio_propagation/propagation_model.h"
 
 namespace audio_propagation {
@@ -17,26 +15,23 @@ namespace audio_propagation {
 // Cells outside 0..65535 (a robot off the map, or with no pose yet) are never cached.
 class PathCache {
  public:
-  explicit PathCache(std::size_t capacity) : capacity_(capacity) {}
+  explicit PathCache(std::size_t capacity) : paths_(capacity) {}
 
   std::optional<SoundPath> Find(const Eigen::Vector2i& source_cell, const Eigen::Vector2i& listener_cell);
   void Insert(const Eigen::Vector2i& source_cell, const Eigen::Vector2i& listener_cell, SoundPath path);
 
-  std::size_t size() const { return index_.size(); }
-  std::size_t capacity() const { return capacity_; }
-  std::uint64_t hits() const { return hits_; }
-  std::uint64_t misses() const { return misses_; }
-  std::uint64_t evictions() const { return evictions_; }
+  std::size_t size() const { return paths_.size(); }
+  std::size_t capacity() const { return paths_.capacity(); }
+  std::uint64_t hits() const { return paths_.hits(); }
+  std::uint64_t misses() const { return paths_.misses(); }
+  std::uint64_t evictions() const { return paths_.evictions(); }
 
  private:
-  using Key = std::uint64_t;
-  static bool Keyable(const Eigen::Vector2i& s, const Eigen::Vector2i& r);
-  static Key MakeKey(const Eigen::Vector2i& s, const Eigen::Vector2i& r);
-
-  std::size_t capacity_;
-  std::list<std::pair<Key, SoundPath>> order_;  // most recent first
-  std::unordered_map<Key, std::list<std::pair<Key, SoundPath>>::iterator> index_;
-  std::uint64_t hits_ = 0, misses_ = 0, evictions_ = 0;
+  LruCache<std::uint64_t, SoundPath> paths_;
 };
+
+// A cell's key for the caches: 16 bits per coordinate (maps up to 65536 cells a side); none for a
+// cell outside 0..65535.
+std::optional<std::uint32_t> CellKey(const Eigen::Vector2i& cell);
 
 }  // namespace audio_propagation

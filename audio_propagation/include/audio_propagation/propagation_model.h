@@ -10,6 +10,7 @@
 #include "audio_propagation/corner_distances.h"
 #include "audio_propagation/corner_shadows.h"
 #include "audio_propagation/diffraction_points.h"
+#include "audio_propagation/lru_cache.h"
 #include "audio_propagation/visibility_graph.h"
 #include "grid/occupancy_map.h"
 
@@ -41,6 +42,13 @@ struct SoundPath {
   double travel_time = 0.0;         // s
 };
 
+// Which graph nodes a listener sees, remembered cell by cell (key: CellKey of the cell), for a caller
+// that asks for paths to the same listeners again and again while they stay in their cells
+// (AudioChannel: every packet's paths to every robot). What is kept is the set of nodes seen from
+// the first point asked about in a cell; the distances to them are always the asking point's own,
+// so, as with PathCache, a path is exact to within a cell.
+using VisibilityMemo = LruCache<std::uint32_t, std::vector<std::int32_t>>;
+
 // Sound propagation on a map (thesis chapter 2): shortest paths around walls through the
 // diffraction points, the inverse-square level, direction of arrival and travel time.
 class PropagationModel {
@@ -57,8 +65,10 @@ class PropagationModel {
                                               const std::vector<bool>& sources) const;
 
   // The paths from one source to many listeners (a map of where a robot is heard), without the
-  // n x n table Compute would build.
-  std::vector<SoundPath> From(const Eigen::Vector2d& source, const std::vector<Eigen::Vector2d>& listeners) const;
+  // n x n table Compute would build; with `memo`, what each point sees is remembered and reused
+  // cell by cell (see VisibilityMemo).
+  std::vector<SoundPath> From(const Eigen::Vector2d& source, const std::vector<Eigen::Vector2d>& listeners,
+                              VisibilityMemo* memo = nullptr) const;
 
   // The path between two world points.
   SoundPath Path(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
@@ -81,6 +91,8 @@ class PropagationModel {
   };
   // Graph nodes in line of sight of a point (cell coordinates) within hearing distance.
   std::vector<Visible> VisibleNodes(const Eigen::Vector2d& cell_point) const;
+  // VisibleNodes through `memo` (when not null).
+  std::vector<Visible> VisibleNodes(const Eigen::Vector2d& cell_point, VisibilityMemo* memo) const;
   // The path between two points in cell coordinates, given the graph nodes each sees (called
   // only when the line of sight is blocked).
   SoundPath Between(const Eigen::Vector2d& s, const Eigen::Vector2d& r,
