@@ -171,7 +171,7 @@ SoundPath AcousticModel::PathBetween(std::size_t source, const Eigen::Vector2d& 
   const std::uint64_t key = PathKey(source, from, to);
   const auto it = kept_paths_.find(key);
   if (it != kept_paths_.end()) return it->second;
-  Keep(key, propagation_.Path(from, to));
+  Keep(key, std::move(propagation_.From(from, {to}, &memo_).front()));
   return kept_paths_.at(key);
 }
 
@@ -193,7 +193,7 @@ void AcousticModel::PreparePaths(const std::vector<Eigen::Vector2d>& listeners,
     }
     if (missing.empty()) continue;
     // One search from the source serves every listener (it sees its corners once).
-    std::vector<SoundPath> paths = propagation_.From(*from, missing);
+    std::vector<SoundPath> paths = propagation_.From(*from, missing, &memo_);
     for (std::size_t m = 0; m < missing.size(); ++m) Keep(keys[m], std::move(paths[m]));
   }
 }

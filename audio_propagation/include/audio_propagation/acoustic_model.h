@@ -135,6 +135,10 @@ class AcousticModel {
   void Keep(std::uint64_t key, SoundPath path) const;
   static constexpr std::size_t kMaxKeptPaths = 200000;
   mutable std::unordered_map<std::uint64_t, SoundPath> kept_paths_;  // (source, its cell, listener cell)
+  // What the listeners' cells see of the corners, for the paths not kept yet (those are exact to
+  // within a cell anyway).
+  static constexpr std::size_t kMemoCells = 8192;
+  mutable VisibilityMemo memo_{kMemoCells};
 };
 
 }  // namespace audio_propagation
