@@ -215,7 +215,7 @@ if(MULTIROBOT_AUDIO_TESTS)
   foreach(launch_file sim_team.launch)
     roslaunch_add_file_check(launch/${launch_file} DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
   endforeach()
-  roslaunch_add_file_check(launch/sim_team.launch one_process:=true
+  roslaunch_add_file_check(launch/sim_team.launch one_process:=false
                            DEPENDENCIES world_sim_node wanderer_node audio_propagation_node)
   roslaunch_add_file_check(launch/include/wanderers.launch count:=2 DEPENDENCIES wanderer_node)
   roslaunch_add_file_check(launch/nava_robot.launch DEPENDENCIES nava_modem_node)

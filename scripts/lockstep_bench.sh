@@ -12,7 +12,7 @@
 # 60, maps/campus_team100_world.yaml up to 100, and beyond that one written for the run by
 # scripts/make_team_world.py on the campus map. Launch arguments go to sim_team.launch (for
 # example channel_model:=acoustic, update:=every_step for audio_propagation's old cadence, or
-# one_process:=false for a wanderer node per robot instead of the default one process for all).
+# one_process:=false for a wanderer node per robot instead of one process driving the team).
 # Needs the built workspace (scripts/demo.sh or scripts/test.sh build it).
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
@@ -60,9 +60,6 @@ run() {  # name speed duration
   fi
   grep -E '^world_sim (summary|timing):' "$dir/$1.log" | sed "s/^/$1: /"
 }
-# The team's wanderers in one process unless the arguments say otherwise (one_process:=false: a
-# wanderer node per robot, as robots run them).
-case " $* " in *" one_process:="*) ;; *) set -- one_process:=true "$@" ;; esac
 echo "lockstep_bench: $robots robots, $(basename "$world"), $seconds s simulated${*:+, $*}"
 run lockstep 0 "$seconds" "$@"
 [ "$real_seconds" != 0 ] && run realtime 1 "$real_seconds" "$@"

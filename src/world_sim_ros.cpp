@@ -11,6 +11,7 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Odometry.h>
 #include <rosgraph_msgs/Clock.h>
+#include <tf2_msgs/TFMessage.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/LaserScan.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -68,9 +69,11 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
   nh_.setParam("/use_sim_time", true);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
-  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
-  robot_poses_pub_ = pnh_.advertise<multirobot_audio::RobotPoses>("robot_poses", 10);
-  robot_scans_pub_ = pnh_.advertise<multirobot_audio::RobotScans>("robot_scans", 10);
+  // What nobody reads is neither built nor sent (WatchedPublisher).
+  markers_pub_ = WatchedPublisher::Advertise<visualization_msgs::MarkerArray>(pnh_, "markers", 2);
+  robot_poses_pub_ = WatchedPublisher::Advertise<multirobot_audio::RobotPoses>(pnh_, "robot_poses", 10);
+  robot_scans_pub_ = WatchedPublisher::Advertise<multirobot_audio::RobotScans>(pnh_, "robot_scans", 10);
+  tf_pub_ = WatchedPublisher::Advertise<tf2_msgs::TFMessage>(nh_, "/tf", 100);
 
   io_.resize(world_->robots().size());
   for (std::size_t k = 0; k < io_.size(); ++k) {
@@ -89,11 +92,11 @@ WorldSimRos::WorldSimRos(ros::NodeHandle nh, ros::NodeHandle pnh, const WorldSim
                                      checked(e);
                                    }),
                                ros::VoidConstPtr(), LockstepTransport());
-    io.scan = rnh.advertise<sensor_msgs::LaserScan>("scan", 10);
-    io.odom = rnh.advertise<nav_msgs::Odometry>("odom", 10);
-    io.ground_truth = rnh.advertise<nav_msgs::Odometry>("ground_truth", 10);
-    io.fiducials = rnh.advertise<multirobot_audio::FiducialArray>("fiducials", 10);
-    io.battery = rnh.advertise<sensor_msgs::BatteryState>("battery", 2);
+    io.scan = WatchedPublisher::Advertise<sensor_msgs::LaserScan>(rnh, "scan", 10);
+    io.odom = WatchedPublisher::Advertise<nav_msgs::Odometry>(rnh, "odom", 10);
+    io.ground_truth = WatchedPublisher::Advertise<nav_msgs::Odometry>(rnh, "ground_truth", 10);
+    io.fiducials = WatchedPublisher::Advertise<multirobot_audio::FiducialArray>(rnh, "fiducials", 10);
+    io.battery = WatchedPublisher::Advertise<sensor_msgs::BatteryState>(rnh, "battery", 2);
   }
   // The team's commands in one message (a controller driving many robots in one process).
   for (std::size_t k = 0; k < io_.size(); ++k) robot_index_[world_->robots()[k].name] = k;
@@ -158,23 +161,21 @@ void WorldSimRos::SetUpLockstep() {
   std::vector<std::string> subscribed, advertised;
   for (const RobotIo& io : io_) {
     subscribed.push_back(io.cmd_vel_topic);
-    for (const ros::Publisher* p : {&io.scan, &io.odom, &io.ground_truth, &io.fiducials, &io.battery}) {
-      advertised.push_back(p->getTopic());
+    for (const WatchedPublisher* p : {&io.scan, &io.odom, &io.ground_truth, &io.fiducials, &io.battery}) {
+      advertised.push_back(p->topic());
     }
   }
   subscribed.push_back(robot_commands_topic_);
-  advertised.push_back(robot_poses_pub_.getTopic());
-  advertised.push_back(robot_scans_pub_.getTopic());
+  advertised.push_back(robot_poses_pub_.topic());
+  advertised.push_back(robot_scans_pub_.topic());
   lockstep_->SetOwnStreams(subscribed, advertised);
   nh_.setParam("/lockstep", true);
   hello_sub_ = nh_.subscribe("/lockstep/hello", 100, &WorldSimRos::OnHello, this);
   ack_sub_ = nh_.subscribe("/lockstep/ack", 1000, &WorldSimRos::OnAck, this, LockstepTransport());
 }
 
-void WorldSimRos::Count(const ros::Publisher& pub) {
-  if (!lockstep_) return;
-  const std::string& topic = pub.getTopic();
-  lockstep_->OwnPublished(topic, ++published_[topic]);
+void WorldSimRos::Count(const WatchedPublisher& pub) {
+  if (lockstep_) lockstep_->OwnPublished(pub.topic(), pub.sent());
 }
 
 void WorldSimRos::OnHello(const multirobot_audio::LockstepHello::ConstPtr& msg) {
@@ -278,23 +279,29 @@ void WorldSimRos::Publish() {
   const ros::Time now(w.time());
   if (!lockstep_) PublishClock(now);
 
-  std::vector<geometry_msgs::TransformStamped> transforms;
+  tf2_msgs::TFMessage transforms;
   multirobot_audio::RobotPoses poses;
   // Built only for a listener: a team in one process (the wanderer's ~robots).
-  const bool team_scans = robot_scans_pub_.getNumSubscribers() > 0;
+  const bool team_scans = robot_scans_pub_.Heard();
   multirobot_audio::RobotScans scans;
   for (std::size_t k = 0; k < io_.size(); ++k) {
     const world_sim::RobotState& r = w.robots()[k];
     RobotIo& io = io_[k];
     if (r.odom_step == w.steps()) {
-      // map -> odom is whatever makes map -> odom -> base_link the true pose.
-      const grid::Pose2D map_to_odom = grid::Compose(r.pose, grid::Inverse(r.odom));
-      transforms.push_back(ToTransform(map_to_odom, "map", io.odom_frame, now));
-      transforms.push_back(ToTransform(r.odom, io.odom_frame, io.base_frame, now));
-      io.odom.publish(ToOdometry(r.odom, r.v, r.w, io.odom_frame, io.base_frame, now));
-      Count(io.odom);
-      io.ground_truth.publish(ToOdometry(r.pose, r.v, r.w, "map", io.base_frame, now));
-      Count(io.ground_truth);
+      if (tf_pub_.Heard()) {
+        // map -> odom is whatever makes map -> odom -> base_link the true pose.
+        const grid::Pose2D map_to_odom = grid::Compose(r.pose, grid::Inverse(r.odom));
+        transforms.transforms.push_back(ToTransform(map_to_odom, "map", io.odom_frame, now));
+        transforms.transforms.push_back(ToTransform(r.odom, io.odom_frame, io.base_frame, now));
+      }
+      if (io.odom.Heard()) {
+        io.odom.publish(ToOdometry(r.odom, r.v, r.w, io.odom_frame, io.base_frame, now));
+        Count(io.odom);
+      }
+      if (io.ground_truth.Heard()) {
+        io.ground_truth.publish(ToOdometry(r.pose, r.v, r.w, "map", io.base_frame, now));
+        Count(io.ground_truth);
+      }
       poses.names.push_back(r.name);
       geometry_msgs::Pose2D p;
       p.x = r.pose.x;
@@ -302,20 +309,22 @@ void WorldSimRos::Publish() {
       p.theta = r.pose.yaw;
       poses.poses.push_back(p);
     }
-    if (r.scan_step == w.steps()) {
+    if (r.scan_step == w.steps() && (io.scan.Heard() || team_scans)) {
       sensor_msgs::LaserScan scan = ToLaserScan(r.scan, w.config().model, io.base_frame, now);
-      io.scan.publish(scan);
-      Count(io.scan);
+      if (io.scan.Heard()) {
+        io.scan.publish(scan);
+        Count(io.scan);
+      }
       if (team_scans) {
         scans.names.push_back(r.name);
         scans.scans.push_back(std::move(scan));
       }
     }
-    if (r.fiducials_step == w.steps()) {
+    if (r.fiducials_step == w.steps() && io.fiducials.Heard()) {
       io.fiducials.publish(ToFiducialArray(r.fiducials, io.base_frame, now));
       Count(io.fiducials);
     }
-    if (w.steps() % battery_every_ == 0) {
+    if (w.steps() % battery_every_ == 0 && io.battery.Heard()) {
       io.battery.publish(ToBatteryState(r.battery, r.docked, w.config().model.battery, io.base_frame, now));
       Count(io.battery);
     }
@@ -325,14 +334,14 @@ void WorldSimRos::Publish() {
     robot_scans_pub_.publish(scans);
     Count(robot_scans_pub_);
   }
-  if (!transforms.empty()) tf_.sendTransform(transforms);
-  if (!poses.names.empty()) {
+  if (!transforms.transforms.empty()) tf_pub_.publish(transforms);
+  if (!poses.names.empty() && robot_poses_pub_.Heard()) {
     poses.header.stamp = now;
     poses.header.frame_id = "map";
     robot_poses_pub_.publish(poses);
     Count(robot_poses_pub_);
   }
-  if (w.steps() % markers_every_ == 0 && markers_pub_.getNumSubscribers() > 0) {
+  if (w.steps() % markers_every_ == 0 && markers_pub_.Heard()) {
     markers_pub_.publish(ToWorldMarkers(w, "map", now));
   }
 }

@@ -8,13 +8,13 @@
 
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <multirobot_audio/LockstepAck.h>
 #include <multirobot_audio/LockstepHello.h>
 #include <multirobot_audio/RobotCommands.h>
 
 #include "input_guard.h"
+#include "watched_publisher.h"
 #include "world_sim/lockstep_coordinator.h"
 #include "world_sim/world.h"
 
@@ -59,7 +59,7 @@ class WorldSimRos {
   struct RobotIo {
     ros::Subscriber cmd_vel;
     std::string cmd_vel_topic;
-    ros::Publisher scan, odom, ground_truth, fiducials, battery;
+    WatchedPublisher scan, odom, ground_truth, fiducials, battery;
     double last_cmd_time = -1e9;
     std::string odom_frame, base_frame;
   };
@@ -72,7 +72,7 @@ class WorldSimRos {
   void Publish();
   void SetUpLockstep();
   // Lockstep: counts a message the world published on `topic`.
-  void Count(const ros::Publisher& pub);
+  void Count(const WatchedPublisher& pub);
   void OnHello(const multirobot_audio::LockstepHello::ConstPtr& msg);
   void OnAck(const multirobot_audio::LockstepAck::ConstPtr& msg);
   std::map<std::string, int> OwnConnected() const;
@@ -84,11 +84,11 @@ class WorldSimRos {
   WorldSimOptions options_;
   std::unique_ptr<world_sim::World> world_;
   std::vector<RobotIo> io_;
-  ros::Publisher clock_pub_, map_pub_, markers_pub_, robot_poses_pub_, robot_scans_pub_;
+  ros::Publisher clock_pub_, map_pub_;
+  WatchedPublisher markers_pub_, robot_poses_pub_, robot_scans_pub_, tf_pub_;
   ros::Subscriber robot_commands_sub_;
   std::string robot_commands_topic_;
   std::map<std::string, std::size_t> robot_index_;  // robot name -> io_
-  tf2_ros::TransformBroadcaster tf_;
   InputGuard guard_;
   std::uint64_t markers_every_ = 1;
   std::uint64_t battery_every_ = 1;
@@ -97,7 +97,6 @@ class WorldSimRos {
   ros::Subscriber hello_sub_, ack_sub_;
   std::map<std::string, ros::Publisher> order_pubs_;
   std::set<std::string> ordered_;                    // participants that have had an order
-  std::map<std::string, std::uint64_t> published_;   // own counted topics -> messages
   std::map<world_sim::StreamId, std::uint64_t> cmd_received_;
   std::uint64_t lockstep_step_ = 0;
   std::set<std::string> strangers_;  // hellos from nodes that are not participants
