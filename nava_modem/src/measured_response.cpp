@@ -2,28 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <limits>
 
-#include "nava_modem/real_fft.h"
+#include "nava_modem/biquad.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 
 namespace nava_modem {
 namespace {
 
-// The response with every bin outside [lo, hi] Hz zeroed (a brick wall: the figures are energy
-// sums, which its ringing barely moves).
+// The response in [lo, hi] Hz: 4th-order Butterworth high- and low-pass, run forwards and
+// backwards (zero phase, so the direct sound stays where it was). The figures of
+// ../shared/realrooms/README.md come out to within 0.05 dB this way; a brick-wall FFT band, which
+// this replaced, read up to 0.6 dB higher where the direct sound is strong.
 std::vector<double> BandPass(const std::vector<float>& x, double sample_rate, double lo, double hi) {
-  const std::size_t size = FftSize(2 * x.size());
-  std::vector<std::complex<double>> spectrum = ForwardFft(std::vector<double>(x.begin(), x.end()), size);
-  for (std::size_t k = 0; k < spectrum.size(); ++k) {
-    const double hz = BinHz(k, size, sample_rate);
-    if (hz < lo || hz > hi) spectrum[k] = 0.0;
-  }
-  std::vector<double> y = InverseFft(spectrum, size);
-  y.resize(x.size());
-  return y;
+  std::vector<Biquad> sections = Butterworth(sample_rate, lo, true, 4);
+  const std::vector<Biquad> low_pass = Butterworth(sample_rate, hi, false, 4);
+  sections.insert(sections.end(), low_pass.begin(), low_pass.end());
+  return FilterForwardBackward(std::vector<double>(x.begin(), x.end()), sections);
 }
 
 // The decay time from Schroeder's curve (dB, from 0 at the start) between -from and -to dB:
@@ -81,8 +77,8 @@ std::vector<float> LoadImpulseResponse(const std::string& path, std::optional<in
 }
 
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate) {
-  if (!(sample_rate >= 2.0 * kResponseBandHighHz)) {
-    throw std::invalid_argument("sample rate " + std::to_string(sample_rate) + " Hz: expected at least " +
+  if (!(sample_rate > 2.0 * kResponseBandHighHz)) {
+    throw std::invalid_argument("sample rate " + std::to_string(sample_rate) + " Hz: expected above " +
                                 std::to_string(2.0 * kResponseBandHighHz) + " to measure in the modems' band");
   }
   if (response.empty()) throw std::invalid_argument("impulse response: empty");

@@ -154,7 +154,7 @@ std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rat
   // Where the packet is heard: a measured response's delay to its largest peak (0 for ours).
   std::size_t delay = 0;
   if (measured) {
-    report.measured_drr_db = sample_rate >= 2.0 * kResponseBandHighHz ? MeasureResponse(response, sample_rate).drr_db
+    report.measured_drr_db = sample_rate > 2.0 * kResponseBandHighHz ? MeasureResponse(response, sample_rate).drr_db
                                                                       : MeasureDrrDb(response);
     for (std::size_t k = 0; k < response.size(); ++k) {
       if (std::fabs(response[k]) > std::fabs(response[delay])) delay = k;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "nava_modem/biquad.h"
+
 namespace nava_modem {
 
 // The level of a band of the signal, for carrier sense: a 2nd-order Butterworth high-pass and
@@ -14,13 +16,6 @@ class BandLevel {
   double db() const;
 
  private:
-  struct Biquad {
-    double b0, b1, b2, a1, a2;
-    double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
-    double Run(double x);
-  };
-  static Biquad Butterworth(double sample_rate, double hz, bool high_pass);
-
   Biquad high_pass_, low_pass_;
   double smoothing_;  // per-sample weight of the newest power
   double power_ = 0.0;

@@ -44,8 +44,10 @@ struct ResponseMeasures {
   double drr_db = 0.0;
 };
 
-// Both figures in 600-5400 Hz (the response band-passed by FFT). Throws std::invalid_argument for
-// an empty or silent response or a sample rate below 2 x kResponseBandHighHz.
+// Both figures in 600-5400 Hz, the definitions of ../shared/realrooms/README.md: the response
+// through 4th-order Butterworth high- and low-pass filters run forwards and backwards (zero phase).
+// Throws std::invalid_argument for an empty or silent response or a sample rate not above
+// 2 x kResponseBandHighHz.
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate);
 
 }  // namespace nava_modem
