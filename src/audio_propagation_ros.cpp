@@ -43,6 +43,8 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise);
   c.seed = IntParam(pnh, "seed", c.seed);
   c.cache_size = IntParam(pnh, "cache_size", c.cache_size);
+  c.link_fate = BoolParam(pnh, "link_fate", c.link_fate);
+  c.fate_distance = NumberParam(pnh, "fate_distance", c.fate_distance);
   try {
     c.profile = audio_propagation::ParseProfileOption(StringParam(pnh, "profile", nava_modem::ProfileName(c.profile)));
     c.channel_model = audio_propagation::ParseChannelModel(

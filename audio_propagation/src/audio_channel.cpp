@@ -29,6 +29,10 @@ void ValidateOptions(const ChannelOptions& o) {
     throw std::invalid_argument("audio channel noise_floor_db must be a finite level in dB, got " +
                                 std::to_string(o.noise_floor_db));
   }
+  if (!(o.fate_distance > 0.0) || !std::isfinite(o.fate_distance)) {
+    throw std::invalid_argument("audio channel fate_distance must be above 0 m (how far a robot moves before a link's fate is "
+                                "drawn again), got " + std::to_string(o.fate_distance));
+  }
 }
 
 AudioChannel::AudioChannel(const PropagationModel& model,
@@ -286,7 +290,7 @@ void AudioChannel::FinishAcoustic(std::size_t receiver, const Arrival& a, Recept
   rx.probability = p.probability;
   rx.collision = p.kind == Interference::kPacket;
   const DecodeOutcome& o = p.outcome;
-  const double u = std::uniform_real_distribution<double>(0.0, 1.0)(rng_);
+  const double u = DecisionDraw(a.sender, receiver, at);
   rx.kind = Reception::Kind::kNoise;
   using Noise = nava_modem::RxEvent::Noise;
   if (u < o.packet) {
@@ -299,6 +303,19 @@ void AudioChannel::FinishAcoustic(std::size_t receiver, const Arrival& a, Recept
   } else if (u < o.packet + o.zero_byte + o.one_byte + o.bad_crc) {
     rx.noise = Noise::kBadCrc;
   }
+}
+
+double AudioChannel::DecisionDraw(std::size_t sender, std::size_t listener, const std::vector<Eigen::Vector2d>& at) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  if (!options_.link_fate) return uniform(rng_);
+  const std::size_t n = macs_.size();
+  if (fates_.empty()) fates_.resize(n * n);
+  Fate& f = fates_[sender * n + listener];
+  if (!f.drawn || (at[sender] - f.sender).norm() > options_.fate_distance ||
+      (at[listener] - f.listener).norm() > options_.fate_distance) {
+    f = Fate{true, at[sender], at[listener], uniform(rng_)};
+  }
+  return f.draw;
 }
 
 bool AudioChannel::Quiet() const {

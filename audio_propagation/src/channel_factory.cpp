@@ -39,6 +39,8 @@ ChannelOptions ChannelFor(const SimulatedChannelOptions& o) {
   c.direction_noise = o.direction_noise;
   c.seed = static_cast<std::uint32_t>(o.seed);
   c.cache_size = static_cast<std::size_t>(o.cache_size);
+  c.link_fate = o.link_fate;
+  c.fate_distance = o.fate_distance;
   nava_modem::ModemOptions modem;
   if (o.bit_rate) modem.baud = *o.bit_rate;
   nava_modem::UseProfileTiming(o.profile, modem, c.mac);
@@ -137,7 +139,14 @@ void CheckSimulatedChannelOptions(const SimulatedChannelOptions& o) {
   }
   RequireWholeIn("seed", o.seed, 0, 2147483647);
   RequireWholeIn("cache_size", o.cache_size, 0, 10000000);
+  if (!(o.fate_distance > 0.0 && o.fate_distance <= 100.0)) {
+    std::ostringstream s;
+    s << "expected a distance above 0 and at most 100 m (how far a robot moves before a link's fate is drawn again), got "
+      << o.fate_distance;
+    throw ChannelOptionError("fate_distance", s.str());
+  }
   if (o.channel_model != ChannelModel::kAcoustic) {
+    if (o.link_fate) throw ChannelOptionError("link_fate", "only used by channel_model acoustic");
     if (!o.decode_table.empty()) throw ChannelOptionError("decode_table", "only used by channel_model acoustic");
     if (!o.delivery_map_robot.empty()) {
       throw ChannelOptionError("delivery_map_robot", "only used by channel_model acoustic");

@@ -1,6 +1,7 @@
 #include "audio_propagation/acoustic_model.h"
 
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -223,12 +224,13 @@ struct AcousticTeam {
   std::unique_ptr<AcousticModel> model;
   std::unique_ptr<AudioChannel> channel;
 
-  AcousticTeam(const std::vector<double>& xs, world_sim::Acoustics a, std::uint32_t seed = 1) {
+  AcousticTeam(const std::vector<double>& xs, world_sim::Acoustics a, std::uint32_t seed = 1, bool link_fate = false) {
     std::vector<std::string> names;
     for (std::size_t k = 0; k < xs.size(); ++k) names.push_back("robot_" + std::to_string(k));
     model = std::make_unique<AcousticModel>(strip.model, a, LinearTable(), names);
     ChannelOptions o;
     o.seed = seed;
+    o.link_fate = link_fate;
     channel = std::make_unique<AudioChannel>(strip.model, std::vector<Microphone>(xs.size(), Microphone::kOmni), o,
                                              model.get());
     for (std::size_t k = 0; k < xs.size(); ++k) channel->SetPose(k, {xs[k], 2.5, 0.0});
@@ -265,6 +267,79 @@ TEST(AcousticChannel, PacketsAreDecodedAndFailuresReportedAtTheTablesRates) {
   EXPECT_EQ(classes[static_cast<int>(nava_modem::RxEvent::Noise::kBadCrc)], 0);
   // The rest went unheard, as the real receiver would miss them.
   EXPECT_EQ(team.channel->unheard(), static_cast<std::uint64_t>(sent - classes[-1] - classes[1] - classes[2]));
+}
+
+// A link 20 m long in a quiet room that the table gives about half its packets (as above).
+world_sim::Acoustics HalfwayRoom() {
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = 38.0;
+  return a;
+}
+
+// Packets robot 0 sends robot 1, one a second, robot 1 at `listener_x(k)` for packet k: how
+// many were decoded.
+int Delivered(AcousticTeam& team, int sent, const std::function<double(int)>& listener_x) {
+  int delivered = 0;
+  for (int k = 0; k < sent; ++k) {
+    team.channel->SetPose(1, {listener_x(k), 2.5, 0.0});
+    EXPECT_TRUE(team.channel->Send(0, {1, 2, 3, static_cast<std::uint8_t>(k)}));
+    for (const Reception& rx : team.Run(1.0).received) delivered += rx.kind == Reception::Kind::kPacket;
+  }
+  return delivered;
+}
+
+TEST(AcousticChannel, AStaticLinkKeepsItsFateAndOverManyLinksDeliveryFollowsTheTable) {
+  const double p = [] {
+    AcousticTeam team({2.0, 22.0}, HalfwayRoom());
+    return team.model->Predict(team.strip.Path(2.0, 22.0), {22.0, 2.5}, team.model->NoiseAt({22.0, 2.5}, 0.0, {})).probability;
+  }();
+  ASSERT_GT(p, 0.2);
+  ASSERT_LT(p, 0.8);
+  const int links = 60, sent = 20;
+  int all = 0, none = 0, mixed_without_fate = 0;
+  for (int link = 1; link <= links; ++link) {
+    AcousticTeam kept({2.0, 22.0}, HalfwayRoom(), static_cast<std::uint32_t>(link), true);
+    const int n = Delivered(kept, sent, [](int) { return 22.0; });
+    all += n == sent;
+    none += n == 0;
+    AcousticTeam drawn({2.0, 22.0}, HalfwayRoom(), static_cast<std::uint32_t>(link), false);
+    const int m = Delivered(drawn, sent, [](int) { return 22.0; });
+    mixed_without_fate += m > 0 && m < sent;
+  }
+  EXPECT_EQ(all + none, links);  // every static link all or nothing
+  EXPECT_NEAR(all, links * p, 4.0 * std::sqrt(links * p * (1 - p)) + 1);
+  EXPECT_GE(mixed_without_fate, links - 2);  // drawn anew, 20 packets at p are almost never unanimous
+}
+
+TEST(AcousticChannel, ALinkDrawsItsFateAgainWhenARobotMovesFartherThanTheFateDistance) {
+  // Stepping 5 cm to and fro (within 7.5 cm of where the draw was made): the fate holds.
+  for (std::uint32_t seed = 1; seed <= 5; ++seed) {
+    AcousticTeam team({2.0, 22.0}, HalfwayRoom(), seed, true);
+    const int n = Delivered(team, 20, [](int k) { return k % 2 ? 22.05 : 22.0; });
+    EXPECT_TRUE(n == 0 || n == 20) << n;
+  }
+  // Stepping 10 cm each packet: every packet meets a new fate, and delivery is the table's.
+  AcousticTeam team({2.0, 22.0}, HalfwayRoom(), 7, true);
+  const double p =
+      team.model->Predict(team.strip.Path(2.0, 22.0), {22.0, 2.5}, team.model->NoiseAt({22.0, 2.5}, 0.0, {})).probability;
+  const int sent = 400;
+  const int n = Delivered(team, sent, [](int k) { return k % 2 ? 22.1 : 22.0; });
+  EXPECT_NEAR(n, sent * p, 4.0 * std::sqrt(sent * p * (1 - p)) + 1);
+  EXPECT_GT(n, 0);
+  EXPECT_LT(n, sent);
+}
+
+TEST(AcousticChannel, RefusesAFateDistanceThatIsNotAboveZero) {
+  ChannelOptions o;
+  for (double d : {0.0, -0.1, std::nan("")}) {
+    o.fate_distance = d;
+    try {
+      ValidateOptions(o);
+      ADD_FAILURE() << d << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("fate_distance"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(AcousticChannel, TwoRobotsTalkingAtOnceGiveNoiseWhenEvenAndCaptureWhenOneIsFarLouder) {

@@ -177,6 +177,9 @@ TEST(ChannelFactory, ChecksEachOptionsRange) {
       {[](auto& o) { o.cache_size = 10000001; }, "cache_size", "got 10000001"},
       {[](auto& o) { o.decode_table = "table.yaml"; }, "decode_table", "only used by channel_model acoustic"},
       {[](auto& o) { o.delivery_map_robot = "robot_0"; }, "delivery_map_robot", "only used by channel_model acoustic"},
+      {[](auto& o) { o.link_fate = true; }, "link_fate", "only used by channel_model acoustic"},
+      {[](auto& o) { o.fate_distance = 0.0; }, "fate_distance", "expected a distance above 0 and at most 100 m"},
+      {[](auto& o) { o.fate_distance = -0.1; }, "fate_distance", "got -0.1"},
       {[](auto& o) { o.world_file.clear(); }, "robots", "required"},
   };
   for (const Bad& b : bad) {

@@ -68,14 +68,18 @@ struct SimulatedChannelOptions {
   double direction_noise = ChannelOptions{}.direction_noise;  // rad, omni microphones
   int seed = 1;           // back-offs and direction noise
   int cache_size = 1000;  // paths kept for reuse (0: every path computed exactly)
+  // Acoustic model: a link's fate held while neither robot moves fate_distance (ChannelOptions).
+  bool link_fate = ChannelOptions{}.link_fate;
+  double fate_distance = ChannelOptions{}.fate_distance;  // m
 };
 
 // Throws ChannelOptionError for: source_level_db or threshold_db outside [-1000, 1000] dB, or
 // the threshold above the source level; max_range outside [0, 1e6] m; speed_of_sound outside
 // [1, 1e5] m/s; capture_margin_db outside [0, 1000] dB; direction_noise outside [0, 10] rad;
 // bit_rate outside [1, 100000] bits/s, given with a profile other than nava, or too fast for
-// the MAC; seed below 0; cache_size outside [0, 10^7]; no robots and no world file;
-// decode_table or delivery_map_robot with the threshold model.
+// the MAC; seed below 0; cache_size outside [0, 10^7]; fate_distance not in (0, 100] m; no
+// robots and no world file; decode_table, delivery_map_robot or link_fate with the threshold
+// model.
 void CheckSimulatedChannelOptions(const SimulatedChannelOptions& options);
 
 // Whether the options name neither a world file nor a map file, so that the caller must give
