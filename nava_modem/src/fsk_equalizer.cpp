@@ -17,6 +17,7 @@ constexpr double kPi = 3.141592653589793;
 // 8 bits after them still help in rooms with RT60 0.5 s); the other tone only through its
 // sidelobes, from the bits around the present one.
 constexpr int kEarly = 1, kLate = 20, kCrossLate = 2;
+static_assert(kEarly == 1, "the search's cost takes the bit being decided as the only one kEarly ahead");
 constexpr int kOwnTaps = kEarly + kLate + 1;
 constexpr int kCrossTaps = kEarly + kCrossLate + 1;
 constexpr int kTaps = kOwnTaps + kCrossTaps;
@@ -65,56 +66,130 @@ struct Fit {
   Eigen::LDLT<Square> gram;
 };
 
+using Column = Eigen::Matrix<Complex, Eigen::Dynamic, 1>;
+
+// How the sender's clock offset turns filter t's observations, and undoing it.
+struct Turning {
+  const std::complex<double>* const* heard;
+  const double* at;
+  double freq[2];
+  double sample_rate;
+  // Observation k of filter t turned back by `offset` (a fraction of the clock), the first `rows`.
+  void Derotated(int t, double offset, int rows, Column& z) const {
+    const double w = 2.0 * kPi * freq[t] / sample_rate * offset;
+    z.resize(rows);
+    for (int k = 0; k < rows; ++k) z(k) = heard[t][k] * std::polar(1.0, -w * (at[k] - at[0]));
+  }
+};
+
+// Filter t's fit of its first `rows` observations to bits `b` (rot: how far a bit of each tone
+// turns the phase in filter t's frame), with a ridge of `ridge` times the mean diagonal.
+void MakeFit(const std::array<std::uint8_t, kPacketBits>& b, int t, const Complex rot[2][2], int rows, double ridge, Fit& fit) {
+  std::array<Complex, kPacketBits> phasor;
+  Complex p(1.0, 0.0);
+  for (int k = 0; k < kPacketBits; ++k) {
+    phasor[k] = p;
+    p *= rot[t][ToneOf(b[k])];
+  }
+  fit.a.setZero(rows, kTaps);
+  for (int k = 0; k < rows; ++k) {
+    for (int l = -kEarly; l <= kLate; ++l) {
+      const int j = k - l;
+      if (j < 0 || j >= kPacketBits) continue;
+      if (ToneOf(b[j]) == t) {
+        fit.a(k, l + kEarly) = phasor[j];
+      } else if (l <= kCrossLate) {
+        fit.a(k, kOwnTaps + l + kEarly) = phasor[j];
+      }
+    }
+  }
+  Square g = fit.a.adjoint() * fit.a;
+  g.diagonal().array() += ridge * g.diagonal().real().mean() + 1e-30;
+  fit.gram.compute(g);
+}
+
+struct OffsetFit {
+  double offset;
+  // The sum over both filters of the log of the share of their observations' power the fits
+  // leave unexplained: the likelihood with each filter's noise unknown.
+  double score;
+};
+
+// The sender's clock offset whose fits leave the least residual in both filters, searched from
+// `center` over +-span on the grids of kOffsetSteps finer than span in turn: the observations
+// turned by a rotor per observation, so that a grid costs no sines.
+OffsetFit SearchOffset(const Fit fit[2], const Turning& turning, int rows, double center, double span) {
+  Column turned[2], rotor[2];
+  double power[2] = {0.0, 0.0};
+  double best = std::numeric_limits<double>::infinity();
+  for (const double step : kOffsetSteps) {
+    if (step > span) continue;
+    const double lowest = center - span;
+    for (int t = 0; t < 2; ++t) {
+      turning.Derotated(t, lowest, rows, turned[t]);
+      power[t] = std::max(turned[t].squaredNorm(), 1e-30);
+      rotor[t].resize(rows);
+      const double w = 2.0 * kPi * turning.freq[t] / turning.sample_rate * step;
+      for (int k = 0; k < rows; ++k) rotor[t](k) = std::polar(1.0, -w * (turning.at[k] - turning.at[0]));
+    }
+    best = std::numeric_limits<double>::infinity();
+    double best_eps = center;
+    const int points = static_cast<int>(std::lround(2.0 * span / step));
+    for (int i = 0; i <= points; ++i) {
+      double sum = 0.0;
+      for (int t = 0; t < 2; ++t) {
+        const Vector b = fit[t].a.adjoint() * turned[t];
+        const Vector h = fit[t].gram.solve(b);
+        sum += std::log(std::max(power[t] - (b.adjoint() * h)(0, 0).real(), 1e-30 * power[t]) / power[t]);
+        turned[t].array() *= rotor[t].array();
+      }
+      if (sum < best) {
+        best = sum;
+        best_eps = lowest + i * step;
+      }
+    }
+    center = best_eps;
+    span = step;
+  }
+  return {center, best};
+}
+
+// The observations whose bits are all known: the break, the header and its start and stop
+// bits; the first fit uses only these, the later ones every bit as decided.
+int KnownRows() {
+  int rows = 0;
+  while (rows + kEarly < kPacketBits && KnownBit(rows + kEarly) >= 0) ++rows;
+  return rows;
+}
+
+// rot[t][tone]: how far a bit of `tone` turns the phase in filter t's frame.
+void Rotations(const ModemOptions& modem, Complex rot[2][2]) {
+  const double freq[2] = {modem.mark_hz, modem.space_hz};
+  for (int t = 0; t < 2; ++t)
+    for (int tone = 0; tone < 2; ++tone) rot[t][tone] = std::polar(1.0, 2.0 * kPi * (freq[tone] - freq[t]) / modem.baud);
+}
+
+// The packet's bits as far as known, the others from `first`.
+std::array<std::uint8_t, kPacketBits> KnownAndFirst(const std::uint8_t* first) {
+  std::array<std::uint8_t, kPacketBits> bits;
+  for (int k = 0; k < kPacketBits; ++k) {
+    const int known = KnownBit(k);
+    bits[k] = static_cast<std::uint8_t>(known >= 0 ? known : first[k - kBreakBits]);
+  }
+  return bits;
+}
+
 }  // namespace
 
 FskEqualizer::FskEqualizer(const ModemOptions& modem) : modem_(modem) {}
 
 bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
                             double frequency_error, const std::function<bool(const SoftFrame&)>& accept) const {
-  const double freq[2] = {modem_.mark_hz, modem_.space_hz};
-  // rot[t][tone]: how far a bit of `tone` turns the phase in filter t's frame.
   Complex rot[2][2];
-  for (int t = 0; t < 2; ++t)
-    for (int tone = 0; tone < 2; ++tone) rot[t][tone] = std::polar(1.0, 2.0 * kPi * (freq[tone] - freq[t]) / modem_.baud);
-
-  std::array<std::uint8_t, kPacketBits> bits;
-  for (int k = 0; k < kPacketBits; ++k) {
-    const int known = KnownBit(k);
-    bits[k] = static_cast<std::uint8_t>(known >= 0 ? known : first[k - kBreakBits]);
-  }
-
-  // Regressors of observation k in filter t, into row.
-  auto regressors = [&](const std::array<std::uint8_t, kPacketBits>& b, int t, Matrix& a) {
-    std::array<Complex, kPacketBits> phasor;
-    Complex p(1.0, 0.0);
-    for (int k = 0; k < kPacketBits; ++k) {
-      phasor[k] = p;
-      p *= rot[t][ToneOf(b[k])];
-    }
-    a.setZero(kPacketBits, kTaps);
-    for (int k = 0; k < kPacketBits; ++k) {
-      for (int l = -kEarly; l <= kLate; ++l) {
-        const int j = k - l;
-        if (j < 0 || j >= kPacketBits) continue;
-        if (ToneOf(b[j]) == t) {
-          a(k, l + kEarly) = phasor[j];
-        } else if (l <= kCrossLate) {
-          a(k, kOwnTaps + l + kEarly) = phasor[j];
-        }
-      }
-    }
-  };
-  // Observations turned back by the sender's frequency offset.
-  auto derotated = [&](int t, double offset, Eigen::Matrix<Complex, Eigen::Dynamic, 1>& z) {
-    const double w = 2.0 * kPi * freq[t] / modem_.sample_rate * offset;
-    z.resize(kPacketBits);
-    for (int k = 0; k < kPacketBits; ++k) z(k) = heard[t][k] * std::polar(1.0, -w * (at[k] - at[0]));
-  };
-
-  // The observations whose bits are all known: the break, the header and its start and stop
-  // bits; the first fit uses only these, the later ones every bit as decided.
-  int known_rows = 0;
-  while (known_rows + kEarly < kPacketBits && KnownBit(known_rows + kEarly) >= 0) ++known_rows;
+  Rotations(modem_, rot);
+  std::array<std::uint8_t, kPacketBits> bits = KnownAndFirst(first);
+  const Turning turning{heard, at, {modem_.mark_hz, modem_.space_hz}, modem_.sample_rate};
+  const int known_rows = KnownRows();
 
   double offset = frequency_error;
   Vector taps[2];
@@ -122,62 +197,19 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
   for (int pass = 0; pass < kPasses; ++pass) {
     const int rows = pass == 0 ? known_rows : kPacketBits;
     Fit fit[2];
+    for (int t = 0; t < 2; ++t) MakeFit(bits, t, rot, rows, pass == 0 ? kFirstRidge : kRidge, fit[t]);
+    // The offset: searched on the first two passes, from the clock's estimate, then finer.
+    if (pass < 2) offset = SearchOffset(fit, turning, rows, pass == 0 ? frequency_error : offset, pass == 0 ? kOffsetSpan : kOffsetSteps[1]).offset;
+    Column z;
     for (int t = 0; t < 2; ++t) {
-      regressors(bits, t, fit[t].a);
-      fit[t].a.conservativeResize(rows, kTaps);
-      Square g = fit[t].a.adjoint() * fit[t].a;
-      const double ridge = (pass == 0 ? kFirstRidge : kRidge) * g.diagonal().real().mean() + 1e-30;
-      g.diagonal().array() += ridge;
-      fit[t].gram.compute(g);
-    }
-    // The offset: the one whose fits leave the least residual in both filters (the sum of the
-    // logs of their residual powers: the likelihood with each filter's noise unknown).
-    Eigen::Matrix<Complex, Eigen::Dynamic, 1> z;
-    if (pass < 2) {
-      // Each grid's offsets in turn: the observations turned by a rotor per observation, so
-      // that the grid costs no sines.
-      double center = pass == 0 ? frequency_error : offset, span = pass == 0 ? kOffsetSpan : kOffsetSteps[1];
-      Eigen::Matrix<Complex, Eigen::Dynamic, 1> turned[2], rotor[2];
-      for (const double step : kOffsetSteps) {
-        if (step > span) continue;
-        const double lowest = center - span;
-        for (int t = 0; t < 2; ++t) {
-          derotated(t, lowest, turned[t]);
-          turned[t].conservativeResize(rows);
-          rotor[t].resize(rows);
-          const double w = 2.0 * kPi * freq[t] / modem_.sample_rate * step;
-          for (int k = 0; k < rows; ++k) rotor[t](k) = std::polar(1.0, -w * (at[k] - at[0]));
-        }
-        double best = std::numeric_limits<double>::infinity(), best_eps = center;
-        const int points = static_cast<int>(std::lround(2.0 * span / step));
-        for (int i = 0; i <= points; ++i) {
-          double sum = 0.0;
-          for (int t = 0; t < 2; ++t) {
-            const Vector b = fit[t].a.adjoint() * turned[t];
-            const Vector h = fit[t].gram.solve(b);
-            sum += std::log(std::max(turned[t].squaredNorm() - (b.adjoint() * h)(0, 0).real(), 1e-30));
-            turned[t].array() *= rotor[t].array();
-          }
-          if (sum < best) {
-            best = sum;
-            best_eps = lowest + i * step;
-          }
-        }
-        center = best_eps;
-        span = step;
-      }
-      offset = center;
-    }
-    for (int t = 0; t < 2; ++t) {
-      derotated(t, offset, z);
-      z.conservativeResize(rows);
+      turning.Derotated(t, offset, rows, z);
       taps[t] = fit[t].gram.solve(fit[t].a.adjoint() * z);
       const double rss = (z - fit[t].a * taps[t]).squaredNorm();
       noise[t] = std::max(rss / std::max(rows - kTaps, kTaps), 1e-30);
     }
     // The observations, turned back, for the search.
-    Eigen::Matrix<Complex, Eigen::Dynamic, 1> obs[2];
-    for (int t = 0; t < 2; ++t) derotated(t, offset, obs[t]);
+    Column obs[2];
+    for (int t = 0; t < 2; ++t) turning.Derotated(t, offset, kPacketBits, obs[t]);
 
     // Per-survivor Viterbi over the frame's bits with soft outputs (SOVA).
     struct Survivor {
@@ -198,28 +230,34 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
         s.phasor[t] = p;
       }
     }
-    // The metric of observation k (filters' outputs at bit k) given the survivor's bits up to
-    // k + kEarly, the last of them `b` (kPacketBits: none, after the packet).
-    auto cost = [&](const Survivor& s, int j, int b) {
+    // The prediction of observation k = j - kEarly (filters' outputs at bit k) from the
+    // survivor's bits before j: the same for both branches at bit j, so made once per survivor.
+    auto older = [&](const Survivor& s, int j, Complex pred[2]) {
+      const int k = j - kEarly;
+      for (int t = 0; t < 2; ++t) {
+        pred[t] = Complex(0.0, 0.0);
+        Complex p = s.phasor[t];  // phase of bit j
+        for (int l = -kEarly + 1; l <= kLate; ++l) {
+          const int i = k - l;  // the bit at lag l, before j
+          if (i < 0) break;
+          p *= std::conj(rot[t][ToneOf(s.bits[i])]);
+          if (ToneOf(s.bits[i]) == t) {
+            pred[t] += taps[t](l + kEarly) * p;
+          } else if (l <= kCrossLate) {
+            pred[t] += taps[t](kOwnTaps + l + kEarly) * p;
+          }
+        }
+      }
+    };
+    // The metric of observation j - kEarly given the survivor's older bits' prediction and bit
+    // j = `b` (kPacketBits: none, after the packet).
+    auto cost = [&](const Survivor& s, const Complex pred[2], int j, int b) {
       const int k = j - kEarly;
       double c = 0.0;
       for (int t = 0; t < 2; ++t) {
-        Complex pred(0.0, 0.0);
-        Complex p = s.phasor[t];  // phase of bit j
-        for (int l = -kEarly; l <= kLate; ++l) {
-          const int i = k - l;  // the bit at lag l
-          if (i < 0) break;
-          if (i > j) continue;
-          if (i < j) p *= std::conj(rot[t][ToneOf(s.bits[i])]);
-          const int bit = i == j ? b : s.bits[i];
-          if (i == j && b < 0) continue;
-          if (ToneOf(bit) == t) {
-            pred += taps[t](l + kEarly) * p;
-          } else if (l <= kCrossLate) {
-            pred += taps[t](kOwnTaps + l + kEarly) * p;
-          }
-        }
-        c += std::norm(obs[t](k) - pred) / noise[t];
+        Complex here = pred[t];
+        if (b >= 0) here += (ToneOf(b) == t ? taps[t](0) : taps[t](kOwnTaps)) * s.phasor[t];
+        c += std::norm(obs[t](k) - here) / noise[t];
       }
       return c;
     };
@@ -234,10 +272,12 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
       for (int state = 0; state < kStates; ++state) {
         const Survivor& s = now[state];
         if (!std::isfinite(s.metric)) continue;
+        Complex pred[2];
+        older(s, j, pred);
         for (int b = 0; b < 2; ++b) {
           if (j >= kPacketBits && b > 0) break;  // after the packet: one branch, no bit
           if (j < kPacketBits && known >= 0 && b != known) continue;
-          const double m = s.metric + cost(s, j, j < kPacketBits ? b : -1);
+          const double m = s.metric + cost(s, pred, j, j < kPacketBits ? b : -1);
           const int to = j < kPacketBits ? ((state << 1) | b) & (kStates - 1) : state;
           if (m < next[to].metric) {
             competitor[to] = next[to].metric;

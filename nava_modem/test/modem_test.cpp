@@ -220,9 +220,11 @@ TEST(Modem, NoiseSweepDecodesAKnownShare) {
   int right = 0;
   for (const auto& p : decoded) right += std::find(payloads.begin(), payloads.end(), p) != payloads.end();
   EXPECT_EQ(right, static_cast<int>(decoded.size())) << "a wrong packet passed the CRC";
-  // 82 when written; a decibel of sensitivity is about 7 packets.
-  EXPECT_GE(right, 75);
-  EXPECT_LE(right, 90);
+  // 82 when written, 91 since the equaliser reads packets no clock read on the nominal rate
+  // around the break (deep noise misplaces the best clock too); a decibel of sensitivity is
+  // about 7 packets.
+  EXPECT_GE(right, 84);
+  EXPECT_LE(right, 98);
   std::printf("noise sweep: %d of 100 packets decoded\n", right);
 }
 

@@ -34,8 +34,10 @@ namespace nava_modem {
 // make sure of wrong bits; none on a clock more than 1.5 % off the nominal rate, where wrong
 // fits land). When no clock's reading passes, the break is placed where the best clock put
 // it, the tone model read there and the clocks searched once more; then the
-// equaliser (FskEqualizer) reads the packet again from the filters' complex outputs on the best
-// clock, with a model of the room's echoes fitted to the packet itself.
+// equaliser (FskEqualizer) reads the packet again from the filters' complex outputs, with a
+// model of the room's echoes fitted to the packet itself: on the nominal bit rate from where
+// the best clock put the break and up to two bits either side (echoes a bit or two late pull
+// the best clock late or fast), then on the best clock itself if it is off the nominal rate.
 class FskReceiver : public PacketReceiver {
  public:
   // Throws std::invalid_argument for impossible options (ValidateModemOptions,
@@ -94,6 +96,11 @@ class FskReceiver : public PacketReceiver {
   // when there was none), its reading in `first`, where its bits were read and its first
   // decisions on the frame.
   std::optional<ClockFit> ReadOnBestClocks(double break_step, RxEvent& first, std::int64_t* first_at, std::uint8_t* first_hard);
+  // The tone filters' complex outputs at at_step (kPacketBits steps), and those steps in samples.
+  void Outputs(const std::int64_t* at_step, std::complex<double> heard[2][kPacketBits], double* at) const;
+  // The equaliser's reading of the packet with its bits' filter outputs taken at at_step
+  // (kPacketBits steps, the break's first SPACE bit first), the sender's clock rate_error off.
+  std::optional<RepairedFrame> Equalize(const std::int64_t* at_step, double rate_error, const std::uint8_t* first_hard) const;
   // Reads the frame with the bit clock starting there (the first MARK bit of the break).
   RxEvent ReadFrame(double first_mark, double period);
   double FitMetric(double first_mark, double period) const;
