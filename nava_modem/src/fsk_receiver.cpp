@@ -78,14 +78,15 @@ constexpr int kMaxBreakModelRepairs = 1;
 // Start and stop bits (of 14) a clock's reading may get wrong and still have its frame repaired.
 constexpr int kMaxMisframedRepaired = 2;
 // Where the equaliser reads a packet no clock read (DecodeFrame): on the nominal bit rate from
-// where the best clock put the break, and this far either side of it, in whole bits; then on
+// where the best clock put the break, and up to this far later and earlier, in whole bits
+// (earlier further: a room's echoes and tail make the break look late, by up to 5 bits through
+// a clap's spread direct sound measured on a dummy head); then on
 // the best clock itself when its rate is more than this off the nominal one (the equaliser
 // searches the sender's offset 0.3 % either side of the rate it is given; a clock that put a
 // -0.5 % sender at -0.25 % once read packets the nominal rate could not). Half-bit steps read a few more packets in measured rooms, but a
 // reading between two bits lets the equaliser, trained on the known header, make that header
 // out of a wrong one (Modem.EachNoiseClassOnPurpose).
-constexpr double kEqualizerReachBits = 2.0;
-constexpr double kEqualizerStepBits = 1.0;
+constexpr int kEqualizerLateBits = 2, kEqualizerEarlyBits = 5;
 constexpr double kEqualizerOwnClockRate = 0.001;
 
 // ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
@@ -475,7 +476,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   // No clock read a frame: the room's echoes, perhaps. The equaliser models them on readings of
   // the packet at the nominal bit rate (sound cards are within a few tenths of a percent, and
   // the equaliser finds the sender's offset itself), from where the best clock put the break and
-  // up to kEqualizerReachBits either side: a room's echoes make a clock a bit or two late, or a
+  // a few bits either side: a room's echoes make a clock a bit or two late, or a
   // few percent fast, explain the known bits best (in a measured teaching room at DRR 0 dB the
   // best clock was often 2 bits late or 2 % fast, and the equaliser read 23 of 60 packets on it,
   // 56 on these). The first reading whose frame passes is the packet.
@@ -486,13 +487,13 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
     double rate_error;
   };
   std::vector<Reading> readings;
-  std::vector<double> shifts{0.0};
-  for (double s = kEqualizerStepBits; s <= kEqualizerReachBits + 1e-9; s += kEqualizerStepBits) {
-    shifts.push_back(-s);
-    shifts.push_back(s);
+  std::vector<int> shifts{0};  // bits
+  for (int b = 1; b <= std::max(kEqualizerEarlyBits, kEqualizerLateBits); ++b) {
+    if (b <= kEqualizerEarlyBits) shifts.push_back(-b);
+    if (b <= kEqualizerLateBits) shifts.push_back(b);
   }
   const std::int64_t anchor = first_at[kBreakSpaceBits];  // the break's first MARK bit
-  for (const double shift : shifts) {
+  for (const int shift : shifts) {
     Reading r;
     r.rate_error = 0.0;
     for (int k = 0; k < kPacketBits; ++k) r.at[k] = anchor + std::llround((shift + k - kBreakSpaceBits) * per_bit_);
