@@ -29,10 +29,7 @@ void ValidateOptions(const ChannelOptions& o) {
     throw std::invalid_argument("audio channel noise_floor_db must be a finite level in dB, got " +
                                 std::to_string(o.noise_floor_db));
   }
-  if (!(o.fate_distance > 0.0) || !std::isfinite(o.fate_distance)) {
-    throw std::invalid_argument("audio channel fate_distance must be above 0 m (how far a robot moves before a link's fate is "
-                                "drawn again), got " + std::to_string(o.fate_distance));
-  }
+  grid::RequireAbove("audio channel fate_distance (m)", o.fate_distance, 0.0);
 }
 
 AudioChannel::AudioChannel(const PropagationModel& model,

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "flat_table.h"
+#include "test_room.h"
 #include "world_sim/world_file.h"
 
 namespace audio_propagation {
@@ -44,16 +45,7 @@ TEST(ChannelValidation, BinsTooSmallAreMergedIntoTheirNeighbours) {
   EXPECT_DOUBLE_EQ(Agreement(bins), 100.0 * (12.0 - 8.5) / 20.0);
 }
 
-struct TestRoom {
-  world_sim::LoadedWorld world =
-      world_sim::LoadWorldFile(std::string(MULTIROBOT_AUDIO_MAPS_DIR) + "/test_room_acoustic_world.yaml");
-  PropagationModel propagation{world.map, ValidationPropagation(world.map.width_m() + world.map.height_m(), 1)};
-  std::vector<std::string> names;
-  std::vector<Eigen::Vector2d> resting;
-  TestRoom() {
-    for (const world_sim::RobotSpec& r : world.config.robots) names.push_back(r.name), resting.push_back(r.start.position());
-  }
-};
+using test::TestRoom;
 
 TEST(ChannelValidation, LinksAreDrawnAwayFromWallsAndJudgedTheSameOnAnyNumberOfThreads) {
   const TestRoom room;

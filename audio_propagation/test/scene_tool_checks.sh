@@ -66,6 +66,16 @@ grep -q "^cpu: " "$out/validate" || fail "no CPU time"
   || fail "--predict failed"
 grep -q '^{"path_length": 2.000, "corners": 0, .*"rt60": 0.300, "kind": "pink", "probability": 0.500}$' "$out/predict" \
   || { cat "$out/predict"; fail "--predict line"; }
+# The links' fate: the table's 50 % everywhere, so every pair counts; held, each static pair is
+# all or nothing; drawn anew, 20 packets at one half are never 18 alike.
+"$validate" --world "$world" --profile room --table "$out/room.yaml" --static-pairs 5 --pair-packets 20 >"$out/fate" \
+  || fail "--static-pairs failed"
+grep -q "^static: 5 of 5 pairs deliver under 10 % or over 90 % of their packets$" "$out/fate" \
+  || { cat "$out/fate"; fail "static pairs with their fate held"; }
+grep -q "^static: 0 of 5 pairs deliver under 10 % or over 90 % of their packets (every packet drawn anew)$" "$out/fate" \
+  || { cat "$out/fate"; fail "static pairs drawn anew"; }
+grep -Eq "^moving: 5 pairs, mean delivery [0-9.]+ % against the model's 50.0 %$" "$out/fate" \
+  || { cat "$out/fate"; fail "moving pairs"; }
 
 # Bad input: one line naming the file, field or flag and the value, and exit status 1.
 tool=$render
@@ -89,4 +99,7 @@ expect_error "--predict: (3.07, 1) is not in the map's free space" --world "$wor
 expect_error "--predict: expected two points X1,Y1 X2,Y2 in m, got '1.5;1.0'" --world "$world" --profile room \
   --table "$out/room.yaml" --predict "1.5;1.0" 1.5,3.0
 expect_error "--links: expected a whole number from 1 to 100000, got 0" --world "$world" --links 0
+expect_error "--fate-distance: expected a number from 0.001000 to 100.000000, got 0" --world "$world" --static-pairs 5 \
+  --fate-distance 0
+expect_error "--predict and --static-pairs: expected one of them" --world "$world" --static-pairs 5 --predict 1.5,1.0 1.5,3.0
 echo "scene tool checks passed"

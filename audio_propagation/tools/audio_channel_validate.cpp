@@ -8,6 +8,8 @@
 //                          [--table FILE] [--seed 1] [--out DIR] [--threads 2]
 //   audio_channel_validate --world W [--map M] [--profile P] [--table FILE] [--time 0]
 //                          --predict X1,Y1 X2,Y2
+//   audio_channel_validate --world W [--map M] [--profile P] [--table FILE] [--seed 1]
+//                          --static-pairs N [--pair-packets 30] [--fate-distance 0.075]
 //
 // Prints a table per path-length bin (0-3, 3-6, 6-10, 10-15, 15-20, 20-30, 30+ m; a bin of fewer
 // than 15 links merged into its neighbour): links, the model's and the rendered delivery and the
@@ -17,6 +19,11 @@
 // and writes DIR/validate_<profile>.png (delivery against path length, both). Links run on
 // --threads threads; the same seed gives the same output. The table defaults to the profile's
 // shipped one.
+// With --static-pairs: N static and N moving pairs of places whose model probability is 20-80 %,
+// each sending --pair-packets packets through the simulated acoustic channel (fate_check.h), with
+// the links' fate held and, for comparison, drawn anew for every packet:
+//   static: K of N pairs deliver under 10 % or over 90 % of their packets
+//   moving: N pairs, mean delivery X % against the model's Y %
 // With --predict: one JSON line for a packet from (X1, Y1) to (X2, Y2) at time --time (the world's
 // robots where the world puts them), no rendering: path_length, corners, direct_db,
 // reverberant_db, noise_db, drr_db, snr_db, rt60, kind, probability (null figures without a path).
@@ -112,6 +119,28 @@ std::string Range(double low, double high) {
   return text;
 }
 
+int StaticPairs(const tools::ValidateArgs& args, const tools::AcousticWorld& world, const DecodeTable& table) {
+  std::printf("audio_channel_validate: %s, profile %s, %d static and %d moving pairs of places at model probability "
+              "20-80 %%, %d packets each, fate distance %g m, seed %u\n",
+              args.world_file.c_str(), args.profile_name.c_str(), args.fate.pairs, args.fate.pairs, args.fate.packets,
+              args.fate.fate_distance, args.fate.seed);
+  for (const bool fate : {true, false}) {
+    FateCheckOptions o = args.fate;
+    o.link_fate = fate;
+    const FateCheckResult r = CheckLinkFate(*world.propagation, world.acoustics, table, world.robots, world.resting, o);
+    const char* how = fate ? "" : " (every packet drawn anew)";
+    std::printf("static: %d of %d pairs deliver under 10 %% or over 90 %% of their packets%s\n", r.static_decided,
+                r.static_pairs, how);
+    std::printf("moving: %d pairs, mean delivery %.1f %% against the model's %.1f %%%s\n", r.moving_pairs,
+                100.0 * r.moving_delivered, 100.0 * r.moving_probability, how);
+    if (r.static_pairs < o.pairs || r.moving_pairs < o.pairs) {
+      std::printf("  (only these pairs found at 20-80 %% in %d draws of places)\n", r.draws);
+    }
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 int Run(const tools::ValidateArgs& args) {
   const std::string program = "audio_channel_validate";
   const std::string& world_file = args.world_file;
@@ -129,6 +158,13 @@ int Run(const tools::ValidateArgs& args) {
       return Predict(args, world, table);
     } catch (const std::exception& e) {
       tools::Fail(program, e.what());
+    }
+  }
+  if (args.static_pairs > 0) {
+    try {
+      return StaticPairs(args, world, table);
+    } catch (const std::exception& e) {
+      tools::Fail(program, world_file + ": " + e.what());
     }
   }
   options.speech = tools::SpeechFor(program, world.acoustics, options.sample_rate, options.seed);

@@ -92,7 +92,8 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
       "audio_channel_validate",
       "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
       "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
-      "--predict X1,Y1 X2,Y2",
+      "--predict X1,Y1 X2,Y2 | --world W [--map M] [--profile P] [--table FILE] [--seed 1] --static-pairs N "
+      "[--pair-packets 30] [--fate-distance 0.075]",
       words);
   ValidateArgs v;
   v.usage = args.tool_usage();
@@ -108,8 +109,15 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
   options.threads = static_cast<int>(args.Int("--threads", 2, 1, 64));
   v.out = args.String("--out", ".");
+  v.static_pairs = static_cast<int>(args.Int("--static-pairs", 0, 0, 100000));
+  v.fate.pairs = std::max(1, v.static_pairs);
+  v.fate.packets = static_cast<int>(args.Int("--pair-packets", 30, 1, 10000));
+  v.fate.fate_distance = args.Double("--fate-distance", v.fate.fate_distance, 0.001, 100.0);
+  v.fate.seed = options.seed;
   if (predict.empty()) args.CheckAllUsed();
   options.profile = Profile(args, v.profile_name);
+  v.fate.profile = options.profile;
+  if (!predict.empty() && v.static_pairs > 0) args.Fail("--predict and --static-pairs: expected one of them");
   if (predict.empty()) return v;
   // "--predict X1,Y1 X2,Y2": the second point is the next argument (or the same one, quoted).
   v.predict = true;

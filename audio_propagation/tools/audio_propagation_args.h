@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "audio_propagation/channel_validation.h"
+#include "audio_propagation/fate_check.h"
 #include "audio_propagation/diffraction_points.h"
 #include "nava_modem/modem_profile.h"
 #include "tool_args/tool_args.h"
@@ -62,6 +63,10 @@ struct ValidateArgs {
   // --predict: one link from `from` to `to` at `time` instead of the validation.
   bool predict = false;
   Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
+  // --static-pairs N: the links' fate (fate_check.h) instead of the validation; --pair-packets,
+  // --fate-distance, --seed, --profile.
+  int static_pairs = 0;
+  FateCheckOptions fate;
   double time = 0.0;
   multirobot_audio::tools::ToolUsage usage;  // to refuse points outside the world's free space
 };
