@@ -103,7 +103,10 @@ void MakeFit(const std::array<std::uint8_t, kPacketBits>& b, int t, const Comple
       }
     }
   }
-  Square g = fit.a.adjoint() * fit.a;
+  // The Gram matrix's lower half is all the factorisation reads: a rank update fills it in half
+  // the work of the full product.
+  Square g = Square::Zero();
+  g.selfadjointView<Eigen::Lower>().rankUpdate(fit.a.adjoint());
   g.diagonal().array() += ridge * g.diagonal().real().mean() + 1e-30;
   fit.gram.compute(g);
 }
