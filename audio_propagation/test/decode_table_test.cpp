@@ -301,8 +301,9 @@ TEST(DecodeTable, DISABLED_ShippedRoomTableDecodesAPacketWellAboveAnother) {
 TEST(ArrivalErrorsFile, ShippedTablesLoadAndBadOnesAreRefusedByName) {
   for (const std::string profile : {"room", "nava"}) {
     const ranging::ArrivalErrors e = LoadArrivalErrors(ShippedArrivalErrors(profile), profile);
-    ASSERT_EQ(e.quantiles.size(), 21u) << profile;
-    EXPECT_LT(std::abs(e.quantiles[10]), 100e-6) << profile;  // the median within 0.1 ms
+    ASSERT_GE(e.quantiles.size(), 21u) << profile;
+    ASSERT_EQ(e.quantiles.size() % 2, 1u) << profile;  // one at the median
+    EXPECT_LT(std::abs(e.quantiles[e.quantiles.size() / 2]), 100e-6) << profile;  // the median within 0.1 ms
   }
   const auto refused = [](const std::string& name, const std::string& text, const std::string& expected) {
     const std::string path = TempPath(name);
