@@ -80,12 +80,12 @@ constexpr int kMaxMisframedRepaired = 2;
 // Where the equaliser reads a packet no clock read (DecodeFrame): on the nominal bit rate from
 // where the best clock put the break, and up to this far later and earlier, in whole bits
 // (earlier further: a room's echoes and tail make the break look late, by up to 5 bits through
-// a clap's spread direct sound measured on a dummy head); then on
-// the best clock itself when its rate is more than this off the nominal one (the equaliser
-// searches the sender's offset 0.3 % either side of the rate it is given; a clock that put a
-// -0.5 % sender at -0.25 % once read packets the nominal rate could not). Half-bit steps read a few more packets in measured rooms, but a
-// reading between two bits lets the equaliser, trained on the known header, make that header
-// out of a wrong one (Modem.EachNoiseClassOnPurpose).
+// a clap's spread direct sound measured on a dummy head); then on the best clock itself when
+// its rate is more than kEqualizerOwnClockRate off the nominal one (the equaliser searches the
+// sender's offset 0.3 % either side of the rate it is given; a clock that put a -0.5 % sender at
+// -0.25 % once read packets the nominal rate could not). Half-bit steps read a few more packets
+// in measured rooms, but a reading between two bits lets the equaliser, trained on the known
+// header, make that header out of a wrong one (Modem.EachNoiseClassOnPurpose).
 constexpr int kEqualizerLateBits = 2, kEqualizerEarlyBits = 5;
 constexpr double kEqualizerOwnClockRate = 0.001;
 
@@ -479,9 +479,9 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   // a few bits either side: a room's echoes make a clock a bit or two late, or a
   // few percent fast, explain the known bits best (in a measured teaching room at DRR 0 dB the
   // best clock was often 2 bits late or 2 % fast, and the equaliser read 23 of 60 packets on it,
-  // 56 on these). The first reading whose frame passes is the packet.
-  // Deep noise misplaces the best clock too: these readings also lifted white noise at -12 dB
-  // from 40 to 50 packets of 60. Last, the best clock itself, for a sender whose card is off.
+  // 54 on these). The first reading whose frame passes is the packet. Deep noise misplaces the
+  // best clock too: these readings also lifted white noise at -12 dB from 40 to 51 packets of
+  // 60. Last, the best clock itself, for a sender whose card is off.
   struct Reading {
     std::int64_t at[kPacketBits];
     double rate_error;
