@@ -15,24 +15,29 @@ namespace {
 constexpr double kPacketWait = 4.0;
 constexpr double kStep = 0.05;
 
-// One pair's channel: the world's robots at rest and the two of the pair, calibrated.
+// The model's probability for a packet from `a` to `b` at time `t`, the world's robots at rest
+// (no other packet in the air).
+double Probability(const PropagationModel& propagation, const AcousticModel& model, std::vector<Eigen::Vector2d> at,
+                   const Eigen::Vector2d& a, const Eigen::Vector2d& b, double t) {
+  at.push_back(a);
+  at.push_back(b);
+  return model.Predict(propagation.Path(a, b), b, model.NoiseAt(b, t, at)).probability;
+}
+
+// One pair's channel: the world's robots at rest and the two of the pair (`model` built for the
+// world's robots, kValidationSender and kValidationListener).
 class PairChannel {
  public:
-  PairChannel(const PropagationModel& propagation, const world_sim::Acoustics& acoustics, const DecodeTable& table,
-              const std::vector<std::string>& world_robots, const std::vector<Eigen::Vector2d>& resting,
+  PairChannel(const PropagationModel& propagation, const AcousticModel& model, const std::vector<Eigen::Vector2d>& resting,
               const FateCheckOptions& o, std::uint32_t seed)
       : resting_(resting) {
-    std::vector<std::string> names = world_robots;
-    names.push_back(kValidationSender);
-    names.push_back(kValidationListener);
-    model_ = std::make_unique<AcousticModel>(propagation, acoustics, table, names);
     ChannelOptions c;
     c.seed = seed;
     c.link_fate = o.link_fate;
     c.fate_distance = o.fate_distance;
     nava_modem::UseProfileTiming(o.profile, nava_modem::ModemOptions{}, c.mac);
-    channel_ = std::make_unique<AudioChannel>(propagation, std::vector<world_sim::Microphone>(names.size(), world_sim::Microphone::kOmni),
-                                              c, model_.get());
+    channel_ = std::make_unique<AudioChannel>(propagation, std::vector<world_sim::Microphone>(resting.size() + 2, world_sim::Microphone::kOmni),
+                                              c, &model);
     for (std::size_t k = 0; k < resting.size(); ++k) channel_->SetPose(k, {resting[k].x(), resting[k].y(), 0.0});
   }
   std::size_t sender() const { return resting_.size(); }
@@ -40,14 +45,7 @@ class PairChannel {
   void Place(std::size_t robot, const Eigen::Vector2d& at) { channel_->SetPose(robot, {at.x(), at.y(), 0.0}); }
   // Lets the MACs calibrate on the room's noise, as a robot does when it starts.
   void Calibrate(double seconds) { Run(seconds); }
-  // The model's probability for a packet now (no other packet in the air).
-  double Probability(const PropagationModel& propagation) const {
-    std::vector<Eigen::Vector2d> at = resting_;
-    at.push_back(channel_->pose(sender()).position());
-    at.push_back(channel_->pose(listener()).position());
-    const Eigen::Vector2d& to = at.back();
-    return model_->Predict(propagation.Path(at[sender()], to), to, model_->NoiseAt(to, channel_->time(), at)).probability;
-  }
+  double time() const { return channel_->time(); }
   // Sends one packet from the sender; true when the listener decoded it.
   bool Packet(int k) {
     channel_->Send(sender(), {0xFA, 0x7E, static_cast<std::uint8_t>(k >> 8), static_cast<std::uint8_t>(k)});
@@ -68,7 +66,6 @@ class PairChannel {
     while (channel_->time() < end - 1e-9) channel_->AdvanceTo(channel_->time() + kStep);
   }
   std::vector<Eigen::Vector2d> resting_;
-  std::unique_ptr<AcousticModel> model_;
   std::unique_ptr<AudioChannel> channel_;
 };
 
@@ -94,6 +91,10 @@ FateCheckResult CheckLinkFate(const PropagationModel& propagation, const world_s
   const FreePoints points(propagation.map(), o.clearance, resting.empty() ? nullptr : &resting.front());
   std::mt19937 rng(o.seed);
   std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+  std::vector<std::string> names = world_robots;
+  names.push_back(kValidationSender);
+  names.push_back(kValidationListener);
+  const AcousticModel model(propagation, acoustics, table, names);
   FateCheckResult result;
   const nava_modem::MacOptions calibration;
   for (int kind = 0; kind < 2; ++kind) {
@@ -104,12 +105,14 @@ FateCheckResult CheckLinkFate(const PropagationModel& propagation, const world_s
       ++result.draws;
       const Eigen::Vector2d a = points.Draw(rng), b = points.Draw(rng);
       if ((a - b).norm() < o.min_separation || !propagation.Path(a, b).reachable) continue;
-      PairChannel pair(propagation, acoustics, table, world_robots, resting, o, o.seed * 7919u + static_cast<std::uint32_t>(result.draws));
+      // Judged as the pair's packets will be, after the MACs' calibration; only then is a
+      // channel run for the pair.
+      const double p = Probability(propagation, model, resting, a, b, calibration.calibration_time);
+      if (p < o.min_probability || p > o.max_probability) continue;
+      PairChannel pair(propagation, model, resting, o, o.seed * 7919u + static_cast<std::uint32_t>(result.draws));
       pair.Place(pair.sender(), a);
       pair.Place(pair.listener(), b);
       pair.Calibrate(calibration.calibration_time);
-      const double p = pair.Probability(propagation);
-      if (p < o.min_probability || p > o.max_probability) continue;
       ++found;
       int delivered = 0;
       double probability = 0.0;
@@ -127,7 +130,7 @@ FateCheckResult CheckLinkFate(const PropagationModel& propagation, const world_s
           }
           pair.Place(pair.listener(), at);
         }
-        probability += pair.Probability(propagation);
+        probability += Probability(propagation, model, resting, a, at, pair.time());
         delivered += pair.Packet(k);
       }
       if (moving) {
