@@ -8,6 +8,7 @@ office:    34 x 14 m floor of an office or hospital wing: a long corridor with r
 campus:    68 x 28 m: four office wings side by side and back to back, their corridors joined
            end to end and stairwell doors between the rows, for teams of 60 to 100 robots.
 test_room: 6 x 4 m room split by a wall with a 1.5 m gap at one end, for tests.
+open_floor: 20 x 20 m with no walls: local_mutex_sim's floor, for worlds that give it acoustics.
 
 Walls are 0.15 m thick (from the named line up or right), drawn at 0.05 m per pixel. Uses only the Python standard library.
 """
@@ -122,7 +123,14 @@ def test_room():
            "test_room: a 6 x 4 m room split by a wall with a 1.5 m gap at its top end")
 
 
+def open_floor():
+    p = Plan(20.0, 20.0)
+    p.save(sys.argv[1] if len(sys.argv) > 1 else "maps", "open_floor",
+           "open_floor: 20 x 20 m with no walls, the floor local_mutex_sim runs its trials on")
+
+
 if __name__ == "__main__":
     office()
     campus()
     test_room()
+    open_floor()

@@ -55,6 +55,11 @@ void RequireRoom(const world_sim::RoomAcoustics& room, const std::string& where)
 
 double AcousticThresholdDb(const world_sim::Acoustics& acoustics) { return acoustics.ambient_db - 30.0; }
 
+void UseAcousticPropagation(PropagationOptions& options, const world_sim::Acoustics& acoustics, bool keep_range) {
+  if (!keep_range) options.max_range = 0.0;
+  options.threshold_db = std::min(options.threshold_db, AcousticThresholdDb(acoustics));
+}
+
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
                       const world_sim::RoomAcoustics& room) {
   LinkLevels l;
@@ -237,6 +242,16 @@ LinkPrediction AcousticModel::Predict(const SoundPath& path, const Eigen::Vector
   }
   p.probability = p.outcome.packet;
   return p;
+}
+
+std::unique_ptr<AcousticModel> TeamAcousticModel(const PropagationModel& propagation,
+                                                 const world_sim::WorldConfig& world,
+                                                 const std::shared_ptr<const DecodeTable>& table) {
+  if (!table) return nullptr;
+  if (!world.acoustics) throw std::invalid_argument("the acoustic channel model needs a world with an acoustics section");
+  std::vector<std::string> names;
+  for (const world_sim::RobotSpec& r : world.robots) names.push_back(r.name);
+  return std::make_unique<AcousticModel>(propagation, *world.acoustics, *table, names);
 }
 
 }  // namespace audio_propagation

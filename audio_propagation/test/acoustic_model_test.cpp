@@ -62,6 +62,41 @@ struct Strip {
   SoundPath Path(double x0, double x1) const { return model.Path({x0, 2.5}, {x1, 2.5}); }
 };
 
+TEST(AcousticThreshold, TheModelJudgesEveryPathDownTo30DbUnderTheAmbientAndNoHearingRangeUnlessKept) {
+  PropagationOptions o;
+  o.max_range = 15.0;
+  o.threshold_db = 20.0;
+  world_sim::Acoustics a = Quiet();  // ambient 20 dB
+  UseAcousticPropagation(o, a, true);
+  EXPECT_EQ(o.max_range, 15.0);
+  EXPECT_EQ(o.threshold_db, -10.0);
+  a.ambient_db = 50.0;  // a louder world never raises the threshold another world lowered
+  UseAcousticPropagation(o, a);
+  EXPECT_EQ(o.max_range, 0.0);
+  EXPECT_EQ(o.threshold_db, -10.0);
+}
+
+TEST(TeamAcousticModel, NoneWithoutATableAndAWorldWithoutAcousticsIsRefused) {
+  const Strip strip;
+  world_sim::WorldConfig world;
+  world.robots.resize(2);
+  world.robots[0].name = "a";
+  world.robots[1].name = "b";
+  const auto table = std::make_shared<const DecodeTable>(test::FlatTable("nava", 1.0));
+  EXPECT_EQ(TeamAcousticModel(strip.model, world, nullptr), nullptr);
+  EXPECT_THROW(TeamAcousticModel(strip.model, world, table), std::invalid_argument);
+  world.acoustics = Quiet();
+  // A noise source riding on robot b: the model knows the world's robots by name.
+  world.acoustics->noise_sources.push_back({});
+  world.acoustics->noise_sources.back().name = "motor";
+  world.acoustics->noise_sources.back().robot = "b";
+  const auto model = TeamAcousticModel(strip.model, world, table);
+  ASSERT_NE(model, nullptr);
+  EXPECT_EQ(model->table().profile, "nava");
+  world.acoustics->noise_sources.back().robot = "c";
+  EXPECT_THROW(TeamAcousticModel(strip.model, world, table), std::invalid_argument);
+}
+
 TEST(LinkBudget, DirectAndReverberantMeetAtTheCriticalDistanceAndCornersCostTheDirectSound) {
   world_sim::RoomAcoustics room;
   room.rt60 = 1.0;

@@ -78,8 +78,10 @@ ChargingTrialResult RunChargingTrial(const grid::OccupancyMap& map, const world_
 
   audio_propagation::ChannelOptions channel_options = options.channel;
   channel_options.seed = options.seed;
+  const std::unique_ptr<audio_propagation::AcousticModel> acoustic =
+      audio_propagation::TeamAcousticModel(model, team, options.decode_table);
   audio_propagation::AudioChannel channel(
-      model, std::vector<world_sim::Microphone>(n, world_sim::Microphone::kOmni), channel_options);
+      model, std::vector<world_sim::Microphone>(n, world_sim::Microphone::kOmni), channel_options, acoustic.get());
 
   ChargingTrialResult result;
   result.duration = options.duration;

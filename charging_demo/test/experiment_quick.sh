@@ -34,6 +34,15 @@ echo "$line" | grep -Eq '^double_dockings 0 robots_flat 0 charges [0-9]+ utilisa
 # timeline too), to the byte.
 report_args=(--out @OUT@ --timeline @OUT@/timeline.png)
 check_shards --map "$maps/test_room.yaml" --robots 3 --hours 0.3 --seeds 3
+# The acoustic channel (the test room's acoustics, links keeping their fate): the run finishes
+# with no double docking, its saved worlds carry the acoustics, and its shards merge to the byte.
+acoustic=(--map "$maps/test_room.yaml" --robots 3 --hours 0.2 --channel acoustic
+          --acoustics "$maps/test_room_acoustic_world.yaml" --link-fate)
+"$tool" "${acoustic[@]}" --seeds 2 --out "$out/acoustic" >"$out/acoustic.out" 2>"$out/stderr" \
+  || { cat "$out/stderr"; fail "the acoustic channel's run failed"; }
+grep -Eq '^double_dockings 0 ' "$out/acoustic.out" || fail "acoustic channel: $(tail -1 "$out/acoustic.out")"
+grep -q '^acoustics:' "$out/acoustic/worlds/seed_001.yaml" || fail "a saved world lost the acoustics it ran with"
+check_shards "${acoustic[@]}" --seeds 3
 expect_error "--timeline: give it to --merge" --map "$maps/test_room.yaml" --shard 1/2 --timeline "$out/t.png" --out "$out/x"
 
 # Bad input: a clear message and exit status 1 (expect_error).
@@ -43,6 +52,10 @@ expect_error "cannot fit 250 robots" --map "$maps/test_room.yaml" --robots 250 -
 expect_error "--robots: expected a whole number from 1 to 255" --robots 300 --out "$out/x"
 expect_error "cannot place 2 chargers" --map "$maps/test_room.yaml" --chargers 2 --out "$out/x"
 expect_error "map file not found" --map "$out/nothing.yaml" --out "$out/x"
+expect_error "--acoustics: acoustics: --channel acoustic needs an acoustics section" --map "$maps/test_room.yaml" --channel acoustic --out "$out/x"
+expect_error "test_room_world.yaml: acoustics: expected an acoustics section" --map "$maps/test_room.yaml" --channel acoustic --acoustics "$maps/test_room_world.yaml" --out "$out/x"
+expect_error "--link-fate is for --channel acoustic" --map "$maps/test_room.yaml" --link-fate --out "$out/x"
+expect_error "--channel: expected threshold or acoustic" --map "$maps/test_room.yaml" --channel loud --out "$out/x"
 expect_error "drop --robots" --world "$out/run/worlds/seed_001.yaml" --robots 3 --out "$out/x"
 cat >"$out/nocharger.yaml" <<YAML
 map: $maps/test_room.yaml

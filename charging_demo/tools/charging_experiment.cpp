@@ -200,6 +200,18 @@ int Run(const Protocol& p, const BatchRun& batch) {
       worlds[s] = RandomChargingWorld(map, canonical, world_sim::RobotModel{}, p.placement, rng);
     }
   }
+  audio_propagation::PropagationOptions audio;
+  audio.max_range = p.hearing;
+  ChargingTrialOptions options = p.options;
+  if (p.channel.acoustic() && !which.empty()) {
+    std::vector<world_sim::WorldConfig> run;
+    for (std::size_t s : which) run.push_back(worlds[s]);
+    audio_propagation::tools::GiveAcoustics(p.channel, run, std::vector<std::string>(run.size(), p.world_file), map,
+                                            run[0].map_file);
+    for (std::size_t k = 0; k < which.size(); ++k) worlds[which[k]] = run[k];
+    options.decode_table = audio_propagation::tools::LoadExperimentTable(p.channel);
+    audio_propagation::tools::UseAcousticPropagation(audio, run, p.hearing_given);
+  }
   const fs::path out(p.out_dir);
   fs::create_directories(out / "worlds");
   for (std::size_t s : which) {
@@ -209,8 +221,6 @@ int Run(const Protocol& p, const BatchRun& batch) {
     world_sim::SaveWorldFile((out / "worlds" / name).string(), worlds[s]);
   }
 
-  audio_propagation::PropagationOptions audio;
-  audio.max_range = p.hearing;
   const audio_propagation::PropagationModel model(map, audio);
   if (!which.empty()) {
     std::fprintf(stderr, "charging_experiment: %d seeds x %.2f h, %zu robots, %zu chargers%s\n", p.seeds, p.hours,
@@ -224,7 +234,7 @@ int Run(const Protocol& p, const BatchRun& batch) {
       which.size(), p.threads,
       [&](std::size_t k) {
         const std::size_t s = which[k];
-        ChargingTrialOptions o = p.options;
+        ChargingTrialOptions o = options;
         o.seed = worlds[s].seed;
         records[s] = Record(o.seed, RunChargingTrial(map, worlds[s], model, o), s == 0);
       },

@@ -10,11 +10,12 @@ namespace {
 using multirobot_audio::tools::BatchRun;
 using multirobot_audio::tools::ToolArgs;
 
-const char* kUsage =
-    "charging_experiment [--map MAP.yaml | --world WORLD.yaml] [--robots 4] [--chargers 1]\n"
+const std::string kUsage =
+    std::string("charging_experiment [--map MAP.yaml | --world WORLD.yaml] [--robots 4] [--chargers 1]\n"
     "  [--hours 2] [--seeds 10] [--seed 1] [--out charging_results] [--timeline FILE.png]\n"
     "  [--hearing 15] [--spacing 12] [--low 0.3] [--full 0.98] [--wait-distance 1]\n"
-    "  [--lock-timeout 1500] [--threads 0] [--shard K/N] | --merge SHARD_DIR... [--out DIR] [--timeline FILE.png]";
+    "  [--lock-timeout 1500] [--threads 0] ") + audio_propagation::tools::kExperimentChannelUsage +
+    "\n  [--shard K/N] | --merge SHARD_DIR... [--out DIR] [--timeline FILE.png]";
 
 }  // namespace
 
@@ -30,6 +31,7 @@ Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
   p.seeds = static_cast<int>(args.Int("--seeds", 10, 1, 100000));
   p.first_seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
   p.hearing = args.Double("--hearing", 15.0, 0.0, 1e6);
+  p.hearing_given = !args.String("--hearing", "").empty();
   ChargingTrialOptions& options = p.options;
   options.duration = p.hours * 3600.0;
   ChargingOptions& charging = options.controller.charging;
@@ -40,6 +42,7 @@ Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
   p.threads = static_cast<int>(args.Int("--threads", 0, 0, 256));
   p.out_dir = args.String("--out", "charging_results");
   p.timeline = args.String("--timeline", "");
+  p.channel = audio_propagation::tools::ParseExperimentChannel(args, options.channel);
   if (!p.world_file.empty() && (!args.String("--robots", "").empty() || !args.String("--chargers", "").empty() ||
                                 !args.String("--map", "").empty() || !args.String("--spacing", "").empty()))
     args.Fail("--world gives the robots, chargers and map: drop --robots, --chargers, --map and --spacing");
@@ -60,7 +63,7 @@ Protocol ParseProtocol(const ToolArgs& args, const BatchRun& batch) {
 }
 
 ExperimentCommand ParseExperimentArgs(const std::vector<std::string>& words) {
-  const ToolArgs args("charging_experiment", kUsage, words, {"--merge"});
+  const ToolArgs args("charging_experiment", kUsage, words, {"--merge", audio_propagation::tools::kLinkFateSwitch});
   return multirobot_audio::tools::ParseBatchCommand<Protocol>(args, {"--out", "--threads", "--timeline"},
                                                                ParseProtocol);
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "charging_demo/charging_trial.h"
+#include "experiment_channel_args.h"
 #include "charging_demo/charging_world.h"
 #include "tool_args/shard.h"
 #include "tool_args/tool_args.h"
@@ -19,6 +20,8 @@ struct Protocol {
   std::string world_file, map_file, out_dir, timeline;
   ChargingWorldOptions placement;
   double hours = 2.0, hearing = 15.0;
+  bool hearing_given = false;
+  audio_propagation::tools::ExperimentChannel channel;
   int seeds = 10, threads = 0;
   std::uint32_t first_seed = 1;
   ChargingTrialOptions options;

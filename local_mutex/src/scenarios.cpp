@@ -7,13 +7,18 @@
 
 namespace local_mutex {
 
-std::unique_ptr<audio_propagation::PropagationModel> OpenFloor(double size) {
+grid::OccupancyMap OpenFloorMap(double size) {
   const double resolution = 0.1;
   const int cells = static_cast<int>(std::lround(size / resolution));
+  return grid::OccupancyMap(cells, cells, resolution);
+}
+
+std::unique_ptr<audio_propagation::PropagationModel> OpenFloor(double size,
+                                                               const std::optional<world_sim::Acoustics>& acoustics) {
   audio_propagation::PropagationOptions options;
   options.threads = 1;
-  return std::make_unique<audio_propagation::PropagationModel>(grid::OccupancyMap(cells, cells, resolution),
-                                                               options);
+  if (acoustics) audio_propagation::UseAcousticPropagation(options, *acoustics);
+  return std::make_unique<audio_propagation::PropagationModel>(OpenFloorMap(size), options);
 }
 
 std::vector<TeamRobot> SingleScenario(const Eigen::Vector2d& centre) {

@@ -18,6 +18,14 @@ void CheckProbability(double p, const char* name) {
   }
 }
 
+std::unique_ptr<audio_propagation::AcousticModel> MakeAcoustic(const audio_propagation::PropagationModel& model,
+                                                               const TeamSimOptions& o, std::size_t robots) {
+  if (!o.decode_table) return nullptr;
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < robots; ++k) names.push_back("robot_" + std::to_string(k));
+  return std::make_unique<audio_propagation::AcousticModel>(model, *o.acoustics, *o.decode_table, names);
+}
+
 }  // namespace
 
 void ValidateTeamSimOptions(const TeamSimOptions& o) {
@@ -25,15 +33,20 @@ void ValidateTeamSimOptions(const TeamSimOptions& o) {
   CheckProbability(o.loss, "loss");
   if (!(o.step > 0.0)) throw std::invalid_argument("team sim: step = " + std::to_string(o.step) + ": expected > 0 s");
   audio_propagation::ValidateOptions(o.channel);
+  if (static_cast<bool>(o.decode_table) != o.acoustics.has_value()) {
+    throw std::invalid_argument(std::string("team sim: the acoustic channel needs both a decode table and acoustics; got ") +
+                                (o.decode_table ? "no acoustics" : "no decode table"));
+  }
 }
 
 TeamSim::TeamSim(const audio_propagation::PropagationModel& model, std::vector<TeamRobot> robots,
                  const TeamSimOptions& options)
     : robots_(std::move(robots)),
-      options_(options),
-      channel_(model, OmniMicrophones(robots_.size()), options.channel),
+      // Validated before the acoustic model is built from them.
+      options_((ValidateTeamSimOptions(options), options)),
+      acoustic_(MakeAcoustic(model, options, robots_.size())),
+      channel_(model, OmniMicrophones(robots_.size()), options.channel, acoustic_.get()),
       rng_(options.seed) {
-  ValidateTeamSimOptions(options_);
   const std::size_t n = robots_.size();
   std::vector<Eigen::Vector2d> positions;
   for (std::size_t k = 0; k < n; ++k) {
@@ -54,10 +67,16 @@ TeamSim::TeamSim(const audio_propagation::PropagationModel& model, std::vector<T
   }
   // Robots stand still while they want or hold the lock, so who can hear whom is fixed.
   const auto paths = model.Compute(positions, std::vector<bool>(n, true));
+  const auto hears = [&](std::size_t from, std::size_t to) {
+    if (!paths[from][to].audible) return false;
+    if (!acoustic_) return true;
+    const auto noise = acoustic_->NoiseAt(positions[to], 0.0, positions);
+    return acoustic_->Predict(paths[from][to], positions[to], noise).probability >= 0.5;
+  };
   in_range_.assign(n, std::vector<bool>(n, false));
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = 0; b < n; ++b) {
-      if (a != b) in_range_[a][b] = paths[a][b].audible || paths[b][a].audible;
+      if (a != b) in_range_[a][b] = hears(a, b) || hears(b, a);
     }
   }
   progress_.resize(n);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "flat_table.h"
 #include "local_mutex/scenarios.h"
 #include "local_mutex/timeline_plot.h"
 
@@ -126,6 +127,64 @@ TEST(TeamSim, RefusesRobotsInWallsAndImpossibleProbabilities) {
   EXPECT_THROW(TeamSim(*model, {}, options), std::invalid_argument);
   options = {};
   options.mutex.lock_mean = 50.0;  // longer than t_grab
+  EXPECT_THROW(TeamSim(*model, {{7, {5.0, 5.0}, {}}}, options), std::invalid_argument);
+}
+
+// The acoustic channel with a table that decodes `delivered` of the packets everywhere, in a
+// quiet room.
+TeamSimOptions Acoustic(double delivered) {
+  TeamSimOptions options;
+  world_sim::Acoustics acoustics;
+  acoustics.room.rt60 = 0.4;
+  acoustics.room.critical_distance = 2.0;
+  options.acoustics = acoustics;
+  options.decode_table = std::make_shared<const audio_propagation::DecodeTable>(
+      audio_propagation::test::FlatTable("nava", delivered));
+  return options;
+}
+
+TEST(TeamSim, OnAnAcousticChannelThatDeliversEverythingTheThreeAreServedInOrder) {
+  const TeamSimOptions options = Acoustic(1.0);
+  auto model = OpenFloor(20.0, options.acoustics);
+  TeamSim sim(*model, ThreeScenario(Centre(*model)), options);
+  sim.Run(3600.0);
+  ASSERT_TRUE(sim.Done());
+  ASSERT_EQ(sim.grants().size(), 3u);
+  for (std::size_t k = 1; k < 3; ++k) EXPECT_TRUE(Precedes(sim.grants()[k - 1].request, sim.grants()[k].request));
+  EXPECT_TRUE(sim.InRange(0, 1) && sim.InRange(1, 2) && sim.InRange(0, 2));
+  EXPECT_EQ(sim.violations(), 0u);
+  // They heard each other: each took the lock only once the one before had let it go.
+  for (std::size_t k = 1; k < 3; ++k) EXPECT_GE(sim.grants()[k].granted, sim.grants()[k - 1].released);
+}
+
+TEST(TeamSim, RobotsWhosePacketsTheModelNeverDeliversAreOutOfRange) {
+  // Nobody hears anybody: robots 11 and 30 each take the lock t_grab after wanting it, at once,
+  // and that is no violation, since the lock promises nothing to robots that cannot hear each
+  // other; robot 212, which waits to hear two packets, never wants it.
+  const TeamSimOptions options = Acoustic(0.0);
+  auto model = OpenFloor(20.0, options.acoustics);
+  TeamSim sim(*model, ThreeScenario(Centre(*model)), options);
+  sim.Run(3600.0);
+  EXPECT_FALSE(sim.InRange(0, 1) || sim.InRange(1, 2) || sim.InRange(0, 2));
+  ASSERT_EQ(sim.grants().size(), 2u);
+  for (const Grant& g : sim.grants()) EXPECT_NEAR(g.granted, g.wanted + 40.0, 1.0);
+  EXPECT_LT(sim.grants()[1].granted, sim.grants()[0].released);
+  EXPECT_EQ(sim.violations(), 0u);
+  EXPECT_EQ(sim.mutex(2).counters().heard, 0u);
+}
+
+TEST(TeamSim, TheAcousticChannelNeedsBothATableAndAcoustics) {
+  auto model = OpenFloor(10.0);
+  TeamSimOptions options = Acoustic(1.0);
+  options.acoustics.reset();
+  try {
+    TeamSim sim(*model, {{7, {5.0, 5.0}, {}}}, options);
+    ADD_FAILURE() << "a decode table without acoustics was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no acoustics"), std::string::npos) << e.what();
+  }
+  options = Acoustic(1.0);
+  options.decode_table.reset();
   EXPECT_THROW(TeamSim(*model, {{7, {5.0, 5.0}, {}}}, options), std::invalid_argument);
 }
 

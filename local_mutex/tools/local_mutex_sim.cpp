@@ -44,7 +44,7 @@ using multirobot_audio::tools::ToolArgs;
 double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 int RunScenario(const std::string& name, const TeamSimOptions& base, const std::string& timeline) {
-  auto model = OpenFloor();
+  auto model = OpenFloor(20.0, base.acoustics);
   const grid::OccupancyMap& map = model->map();
   const Eigen::Vector2d centre = map.CellCoordsToWorld({map.width() / 2.0, map.height() / 2.0});
   std::vector<TeamRobot> robots;
@@ -84,6 +84,15 @@ void PrintSummary(const TrialSummary& s) {
 }
 
 using Request = tools::SimRequest;
+
+// The acoustic channel's table and acoustics (the --acoustics world's section, on the open floor:
+// its noise sources and regions keep their coordinates and must lie on the floor).
+void UseAcousticChannel(Request& r) {
+  std::vector<world_sim::WorldConfig> world(1);
+  audio_propagation::tools::GiveAcoustics(r.channel, world, {}, OpenFloorMap(), "");
+  r.options.acoustics = world[0].acoustics;
+  r.options.decode_table = audio_propagation::tools::LoadExperimentTable(r.channel);
+}
 
 // The groups of trials a run is made of, each `count` trials of one TeamSimOptions: --trials N
 // is one group of N, --sweep N a group of N per cell of its tables (tables, then rows). Trial t
@@ -177,7 +186,7 @@ void Report(const Request& r, const GroupOutcomes& outcomes) {
 // --trials or --sweep: the whole run, or one shard of it.
 void RunTrialsOrSweep(const Request& r, const BatchRun& batch) {
   const double cpu0 = CpuSeconds();
-  auto model = OpenFloor();
+  auto model = OpenFloor(20.0, r.options.acoustics);
   const std::vector<SweepCell> groups = Groups(r);
   const int count = PerGroup(r);
   if (batch.sharded()) {
@@ -224,14 +233,15 @@ int main(int argc, char** argv) {
     const BatchRun& batch = command.batch;
     try {
       if (batch.merging()) return Merge(batch);
-      const Request& r = *command.run;
+      Request r = *command.run;
       ValidateMutexOptions(r.options.mutex);
+      if (r.channel.acoustic()) UseAcousticChannel(r);
       if (!r.scenario.empty()) return RunScenario(r.scenario, r.options, r.timeline);
       if (!r.timeline.empty() && r.trial_count != 1) batch.command().Fail("--timeline goes with --scenario or --trials 1");
       if (!r.timeline.empty()) {
         TeamSimOptions options = r.options;
         options.record = true;
-        DrawTimeline(*RunTrial(*OpenFloor(), r.trials, options, 0), r.timeline);
+        DrawTimeline(*RunTrial(*OpenFloor(20.0, options.acoustics), r.trials, options, 0), r.timeline);
         std::printf("timeline written to %s\n", r.timeline.c_str());
       }
       RunTrialsOrSweep(r, batch);

@@ -8,10 +8,11 @@ namespace {
 using multirobot_audio::tools::BatchRun;
 using multirobot_audio::tools::ToolArgs;
 
-const char* kUsage =
-    "local_mutex_sim --scenario single|three [--timeline out.png] | --trials N [--robots 2..6] [--noise P] "
+const std::string kUsage =
+    std::string("local_mutex_sim --scenario single|three [--timeline out.png] | --trials N [--robots 2..6] [--noise P] "
     "[--loss Q] | --sweep N; timers --grab --request --request-sd --lock --lock-sd; trials --radius "
-    "--want-spread --hold-min --hold-max --cycles --bound; --seed S; --shard K/N --out DIR | --merge DIR...";
+    "--want-spread --hold-min --hold-max --cycles --bound; --seed S; channel ") +
+    audio_propagation::tools::kExperimentChannelUsage + "; --shard K/N --out DIR | --merge DIR...";
 
 void ParseRange(const ToolArgs& args, const std::string& text, int& lo, int& hi) {
   const auto dots = text.find("..");
@@ -55,6 +56,7 @@ SimRequest ParseSimRequest(const ToolArgs& args, const BatchRun& batch) {
   trials.hold_max = args.Double("--hold-max", trials.hold_max, trials.hold_min, 1e6);
   trials.cycles = static_cast<int>(args.Int("--cycles", trials.cycles, 1, 1000));
   trials.liveness_bound = args.Double("--bound", 0.0, 0.0, 1e9);
+  r.channel = audio_propagation::tools::ParseExperimentChannel(args, options.channel);
   args.CheckAllUsed();
   if ((r.scenario.empty() ? 0 : 1) + (r.trial_count > 0) + (r.sweep > 0) != 1) {
     args.Fail("give exactly one of --scenario, --trials N, --sweep N");
@@ -67,7 +69,7 @@ SimRequest ParseSimRequest(const ToolArgs& args, const BatchRun& batch) {
 }
 
 SimCommand ParseSimArgs(const std::vector<std::string>& words) {
-  const ToolArgs args("local_mutex_sim", kUsage, words, {"--merge"});
+  const ToolArgs args("local_mutex_sim", kUsage, words, {"--merge", audio_propagation::tools::kLinkFateSwitch});
   return multirobot_audio::tools::ParseBatchCommand<SimRequest>(args, {"--out"}, ParseSimRequest);
 }
 

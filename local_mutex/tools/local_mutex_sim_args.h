@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment_channel_args.h"
 #include "local_mutex/scenarios.h"
 #include "local_mutex/team_sim.h"
 #include "tool_args/shard.h"
@@ -17,8 +18,9 @@ namespace local_mutex::tools {
 struct SimRequest {
   std::string scenario, timeline, out;
   int trial_count = 0, sweep = 0;
-  TeamSimOptions options;
+  TeamSimOptions options;  // with the acoustic channel, its table and acoustics are loaded by the tool
   TrialOptions trials;
+  audio_propagation::tools::ExperimentChannel channel;
 };
 
 // The command: a run (`run`), or the merge of shards (the merge parses the shards' options with

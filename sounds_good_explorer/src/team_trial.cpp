@@ -44,13 +44,8 @@ TrialResult RunTeamTrial(const grid::OccupancyMap& map, const world_sim::WorldCo
   const std::size_t n = team.robots.size();
   audio_propagation::ChannelOptions channel_options = options.channel;
   channel_options.seed = options.seed;
-  std::unique_ptr<audio_propagation::AcousticModel> acoustic;
-  if (options.decode_table) {
-    if (!team.acoustics) throw std::invalid_argument("the acoustic channel model needs a world with an acoustics section");
-    std::vector<std::string> names;
-    for (const world_sim::RobotSpec& r : team.robots) names.push_back(r.name);
-    acoustic = std::make_unique<audio_propagation::AcousticModel>(model, *team.acoustics, *options.decode_table, names);
-  }
+  const std::unique_ptr<audio_propagation::AcousticModel> acoustic =
+      audio_propagation::TeamAcousticModel(model, team, options.decode_table);
   audio_propagation::AudioChannel channel(
       model, std::vector<world_sim::Microphone>(n, MicrophoneFor(options.mode)), channel_options, acoustic.get());
 

@@ -100,21 +100,9 @@ Setup MakeSetup(Protocol& p) {
     for (int c = 0; c < p.configs; ++c)
       setup.configs.push_back(RandomConfiguration(setup.map, setup.map_file, p.body, p.placement, rng));
   }
-  if (p.channel == "acoustic") {
-    trial.decode_table = std::make_shared<const audio_propagation::DecodeTable>(audio_propagation::LoadDecodeTable(
-        p.table_file.empty() ? audio_propagation::ShippedDecodeTable(p.profile_name) : p.table_file, p.profile_name));
-    if (!p.acoustics_file.empty()) {
-      const world_sim::LoadedWorld source = world_sim::LoadWorldFile(p.acoustics_file, setup.map_file);
-      if (!source.config.acoustics) throw grid::InputError(p.acoustics_file, "acoustics", "expected an acoustics section");
-      for (world_sim::WorldConfig& c : setup.configs) c.acoustics = source.config.acoustics;
-    }
-    for (std::size_t c = 0; c < setup.configs.size(); ++c) {
-      if (!setup.configs[c].acoustics) {
-        throw grid::InputError(p.worlds.empty() ? "--acoustics" : p.worlds[c], "acoustics",
-                               "--channel acoustic needs an acoustics section (give --acoustics WORLD.yaml)");
-      }
-      world_sim::ValidateWorld(p.acoustics_file.empty() ? p.worlds[c] : p.acoustics_file, setup.configs[c], setup.map);
-    }
+  if (p.channel.acoustic()) {
+    trial.decode_table = audio_propagation::tools::LoadExperimentTable(p.channel);
+    audio_propagation::tools::GiveAcoustics(p.channel, setup.configs, p.worlds, setup.map, setup.map_file);
   }
   fs::create_directories(fs::path(p.out_dir) / "configs");
   for (int c = 0; c < p.configs; ++c) {
@@ -182,13 +170,7 @@ int Run(Protocol p, const BatchRun& batch) {
   const Setup setup = MakeSetup(p);
   audio_propagation::PropagationOptions audio;
   audio.max_range = p.hearing;
-  if (p.options.trial.decode_table) {
-    // The acoustic model judges every path: no hearing range unless one is asked for, and paths
-    // down to 30 dB under the quietest world's ambient noise.
-    if (!p.hearing_given) audio.max_range = 0.0;
-    for (const world_sim::WorldConfig& c : setup.configs)
-      audio.threshold_db = std::min(audio.threshold_db, audio_propagation::AcousticThresholdDb(*c.acoustics));
-  }
+  if (p.channel.acoustic()) audio_propagation::tools::UseAcousticPropagation(audio, setup.configs, p.hearing_given);
   const audio_propagation::PropagationModel model(setup.map, audio);
   std::vector<TrialRow> rows = ExperimentRows(p.configs, p.options);
   const std::vector<std::size_t> which = batch.Trials(rows.size());

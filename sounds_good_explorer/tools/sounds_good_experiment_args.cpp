@@ -2,7 +2,6 @@
 
 #include <sstream>
 
-#include "nava_modem/modem_profile.h"
 #include "package_data/package_data.h"
 
 namespace sounds_good_explorer::tools {
@@ -11,13 +10,13 @@ namespace {
 using multirobot_audio::tools::BatchRun;
 using multirobot_audio::tools::ToolArgs;
 
-const char* kUsage =
-    "sounds_good_experiment (--map MAP.yaml | --worlds W1.yaml,W2.yaml | --quick) [--out DIR]\n"
+const std::string kUsage =
+    std::string("sounds_good_experiment (--map MAP.yaml | --worlds W1.yaml,W2.yaml | --quick) [--out DIR]\n"
     "  [--configs 10] [--modes none,bidirectional,omni] [--trials 20] [--robots 5] [--jobs 20]\n"
     "  [--work 30] [--hearing 15] [--ir-range 1.5] [--camera-range 5] [--cap 20000] [--seed 1]\n"
     "  [--threads 0] [--chart-config 9] [--audio-weight 3] [--noise-std 0.3]\n"
     "  [--announce-period 2] [--announce-window 10] [--arrive-radius 0.6]\n"
-    "  [--channel threshold|acoustic] [--profile nava|room] [--table FILE] [--acoustics WORLD.yaml]\n"
+    "  ") + audio_propagation::tools::kExperimentChannelUsage + "\n"
     "  [--shard K/N] | --merge SHARD_DIR... [--out DIR]";
 
 std::vector<std::string> Split(const std::string& text) {
@@ -84,17 +83,7 @@ Protocol ParseProtocol(const ToolArgs& args) {
   explorer.task.announce_window = args.Double("--announce-window", explorer.task.announce_window, 0.0, 1e6);
   explorer.task.arrive_radius = args.Double("--arrive-radius", explorer.task.arrive_radius, 0.01, 100.0);
   p.out_dir = args.String("--out", "sounds_good_results");
-  p.channel = args.String("--channel", "threshold");
-  if (p.channel != "threshold" && p.channel != "acoustic") args.Fail("--channel: expected threshold or acoustic, got '" + p.channel + "'");
-  p.profile_name = args.String("--profile", "nava");
-  const auto profile = nava_modem::ParseProfile(p.profile_name);
-  if (!profile) args.Fail(std::string("--profile: expected ") + nava_modem::kProfileNames + ", got '" + p.profile_name + "'");
-  nava_modem::UseProfileTiming(*profile, {}, trial.channel.mac);
-  p.table_file = args.String("--table", "");
-  p.acoustics_file = args.String("--acoustics", "");
-  if (p.channel != "acoustic" && (!p.table_file.empty() || !p.acoustics_file.empty())) {
-    args.Fail(std::string(p.table_file.empty() ? "--acoustics" : "--table") + " is for --channel acoustic");
-  }
+  p.channel = audio_propagation::tools::ParseExperimentChannel(args, trial.channel);
   args.CheckAllUsed();
   p.placement.source = explorer.task.source;
   p.placement.sink = explorer.task.sink;
@@ -102,7 +91,7 @@ Protocol ParseProtocol(const ToolArgs& args) {
 }
 
 ExperimentCommand ParseExperimentArgs(const std::vector<std::string>& words) {
-  const ToolArgs args("sounds_good_experiment", kUsage, words, {"--quick", "--merge"});
+  const ToolArgs args("sounds_good_experiment", kUsage, words, {"--quick", "--merge", audio_propagation::tools::kLinkFateSwitch});
   return multirobot_audio::tools::ParseBatchCommand<Protocol>(
       args, {"--out", "--threads"}, [](const ToolArgs& a, const BatchRun&) { return ParseProtocol(a); });
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment_channel_args.h"
 #include "sounds_good_explorer/configurations.h"
 #include "sounds_good_explorer/experiment.h"
 #include "tool_args/shard.h"
@@ -25,7 +26,8 @@ struct Protocol {
   double hearing = 15.0;
   bool hearing_given = false;
   int chart_config = 9;
-  std::string out_dir, channel, profile_name, table_file, acoustics_file;
+  std::string out_dir;
+  audio_propagation::tools::ExperimentChannel channel;
 };
 
 // The command: a run (`run`), or the merge of shards (the merge parses the shards' options with

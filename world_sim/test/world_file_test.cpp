@@ -131,7 +131,7 @@ TEST_F(WorldFileTest, ShippedWorldsLoad) {
   for (const char* name : {"office_world.yaml", "test_room_world.yaml", "test_room_audio_world.yaml",
                            "mutex_world.yaml", "sounds_good_world.yaml", "test_room_sounds_good_world.yaml",
                            "charging_world.yaml", "test_charging_world.yaml", "hospital_world.yaml",
-                           "test_room_acoustic_world.yaml"}) {
+                           "test_room_acoustic_world.yaml", "open_floor_world.yaml"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name << " is not in " << PROJECT_MAPS_DIR;
   }
   // The thesis's map is not shipped (scripts put it in maps/thesis/); where it is missing, the

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -30,6 +31,7 @@
 #include "audio_propagation/decode_table.h"
 #include "audio_propagation/propagation_model.h"
 #include "world_sim/acoustics.h"
+#include "world_sim/world_config.h"
 
 namespace audio_propagation {
 
@@ -50,6 +52,10 @@ LinkLevels LinkBudget(double source_db, double d0, double length, int corners, d
 // 30 dB under the ambient noise, so that the model, not the threshold, judges every link a
 // receiver could decode (the room profile still decodes some 25 dB under the noise).
 double AcousticThresholdDb(const world_sim::Acoustics& acoustics);
+// `options` as the acoustic model judges under: paths down to AcousticThresholdDb (or the
+// threshold already set, if lower) and, unless `keep_range`, no hearing range.
+void UseAcousticPropagation(PropagationOptions& options, const world_sim::Acoustics& acoustics,
+                            bool keep_range = false);
 
 // One disturbance at a listener: its kind and power (linear, 10^(dB / 10)).
 struct Disturbance {
@@ -140,5 +146,12 @@ class AcousticModel {
   static constexpr std::size_t kMemoCells = 8192;
   mutable VisibilityMemo memo_{kMemoCells};
 };
+
+// A team's acoustic model in `world` (its acoustics section, its robots' names) with `table`;
+// none without a table (the threshold channel). Throws std::invalid_argument when the world has
+// no acoustics section, and what AcousticModel throws.
+std::unique_ptr<AcousticModel> TeamAcousticModel(const PropagationModel& propagation,
+                                                 const world_sim::WorldConfig& world,
+                                                 const std::shared_ptr<const DecodeTable>& table);
 
 }  // namespace audio_propagation

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/propagation_model.h"
 #include "charging_demo/charging_controller.h"
@@ -20,6 +22,9 @@ struct ChargingTrialOptions {
   ControllerOptions controller;   // charger ids and seed are set per robot
   local_mutex::MutexOptions mutex;  // robot ids (index + 1) and seeds are set per robot
   audio_propagation::ChannelOptions channel;
+  // Set: the acoustic channel model with this decode table and the world's acoustics section
+  // (which it must have); unset: the thesis's hearing threshold.
+  std::shared_ptr<const audio_propagation::DecodeTable> decode_table;
   world_sim::WorldOptions world;
   std::uint32_t seed = 1;         // the world's, the channel's and (offset) each robot's
 };

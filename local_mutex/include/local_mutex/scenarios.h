@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -10,8 +11,13 @@
 
 namespace local_mutex {
 
-// An empty floor `size` m square (0.1 m cells) with the thesis-like default hearing model.
-std::unique_ptr<audio_propagation::PropagationModel> OpenFloor(double size = 20.0);
+// An empty floor `size` m square (0.1 m cells), its corner at the origin.
+grid::OccupancyMap OpenFloorMap(double size = 20.0);
+// Its propagation model, one thread, with the thesis-like default hearing model; with
+// `acoustics`, as the acoustic channel model needs it (no hearing range, paths down to 30 dB
+// under the ambient noise).
+std::unique_ptr<audio_propagation::PropagationModel> OpenFloor(
+    double size = 20.0, const std::optional<world_sim::Acoustics>& acoustics = std::nullopt);
 
 // The thesis's Figure 7.5(a): robot 11 alone wants the lock at 3.3 s and holds it until 99.8 s.
 std::vector<TeamRobot> SingleScenario(const Eigen::Vector2d& centre);

@@ -3,11 +3,13 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/propagation_model.h"
 #include "local_mutex/local_mutex.h"
@@ -37,12 +39,18 @@ struct TeamSimOptions {
   // (not even a carrier: outside the thesis's assumptions, and what can break safety).
   double noise = 0.0;
   double loss = 0.0;
+  // Set, with `acoustics`: the acoustic channel model (acoustic_model.h) with this decode table
+  // and these acoustics on the trials' floor; unset: the thesis's hearing threshold. Robot k is
+  // named robot_k for noise sources that ride on a robot.
+  std::shared_ptr<const audio_propagation::DecodeTable> decode_table;
+  std::optional<world_sim::Acoustics> acoustics;
   bool record = false;  // keep every lock event, for timelines
   std::uint32_t seed = 1;
 };
 
 // Throws std::invalid_argument naming the field, its value and what was expected: noise and
-// loss outside [0, 1], a step not above 0 s, impossible channel options.
+// loss outside [0, 1], a step not above 0 s, impossible channel options, a decode table without
+// acoustics or acoustics without a decode table.
 void ValidateTeamSimOptions(const TeamSimOptions& options);
 
 // A lock event of one robot; for a packet heard, `from` is the robot that sent it.
@@ -63,7 +71,10 @@ struct Grant {
 // A team of robots running the lock over the simulated audio channel of audio_propagation
 // (the real link's CSMA-CA MAC, travel times, collisions, half duplex), each robot following
 // its list of demands. Watches safety: a robot taking the lock while another robot within
-// hearing range holds it is a violation. Deterministic for a seed.
+// hearing range holds it is a violation; with the acoustic model, within hearing range means
+// that either robot's packets reach the other at least half the time (the model's prediction
+// under the noise at the start), the range at which the thesis's lock is meant to hold.
+// Deterministic for a seed.
 class TeamSim {
  public:
   // Throws std::invalid_argument for impossible options (ValidateTeamSimOptions) or robots (an
@@ -104,6 +115,7 @@ class TeamSim {
 
   std::vector<TeamRobot> robots_;
   TeamSimOptions options_;
+  std::unique_ptr<audio_propagation::AcousticModel> acoustic_;  // before channel_, which refers to it
   audio_propagation::AudioChannel channel_;
   std::vector<std::unique_ptr<LocalMutex>> mutexes_;
   std::vector<std::vector<bool>> in_range_;
