@@ -38,6 +38,7 @@ const std::vector<std::function<void(const Words&)>> kParsers = {
     [](const Words& w) { world_sim::tools::ParseWorldSimBenchArgs(w); },            // 11
     [](const Words& w) { audio_propagation::tools::ParseDecodeTableBenchArgs(w); },  // 12
     [](const Words& w) { audio_propagation::tools::ParseRangingBenchArgs(w); },     // 13
+    [](const Words& w) { audio_propagation::tools::ParsePredictArgs(w); },          // 14
 };
 
 }  // namespace

@@ -53,6 +53,21 @@ void RequireRoom(const world_sim::RoomAcoustics& room, const std::string& where)
 
 }  // namespace
 
+DecodeOutcome PredictOutcome(const DecodeTable& table, Interference kind, double snr_db, double drr_db, double rt60) {
+  DecodeOutcome o = table.Lookup(kind, snr_db, drr_db, rt60);
+  // Below the quietest SNR measured the table holds its last figures; the receiver does not:
+  // whatever it still made of a packet fades out over kFadeBelowTableDb.
+  const double below = table.snr_db.front() - snr_db;
+  if (below > 0.0) {
+    const double keep = std::max(0.0, 1.0 - below / kFadeBelowTableDb);
+    o.packet *= keep;
+    o.zero_byte *= keep;
+    o.one_byte *= keep;
+    o.bad_crc *= keep;
+  }
+  return o;
+}
+
 double AcousticThresholdDb(const world_sim::Acoustics& acoustics) { return acoustics.ambient_db - 30.0; }
 
 void UseAcousticPropagation(PropagationOptions& options, const world_sim::Acoustics& acoustics, bool keep_range) {
@@ -229,17 +244,7 @@ LinkPrediction AcousticModel::Predict(const SoundPath& path, const Eigen::Vector
   noise = std::max(noise, 1e-30);
   p.noise_db = Db(noise);
   p.snr_db = p.signal.total_db - p.noise_db;
-  p.outcome = table_.Lookup(p.kind, p.snr_db, p.signal.drr_db, p.signal.rt60);
-  // Below the quietest SNR measured the table holds its last figures; the receiver does not:
-  // whatever it still made of a packet fades out over kFadeDb.
-  const double below = table_.snr_db.front() - p.snr_db;
-  if (below > 0.0) {
-    const double keep = std::max(0.0, 1.0 - below / kFadeDb);
-    p.outcome.packet *= keep;
-    p.outcome.zero_byte *= keep;
-    p.outcome.one_byte *= keep;
-    p.outcome.bad_crc *= keep;
-  }
+  p.outcome = PredictOutcome(table_, p.kind, p.snr_db, p.signal.drr_db, p.signal.rt60);
   p.probability = p.outcome.packet;
   return p;
 }

@@ -87,6 +87,23 @@ SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words) {
   return s;
 }
 
+PredictArgs ParsePredictArgs(const std::vector<std::string>& words) {
+  const ToolArgs args("audio_channel_predict",
+                      "audio_channel_predict --profile nava|room --rir FILE.wav [--channel K] "
+                      "--noise white|pink|speech|FILE.wav --snr-db X [--table FILE]",
+                      words);
+  PredictArgs p;
+  p.profile = Profile(args, args.Required("--profile"));
+  p.rir_file = args.Required("--rir");
+  if (!args.String("--channel", "").empty()) p.channel = static_cast<int>(args.Int("--channel", 0, 0, 1023));
+  p.noise = args.Required("--noise");
+  p.snr_db = args.Double("--snr-db", 0.0, -100.0, 100.0);
+  if (args.String("--snr-db", "").empty()) args.Fail("--snr-db is required");
+  p.table_file = args.String("--table", "");
+  args.CheckAllUsed();
+  return p;
+}
+
 ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   const ToolArgs args(
       "audio_channel_validate",

@@ -72,4 +72,15 @@ struct ValidateArgs {
 };
 ValidateArgs ParseValidateArgs(const std::vector<std::string>& words);
 
+// audio_channel_predict: one link's prediction through a measured response
+// (tools/audio_channel_predict.cpp).
+struct PredictArgs {
+  nava_modem::Profile profile = nava_modem::Profile::kNava;
+  std::string rir_file, table_file;
+  std::optional<int> channel;  // of the response file (none: it must have one)
+  std::string noise;           // white, pink, speech, or a recording's file
+  double snr_db = 0.0;
+};
+PredictArgs ParsePredictArgs(const std::vector<std::string>& words);
+
 }  // namespace audio_propagation::tools

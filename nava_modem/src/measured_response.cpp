@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "nava_modem/biquad.h"
@@ -91,10 +92,14 @@ ResponseMeasures MeasureResponse(const std::vector<float>& response, double samp
   if (!(largest > 0.0)) throw std::invalid_argument("impulse response: silent in 600-5400 Hz");
   const std::size_t half = static_cast<std::size_t>(std::lround(kDirectHalfWidthS * sample_rate));
   const std::size_t direct_end = std::min(band.size(), m.peak + half + 1);
-  double direct = 0.0, after = 0.0;
-  for (std::size_t k = m.peak >= half ? m.peak - half : 0; k < direct_end; ++k) direct += band[k] * band[k];
+  const std::size_t direct_start = m.peak >= half ? m.peak - half : 0;
+  double before = 0.0, direct = 0.0, after = 0.0;
+  for (std::size_t k = 0; k < direct_start; ++k) before += band[k] * band[k];
+  for (std::size_t k = direct_start; k < direct_end; ++k) direct += band[k] * band[k];
   for (std::size_t k = direct_end; k < band.size(); ++k) after += band[k] * band[k];
   m.drr_db = after > 0.0 ? 10.0 * std::log10(direct / after) : std::numeric_limits<double>::infinity();
+  m.before_db = before > 0.0 ? 10.0 * std::log10(before / direct) : -std::numeric_limits<double>::infinity();
+  m.after_s = static_cast<double>(band.size() - direct_end) / sample_rate;
   // Schroeder's backward integral from the direct sound on.
   std::vector<double> curve(band.size() - m.peak);
   double sum = 0.0;
@@ -107,6 +112,23 @@ ResponseMeasures MeasureResponse(const std::vector<float>& response, double samp
   m.rt60_s = DecayTime(curve, sample_rate, 5.0, 35.0);
   if (!std::isfinite(m.rt60_s)) m.rt60_s = DecayTime(curve, sample_rate, 5.0, 25.0);
   return m;
+}
+
+std::optional<std::string> ResponseProblem(const ResponseMeasures& m) {
+  char text[200];
+  if (m.after_s < kMinTailS) {
+    std::snprintf(text, sizeof text, "too short: %.1f ms after its direct sound, expected at least %.0f ms",
+                  m.after_s * 1e3, kMinTailS * 1e3);
+    return std::string(text);
+  }
+  if (m.before_db >= kMaxBeforeDb) {
+    std::snprintf(text, sizeof text,
+                  "no direct peak: %.1f dB more sound before its loudest peak than within it, expected under %.0f "
+                  "(a room's response starts near its direct sound)", m.before_db, kMaxBeforeDb);
+    return std::string(text);
+  }
+  if (!std::isfinite(m.rt60_s)) return std::string("its decay does not fall 25 dB in 600-5400 Hz: no RT60 to read");
+  return std::nullopt;
 }
 
 }  // namespace nava_modem

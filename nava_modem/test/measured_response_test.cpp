@@ -64,6 +64,30 @@ TEST(MeasuredResponseTest, AResponseWithNothingAfterItsDirectSoundHasAnInfiniteD
   EXPECT_THROW(MeasureResponse(h, 8000.0), std::invalid_argument);
 }
 
+TEST(MeasuredResponseTest, ARoomsResponseServesAndShortOrNoisyOnesAreToldWhy) {
+  const double rate = 48000.0;
+  const ResponseMeasures room = MeasureResponse(KnownResponse(0.5, 0.0, rate, 960, 4), rate);
+  EXPECT_LT(room.before_db, -40.0);  // only the band-pass's ringing before the direct sound
+  EXPECT_NEAR(room.after_s, 0.75 - 0.0025, 0.001);
+  EXPECT_FALSE(ResponseProblem(room).has_value());
+  // Cut 20 ms after its direct sound.
+  std::vector<float> cut = KnownResponse(0.5, 0.0, rate, 960, 4);
+  cut.resize(960 + 960);
+  const auto short_one = ResponseProblem(MeasureResponse(cut, rate));
+  ASSERT_TRUE(short_one.has_value());
+  EXPECT_NE(short_one->find("too short"), std::string::npos) << *short_one;
+  // Noise: its largest sample has far more sound before it than within 2.5 ms of it.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::vector<float> noise(48000);
+  for (float& v : noise) v = static_cast<float>(gauss(rng));
+  const ResponseMeasures heard = MeasureResponse(noise, rate);
+  const auto no_peak = ResponseProblem(heard);
+  ASSERT_TRUE(no_peak.has_value());
+  EXPECT_NE(no_peak->find("no direct peak"), std::string::npos) << *no_peak;
+  EXPECT_GT(heard.before_db, kMaxBeforeDb);
+}
+
 TEST(MeasuredResponseTest, LoadsTheChannelAskedForResampledWithItsDelayKept) {
   const double rate = 44100.0;
   const std::vector<float> left = KnownResponse(0.5, 3.0, rate, 441, 1);  // direct sound at 10 ms

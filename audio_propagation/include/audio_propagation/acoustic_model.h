@@ -48,6 +48,12 @@ struct LinkLevels {
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
                       const world_sim::RoomAcoustics& room);
 
+// What the table says of a packet heard at `snr_db` against a disturbance of `kind`, through a
+// room of `drr_db` and `rt60` s. Below the table's quietest SNR its figures fade out over
+// kFadeBelowTableDb, as a receiver's do.
+constexpr double kFadeBelowTableDb = 10.0;
+DecodeOutcome PredictOutcome(const DecodeTable& table, Interference kind, double snr_db, double drr_db, double rt60);
+
 // The quietest direct level worth a path with the acoustic model (propagation threshold_db):
 // 30 dB under the ambient noise, so that the model, not the threshold, judges every link a
 // receiver could decode (the room profile still decodes some 25 dB under the noise).
@@ -133,7 +139,6 @@ class AcousticModel {
   std::vector<std::string> robot_names_;
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
   std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band
-  static constexpr double kFadeDb = 10.0;  // below the table's lowest SNR, delivery fades out over this
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   std::optional<Eigen::Vector2d> SourcePosition(std::size_t k, const std::vector<Eigen::Vector2d>& robots) const;

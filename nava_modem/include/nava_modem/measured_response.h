@@ -42,6 +42,9 @@ struct ResponseMeasures {
   // Energy within kDirectHalfWidthS of the peak over the energy after it, dB (+inf with
   // nothing after it).
   double drr_db = 0.0;
+  // Energy before the direct sound over the energy within it, dB (-inf with nothing before).
+  double before_db = 0.0;
+  double after_s = 0.0;  // s of response after the direct sound
 };
 
 // Both figures in 600-5400 Hz, the definitions of ../shared/realrooms/README.md: the response
@@ -49,5 +52,17 @@ struct ResponseMeasures {
 // Throws std::invalid_argument for an empty or silent response or a sample rate not above
 // 2 x kResponseBandHighHz.
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate);
+
+// The least a response must go on after its direct sound to give its figures.
+constexpr double kMinTailS = 0.05;
+// The most sound a response may hold before its direct sound, over the direct sound's, dB. A
+// clap's own sound can come as loud as its peak (the seminar room's dummy head: +0.2 dB); a
+// noise's largest sample has some 20 dB more before it.
+constexpr double kMaxBeforeDb = 6.0;
+
+// Why `m`'s response cannot stand for a room, in words to follow its file's name, or nothing:
+// too short (under kMinTailS after the direct sound), no direct peak (kMaxBeforeDb more sound
+// before the loudest peak than within it: noise, not a response), or a decay that gives no RT60.
+std::optional<std::string> ResponseProblem(const ResponseMeasures& m);
 
 }  // namespace nava_modem
