@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "nava_modem/modem_options.h"
+#include "nava_modem/recorded_noise.h"
+#include "nava_modem/wav_file.h"
 
 namespace audio_propagation {
 namespace {
@@ -39,6 +41,21 @@ double WhineHarm(double hz, double low, double high, const std::vector<double>& 
     harm += weights[h] * closeness;
   }
   return harm / all;
+}
+
+// A recorded noise source's Disturbance::listened for `table`'s profile, at the rate the tables
+// are rendered at.
+double ListenedWeight(const world_sim::NoiseSourceSpec& source, const DecodeTable& table) {
+  const auto profile = nava_modem::ParseProfile(table.profile);
+  if (!profile) throw std::invalid_argument("acoustic model: the table's profile '" + table.profile + "' is unknown");
+  try {
+    const nava_modem::Audio audio = nava_modem::ReadAudioFile(source.file);
+    const nava_modem::RecordedNoise noise(audio.samples, audio.sample_rate);
+    return std::pow(10.0, -nava_modem::WhiteEquivalentOffsetDb(noise, nava_modem::ListeningBands(*profile),
+                                                               kTableSampleRate) / 10.0);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument("acoustic model: noise source '" + source.name + "' (" + source.file + "): " + e.what());
+  }
 }
 
 void RequireRoom(const world_sim::RoomAcoustics& room, const std::string& where) {
@@ -105,6 +122,7 @@ AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Aco
     tones_ = {modem.mark_hz, modem.space_hz};
   }
   for (const world_sim::NoiseSourceSpec& s : acoustics_.noise_sources) {
+    source_listened_.push_back(s.kind == world_sim::NoiseKind::kRecording ? ListenedWeight(s, table_) : 1.0);
     if (s.robot.empty()) {
       if (!propagation_.map().IsFreeAt({s.x, s.y})) {
         throw std::invalid_argument("acoustic model: noise source '" + s.name + "' at (" + std::to_string(s.x) +
@@ -142,7 +160,7 @@ std::vector<Disturbance> AcousticModel::NoiseDuring(const Eigen::Vector2d& at, d
     const double sounding = world_sim::SoundingFraction(s, t0, t1);
     if (sounding <= 0.0) continue;
     const std::optional<double> level = SourceLevelDb(k, at, robots);
-    if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency});
+    if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency, source_listened_[k]});
   }
   return out;
 }
@@ -219,7 +237,7 @@ void AcousticModel::PreparePaths(const std::vector<Eigen::Vector2d>& listeners,
 }
 
 double AcousticModel::EffectivePower(const Disturbance& d) const {
-  if (d.kind != Interference::kWhine) return d.power;
+  if (d.kind != Interference::kWhine) return d.power * d.listened;
   const double reference = WhineHarm(table_.whine_hz, table_.band_low_hz, table_.band_high_hz, tones_);
   const double here = WhineHarm(d.frequency, table_.band_low_hz, table_.band_high_hz, tones_);
   // Out of band a whine still leaks a little through the receiver's filters (-20 dB).

@@ -159,6 +159,8 @@ Interference FromNoiseKind(world_sim::NoiseKind kind) {
     case world_sim::NoiseKind::kPink: return Interference::kPink;
     case world_sim::NoiseKind::kSpeech: return Interference::kSpeech;
     case world_sim::NoiseKind::kWhine: return Interference::kWhine;
+    // Weighed as white noise by where its power lies (Disturbance::listened).
+    case world_sim::NoiseKind::kRecording: return Interference::kWhite;
   }
   return Interference::kPink;
 }

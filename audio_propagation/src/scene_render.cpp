@@ -220,6 +220,18 @@ SceneRenderer::SceneRenderer(const AcousticModel& model, std::vector<std::string
   double sum = 0.0;
   for (float v : options_.speech) sum += static_cast<double>(v) * v;
   speech_power_ = options_.speech.empty() ? 0.0 : sum / static_cast<double>(options_.speech.size());
+  for (const world_sim::NoiseSourceSpec& s : model_.acoustics().noise_sources) {
+    recordings_.emplace_back();
+    if (s.kind != world_sim::NoiseKind::kRecording) continue;
+    try {
+      recordings_.back() = nava_modem::ReadAudioAt(s.file, options_.sample_rate);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("scene renderer: noise source '" + s.name + "' (" + s.file + "): " + e.what());
+    }
+    if (recordings_.back().empty()) {
+      throw std::invalid_argument("scene renderer: noise source '" + s.name + "' (" + s.file + "): no samples");
+    }
+  }
 }
 
 std::vector<Eigen::Vector2d> SceneRenderer::Positions(const Scene& scene, const std::vector<int>& scene_robot,
@@ -232,7 +244,7 @@ std::vector<Eigen::Vector2d> SceneRenderer::Positions(const Scene& scene, const 
 }
 
 std::vector<double> SceneRenderer::Waveform(world_sim::NoiseKind kind, double frequency, std::size_t n,
-                                            std::uint32_t seed) const {
+                                            std::uint32_t seed, const std::vector<float>& recording) const {
   const double rate = options_.sample_rate;
   std::vector<double> x;
   switch (kind) {
@@ -253,6 +265,18 @@ std::vector<double> SceneRenderer::Waveform(world_sim::NoiseKind kind, double fr
       const double g = 1.0 / std::sqrt(speech_power_);
       x.resize(n);
       for (std::size_t i = 0; i < n; ++i) x[i] = g * options_.speech[(shift + i) % m];
+      return x;
+    }
+    case world_sim::NoiseKind::kRecording: {
+      if (recording.empty()) throw std::invalid_argument("scene renderer: a recorded noise with no recording");
+      // Played in a loop from a place of the seed's, at unit power over the loop.
+      const std::size_t m = recording.size(), shift = seed % m;
+      x.resize(n);
+      for (std::size_t i = 0; i < n; ++i) x[i] = recording[(shift + i) % m];
+      double p = 0.0;
+      for (float v : recording) p += static_cast<double>(v) * v / static_cast<double>(m);
+      if (!(p > 0.0)) throw std::invalid_argument("scene renderer: a recorded noise that is silent");
+      for (double& v : x) v /= std::sqrt(p);
       return x;
     }
   }
@@ -326,7 +350,8 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
         level[j] = db ? *db : std::numeric_limits<double>::quiet_NaN();
       }
       // The same source sounds the same wherever it is heard: its waveform's seed is its own.
-      const std::vector<double> wave = Waveform(s.kind, s.frequency, n, SeedOf(options_.seed, kSourceSeeds, static_cast<std::uint32_t>(k)));
+      const std::vector<double> wave =
+          Waveform(s.kind, s.frequency, n, SeedOf(options_.seed, kSourceSeeds, static_cast<std::uint32_t>(k)), recordings_[k]);
       for (std::size_t i = 0; i < n; ++i) {
         const double t = scene.start + static_cast<double>(i) / rate;
         if (!world_sim::Sounding(s, t)) continue;

@@ -12,6 +12,7 @@
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/delivery_map.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/wav_file.h"
 
 namespace audio_propagation {
 namespace {
@@ -95,6 +96,52 @@ TEST(TeamAcousticModel, NoneWithoutATableAndAWorldWithoutAcousticsIsRefused) {
   EXPECT_EQ(model->table().profile, "nava");
   world.acoustics->noise_sources.back().robot = "c";
   EXPECT_THROW(TeamAcousticModel(strip.model, world, table), std::invalid_argument);
+}
+
+// A recording of `hz` (a steady tone, 1 s at 48 kHz) written for a recorded noise source.
+std::string ToneFile(const std::string& name, double hz) {
+  std::vector<float> x(48000);
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = static_cast<float>(0.3 * std::sin(2.0 * std::acos(-1.0) * hz * k / 48000.0));
+  const std::string path = ::testing::TempDir() + "/acoustic_model_" + name + ".wav";
+  nava_modem::WriteWavFile(path, x, 48000.0);
+  return path;
+}
+
+TEST(RecordedNoise, ARecordingCountsAsWhiteNoiseWithItsPowerWhereTheReceiverListens) {
+  const Strip strip;
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = -50.0;  // only the source is heard
+  world_sim::NoiseSourceSpec source;
+  source.name = "source";
+  source.x = 20.0, source.y = 2.5;
+  source.level_db = 60.0;
+  source.kind = world_sim::NoiseKind::kWhite;
+  const auto snr = [&](const world_sim::NoiseSourceSpec& s) {
+    world_sim::Acoustics with = a;
+    with.noise_sources = {s};
+    const AcousticModel model(strip.model, with, test::FlatTable("nava", 1.0), {});
+    const Eigen::Vector2d listener(10.0, 2.5);
+    return model.Predict(strip.Path(5.0, 10.0), listener, model.NoiseAt(listener, 0.0, {})).snr_db;
+  };
+  const double white = snr(source);
+  world_sim::NoiseSourceSpec recorded = source;
+  recorded.kind = world_sim::NoiseKind::kRecording;
+  // On nava's mark all its power is where nava listens: 600 of 24000 Hz, 16 dB worse than white.
+  recorded.file = ToneFile("mark", 2300.0);
+  EXPECT_NEAR(snr(recorded), white - 16.02, 0.2);
+  // Between the tones, next to nothing.
+  recorded.file = ToneFile("between", 3000.0);
+  EXPECT_GT(snr(recorded), white + 25.0);
+  // A recording that is none is refused, naming the source and the file.
+  recorded.file = ::testing::TempDir() + "/acoustic_model_missing.wav";
+  world_sim::Acoustics bad = a;
+  bad.noise_sources = {recorded};
+  try {
+    AcousticModel model(strip.model, bad, test::FlatTable("nava", 1.0), {});
+    ADD_FAILURE() << "a missing recording was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("noise source 'source' (" + recorded.file + ")"), std::string::npos) << e.what();
+  }
 }
 
 TEST(LinkBudget, DirectAndReverberantMeetAtTheCriticalDistanceAndCornersCostTheDirectSound) {

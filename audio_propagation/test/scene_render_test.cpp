@@ -313,6 +313,32 @@ TEST(SceneRender, ANoiseSourceSoundsAtItsLevelWhileOnAndNotWhileOff) {
   EXPECT_NEAR(r.hearings[0].model_noise_db, on, 1e-6);
 }
 
+TEST(SceneRender, ARecordedNoiseSourcePlaysItsRecordingAtItsLevel) {
+  // A recording of a 1 kHz tone: the listener's noise is that tone, at the source's level.
+  std::vector<float> tone(24000);
+  for (std::size_t k = 0; k < tone.size(); ++k) tone[k] = static_cast<float>(0.2 * std::sin(2.0 * std::acos(-1.0) * 1000.0 * k / 24000.0));
+  const std::string file = ::testing::TempDir() + "/scene_render_tone.wav";
+  nava_modem::WriteWavFile(file, tone, 24000.0);  // another rate: resampled to the scene's
+  world_sim::Acoustics a = Noisy();
+  a.ambient_db = -20.0;
+  a.noise_sources.resize(1);
+  a.noise_sources[0].kind = world_sim::NoiseKind::kRecording;
+  a.noise_sources[0].file = file;
+  const Hall hall(a);
+  const SceneRenderer renderer(*hall.model, hall.names, hall.resting, {});
+  const SceneRendering r = renderer.Render(hall.OnePacket(), {"b"});
+  const std::vector<float>& noise = r.listeners[0].noise;
+  const std::vector<Eigen::Vector2d> at = hall.resting;
+  EXPECT_NEAR(Db(MeanSquare(noise, 0, 48000)) + kReferenceDb, *hall.model->SourceLevelDb(0, at[1], at), 0.3);
+  // A tone: half a period (24 samples at 48 kHz) later it is its own negative.
+  double same = 0.0, half = 0.0;
+  for (std::size_t k = 1000; k < 40000; ++k) {
+    same += static_cast<double>(noise[k]) * noise[k];
+    half += static_cast<double>(noise[k]) * noise[k + 24];
+  }
+  EXPECT_LT(half / same, -0.95);
+}
+
 TEST(SceneRender, RobotsMoveLinearlyBetweenKeyframesAndTurnTheShortWay) {
   const SceneRobot r{"r", {{1.0, 0.0, 0.0, 3.0}, {3.0, 2.0, 4.0, -3.0}}};
   const grid::Pose2D before = PoseAt(r, 0.0), mid = PoseAt(r, 2.0), after = PoseAt(r, 9.0);

@@ -1,25 +1,59 @@
 #!/usr/bin/env bash
 # decode_table_bench end to end on its quick table: the table is written, does not depend on the
-# number of threads, and says how it was made; then the answers to bad input.
-#   table_tool_checks.sh DECODE_TABLE_BENCH
+# number of threads, and says how it was made; the model's calibration on two rooms written here
+# (a line per case, the bins, the worst bin); then the answers to bad input.
+#   table_tool_checks.sh DECODE_TABLE_BENCH [sanitized]
+# With "sanitized" (the AddressSanitizer build, several times slower) the table is measured once,
+# on two threads, and the calibration without its recorded noise: the thread-count comparison
+# and the noise are left to the main suite.
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
 tool=$1
+sanitized=${2:-}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 source "$(dirname "$0")/../../test/tool_checks.sh"
 
-for threads in 1 2; do
+thread_counts=(1 2)
+[ "$sanitized" = sanitized ] && thread_counts=(2)
+for threads in "${thread_counts[@]}"; do
   "$tool" --profile nava --quick --packets 2 --threads "$threads" --dir "$out" --out "$out/t$threads.yaml" \
     >"$out/summary$threads" 2>"$out/stderr" || { cat "$out/stderr"; fail "--profile nava --quick failed"; }
 done
-grep -q '^profile: nava$' "$out/t1.yaml" || fail "no profile line"
-grep -q '^command: "decode_table_bench --profile nava --quick --packets 2 --threads 1 ' "$out/t1.yaml" || fail "no command line"
-grep -q '^snr_db: \[-12, 0, 12\]$' "$out/t1.yaml" || fail "not the quick SNR axis"
-diff <(grep -v '^command:' "$out/t1.yaml") <(grep -v '^command:' "$out/t2.yaml") >/dev/null \
-  || fail "the table depends on the number of threads"
-grep -q '^packet ' "$out/summary1" || { cat "$out/summary1"; fail "summary without the packet kind"; }
-grep -q 'CPU on 1 threads' "$out/summary1" || { cat "$out/summary1"; fail "summary without the CPU time"; }
+t=${thread_counts[0]}
+grep -q '^profile: nava$' "$out/t$t.yaml" || fail "no profile line"
+grep -q "^command: \"decode_table_bench --profile nava --quick --packets 2 --threads $t " "$out/t$t.yaml" || fail "no command line"
+grep -q '^snr_db: \[-12, 0, 12\]$' "$out/t$t.yaml" || fail "not the quick SNR axis"
+if [ "$sanitized" != sanitized ]; then
+  diff <(grep -v '^command:' "$out/t1.yaml") <(grep -v '^command:' "$out/t2.yaml") >/dev/null \
+    || fail "the table depends on the number of threads"
+fi
+grep -q '^packet ' "$out/summary$t" || { cat "$out/summary$t"; fail "summary without the packet kind"; }
+grep -q "CPU on $t threads" "$out/summary$t" || { cat "$out/summary$t"; fail "summary without the CPU time"; }
+
+# Calibration: the room profile through a dry and a reverberant room, at -25 and +20 dB, in white
+# noise and in a recorded tone; a tone on nava's mark for nava.
+mkdir -p "$out/rooms"
+wav() { /usr/bin/python3 "$(dirname "$0")/../../test/make_wav.py" "$@" || fail "could not write $1"; }
+wav "$out/rooms/dry.wav" room 0.3 6
+wav "$out/rooms/hall.wav" room 1.2 -6
+wav "$out/tone.wav" tone 2300
+noise=(--noise-file "$out/tone.wav")
+cases=8
+[ "$sanitized" = sanitized ] && noise=() && cases=4
+"$tool" --profile room --calibrate --rir-dir "$out/rooms" "${noise[@]}" --packets 2 --snr-db -25,20 \
+  --dir "$out" >"$out/calibration" 2>"$out/stderr" || { cat "$out/stderr"; fail "--calibrate failed"; }
+cat "$out/calibration"
+[ "$(grep -c '^dry.wav \|^hall.wav ' "$out/calibration")" -eq "$cases" ] || fail "expected 2 rooms x $((cases / 4)) noises x 2 SNRs"
+grep -Eq '^dry.wav +\+[0-9.]+ +0\.[23][0-9] +white +\+20 +[0-9]+% +100%$' "$out/calibration" \
+  || fail "the room profile should decode every packet through a dry room at +20 dB"
+grep -Eq '^calibration: worst bin [0-9.]+ points apart' "$out/calibration" || fail "no calibration line"
+expect_error "--calibrate: expected --rir-dir DIR" --profile room --calibrate
+expect_error "--rir-dir, --noise-file and --table go with --calibrate" --profile room --rir-dir "$out/rooms"
+expect_error "--calibrate measures no table: drop --quick and --out" --profile room --calibrate --rir-dir "$out/rooms" --quick
+expect_error "--noise-file $out/none.wav" --profile room --calibrate --rir-dir "$out/rooms" --noise-file "$out/none.wav"
+wav "$out/rooms/noise.wav" noise
+expect_error "noise.wav: no direct peak" --profile room --calibrate --rir-dir "$out/rooms"
 
 expect_error "--profile: expected nava or room, got fsk" --profile fsk --quick
 expect_error "--profile is required" --quick

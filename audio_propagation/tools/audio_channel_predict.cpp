@@ -36,8 +36,8 @@ constexpr const char* kProgram = "audio_channel_predict";
 int Run(const audio_propagation::tools::PredictArgs& a) {
   using audio_propagation::tools::Fail;
   const audio_propagation::DecodeTable table = audio_propagation::tools::LoadTable(kProgram, a.profile, a.table_file);
-  // The tables are rendered at 48 kHz; the response is read at that rate.
-  constexpr double kRate = 48000.0;
+  // The response is read at the rate the tables were rendered at.
+  constexpr double kRate = audio_propagation::kTableSampleRate;
   nava_modem::ResponseMeasures room;
   try {
     room = nava_modem::MeasureResponse(nava_modem::LoadImpulseResponse(a.rir_file, a.channel, kRate), kRate);

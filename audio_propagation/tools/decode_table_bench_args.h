@@ -5,6 +5,8 @@
 //
 //   decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2]
 //                      [--seed 1] [--dir DIR] [--snr-db LIST]
+//   decode_table_bench --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav]
+//                      [--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR]
 #include <string>
 #include <vector>
 
@@ -20,6 +22,10 @@ struct DecodeTableRequest {
   unsigned seed = 1;
   std::string out, dir;
   std::vector<double> snr_db;  // --snr-db; empty: the default axis
+  // --calibrate: the model held against the real receiver through measured rooms
+  // (model_calibration.h) instead of a table measured.
+  bool calibrate = false;
+  std::string rir_dir, noise_file, table_file;
   std::string command;         // how the table was made: the whole command line
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };

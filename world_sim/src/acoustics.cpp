@@ -10,6 +10,7 @@ std::optional<NoiseKind> ParseNoiseKind(const std::string& name) {
   if (name == "pink") return NoiseKind::kPink;
   if (name == "speech") return NoiseKind::kSpeech;
   if (name == "whine") return NoiseKind::kWhine;
+  if (name == "recording") return NoiseKind::kRecording;
   return std::nullopt;
 }
 
@@ -19,6 +20,7 @@ const char* NoiseKindName(NoiseKind kind) {
     case NoiseKind::kPink: return "pink";
     case NoiseKind::kSpeech: return "speech";
     case NoiseKind::kWhine: return "whine";
+    case NoiseKind::kRecording: return "recording";
   }
   return "?";
 }

@@ -98,7 +98,8 @@ NoiseKind ReadNoiseKind(const YamlFields& f, const std::string& key, NoiseKind f
   return *kind;
 }
 
-std::optional<Acoustics> ParseAcoustics(const YamlFields& root) {
+// `root` is the world file's, whose folder a recording's relative path starts from.
+std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::string& path) {
   if (!root.Has("acoustics")) return std::nullopt;
   const YamlFields f = root.Child("acoustics");
   f.ExpectOnlyKeys({"rt60", "volume", "critical_distance", "ambient_db", "ambient_kind", "corner_loss_db",
@@ -107,7 +108,9 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root) {
   a.room = ParseRoom(f, a.room);
   a.ambient_db = Bounded(f, "ambient_db", a.ambient_db, -50.0, 150.0, false, "a level in [-50, 150] dB");
   a.ambient_kind = ReadNoiseKind(f, "ambient_kind", a.ambient_kind);
-  if (a.ambient_kind == NoiseKind::kWhine) f.Fail("ambient_kind", "expected white, pink or speech; a whine needs a source");
+  if (a.ambient_kind == NoiseKind::kWhine || a.ambient_kind == NoiseKind::kRecording) {
+    f.Fail("ambient_kind", "expected white, pink or speech; a whine or a recording needs a source");
+  }
   a.corner_loss_db = Bounded(f, "corner_loss_db", a.corner_loss_db, 0.0, 60.0, false, "a loss in [0, 60] dB per corner");
   for (const YamlFields& r : f.Elements("regions")) {
     r.ExpectOnlyKeys({"name", "box", "rt60", "volume", "critical_distance"});
@@ -125,7 +128,7 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root) {
   }
   std::size_t k = 0;
   for (const YamlFields& n : f.Elements("noise_sources")) {
-    n.ExpectOnlyKeys({"name", "position", "robot", "level_db", "kind", "frequency", "duty", "period", "phase"});
+    n.ExpectOnlyKeys({"name", "position", "robot", "level_db", "kind", "frequency", "file", "duty", "period", "phase"});
     NoiseSourceSpec s;
     s.name = n.String("name", "noise_" + std::to_string(k++));
     if (n.Has("robot") == n.Has("position")) {
@@ -141,6 +144,16 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root) {
     s.kind = ReadNoiseKind(n, "kind", s.kind);
     s.frequency = Bounded(n, "frequency", 0.0, 0.0, 20000.0, false, "a frequency in [0, 20000] Hz");
     if (s.kind == NoiseKind::kWhine && s.frequency <= 0.0) n.Fail("frequency", "expected a whine's frequency above 0 Hz");
+    if ((s.kind == NoiseKind::kRecording) != n.Has("file")) {
+      n.Fail("file", s.kind == NoiseKind::kRecording ? "expected the recording's audio file"
+                                                     : "expected only with kind: recording");
+    }
+    if (n.Has("file")) {
+      std::filesystem::path file(n.String("file"));
+      if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
+      if (!std::filesystem::is_regular_file(file)) n.Fail("file", "no such file: " + file.string());
+      s.file = std::filesystem::absolute(file).lexically_normal().string();
+    }
     s.duty = Bounded(n, "duty", s.duty, 0.0, 1.0, true, "a duty cycle in (0, 1]");
     s.period = Bounded(n, "period", s.period, 0.0, kBig, true, "a period above 0 s");
     s.phase = Bounded(n, "phase", s.phase, -kBig, kBig, false, "a phase in s");
@@ -226,7 +239,7 @@ LoadedWorld LoadWorldFile(const std::string& path, const std::string& map_overri
   }
   config.seed = static_cast<std::uint32_t>(seed);
   config.model = ParseModel(root);
-  config.acoustics = ParseAcoustics(root);
+  config.acoustics = ParseAcoustics(root, path);
 
   for (const YamlFields& r : root.Elements("robots")) {
     r.ExpectOnlyKeys({"name", "pose", "microphone", "battery"});
@@ -330,7 +343,9 @@ void EmitAcoustics(YAML::Emitter& out, const Acoustics& a) {
       out << YAML::Key << "robot" << YAML::Value << s.robot;
     }
     out << YAML::Key << "level_db" << YAML::Value << s.level_db << YAML::Key << "kind" << YAML::Value
-        << NoiseKindName(s.kind) << YAML::Key << "frequency" << YAML::Value << s.frequency << YAML::Key << "duty"
+        << NoiseKindName(s.kind) << YAML::Key << "frequency" << YAML::Value << s.frequency;
+    if (s.kind == NoiseKind::kRecording) out << YAML::Key << "file" << YAML::Value << s.file;
+    out << YAML::Key << "duty"
         << YAML::Value << s.duty << YAML::Key << "period" << YAML::Value << s.period << YAML::Key << "phase"
         << YAML::Value << s.phase << YAML::EndMap;
   }

@@ -193,13 +193,40 @@ TEST_F(WorldFileTest, AcousticsLoadAndSaveBack) {
   EXPECT_FALSE(LoadWorldFile(Write("robots: [{name: a, pose: [1.0, 1.0, 0]}]\n")).config.acoustics.has_value());
 }
 
+TEST_F(WorldFileTest, ARecordedNoiseSourceNamesItsFileRelativeToTheWorld) {
+  std::ofstream(dir_ / "kitchen.wav") << "not read here: the acoustic model and the renderer read it";
+  const LoadedWorld w = LoadWorldFile(Write(
+      "robots: [{name: a, pose: [1.0, 1.0, 0]}]\n"
+      "acoustics:\n"
+      "  rt60: 0.5\n"
+      "  volume: 60\n"
+      "  noise_sources: [{name: kitchen, position: [1.0, 3.0], kind: recording, file: kitchen.wav, level_db: 60}]\n"));
+  const NoiseSourceSpec& s = w.config.acoustics->noise_sources.at(0);
+  EXPECT_EQ(s.kind, NoiseKind::kRecording);
+  EXPECT_EQ(fs::path(s.file), fs::absolute(dir_ / "kitchen.wav").lexically_normal());
+  // Saved elsewhere, the file stays the same (absolute) one.
+  fs::create_directories(dir_ / "elsewhere");
+  const std::string saved = (dir_ / "elsewhere" / "saved.yaml").string();
+  SaveWorldFile(saved, w.config);
+  EXPECT_EQ(LoadWorldFile(saved).config.acoustics->noise_sources.at(0).file, s.file);
+
+  const std::string robot = "robots: [{name: a, pose: [1.0, 1.0, 0]}]\nacoustics:\n  rt60: 0.5\n  volume: 60\n";
+  ExpectError(robot + "  noise_sources: [{position: [1.0, 3.0], kind: recording}]\n",
+              "acoustics.noise_sources[0].file: expected the recording's audio file");
+  ExpectError(robot + "  noise_sources: [{position: [1.0, 3.0], kind: recording, file: gone.wav}]\n",
+              "acoustics.noise_sources[0].file: no such file: " + (dir_ / "gone.wav").string());
+  ExpectError(robot + "  noise_sources: [{position: [1.0, 3.0], kind: pink, file: kitchen.wav}]\n",
+              "acoustics.noise_sources[0].file: expected only with kind: recording");
+  ExpectError(robot + "  ambient_kind: recording\n", "acoustics.ambient_kind: expected white, pink or speech");
+}
+
 TEST_F(WorldFileTest, BadAcoustics) {
   const std::string robot = "robots: [{name: a, pose: [1.0, 1.0, 0]}]\n";
   ExpectError(robot + "acoustics: {rt60: 0, volume: 50}\n", "acoustics.rt60: expected a reverberation time in (0, 10] s");
   ExpectError(robot + "acoustics: {rt60: 0.5}\n", "acoustics.volume: expected a room volume");
   ExpectError(robot + "acoustics: {volume: 50, loudness: 3}\n", "loudness");
   ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{position: [1, 3], kind: drill}]}\n",
-              "acoustics.noise_sources[0].kind: expected white, pink, speech or whine, got 'drill'");
+              "acoustics.noise_sources[0].kind: expected white, pink, speech, whine or recording, got 'drill'");
   ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{position: [3.05, 1.0]}]}\n",
               "acoustics.noise_sources[0].position: noise source 'noise_0' at (3.050000, 1.000000) is inside a wall");
   ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{robot: b}]}\n",

@@ -68,6 +68,10 @@ struct Disturbance {
   Interference kind = Interference::kPink;
   double power = 0.0;
   double frequency = 0.0;  // Hz, a whine's fundamental
+  // A recorded noise (kind white): its power where the profile's receiver listens over white
+  // noise's of the same power (nava_modem/recorded_noise.h), so that it counts as that much white
+  // noise. 1 for every other disturbance.
+  double listened = 1.0;
 };
 
 struct LinkPrediction {
@@ -84,7 +88,8 @@ struct LinkPrediction {
 class AcousticModel {
  public:
   // Throws std::invalid_argument naming the source or field when a noise source is outside the
-  // map's free space or rides on a robot not in `robot_names`, for impossible acoustics (RT60 <= 0,
+  // map's free space or rides on a robot not in `robot_names`, a recorded one's file is no
+  // recording (unreadable, too short, silent), for impossible acoustics (RT60 <= 0,
   // no volume nor critical distance, a negative corner loss) or an empty table. Not thread-safe
   // (it keeps the paths of noise sources).
   AcousticModel(const PropagationModel& propagation, world_sim::Acoustics acoustics, DecodeTable table,
@@ -125,7 +130,8 @@ class AcousticModel {
 
   // The power a disturbance counts for with this profile: a whine counts by how much of its
   // power falls in the profile's band and, for nava, how close its harmonics come to the two
-  // tones, relative to the table's whine (which nava's table measures between its tones).
+  // tones, relative to the table's whine (which nava's table measures between its tones); a
+  // recording by its `listened` weight.
   double EffectivePower(const Disturbance& d) const;
 
   const world_sim::Acoustics& acoustics() const { return acoustics_; }
@@ -138,6 +144,7 @@ class AcousticModel {
   DecodeTable table_;
   std::vector<std::string> robot_names_;
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
+  std::vector<double> source_listened_;  // per noise source: Disturbance::listened
   std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;

@@ -37,6 +37,10 @@
 namespace audio_propagation {
 
 // The disturbance a packet is judged against.
+// The sample rate the tables are measured at (decode_table_bench renders at the modems' default
+// rate, nava_modem::ModemOptions::sample_rate).
+constexpr double kTableSampleRate = 48000.0;
+
 enum class Interference { kWhite, kPink, kSpeech, kWhine, kPacket };
 constexpr std::size_t kInterferenceCount = 5;
 std::optional<Interference> ParseInterference(const std::string& name);  // white ... packet

@@ -162,8 +162,9 @@ void ValidateOptions(const SceneRenderOptions& options);
 class SceneRenderer {
  public:
   // `robot_names` and `resting` (their positions when not in a scene) are the team the model was
-  // built with. Throws std::invalid_argument for impossible options (ValidateOptions), or
-  // names and positions of different lengths.
+  // built with. Reads the world's recorded noise sources. Throws std::invalid_argument for
+  // impossible options (ValidateOptions), names and positions of different lengths, or a
+  // recording that cannot be read (naming the source and its file).
   SceneRenderer(const AcousticModel& model, std::vector<std::string> robot_names, std::vector<Eigen::Vector2d> resting,
                 SceneRenderOptions options);
 
@@ -178,14 +179,17 @@ class SceneRenderer {
  private:
   // Every team robot's position at `t`.
   std::vector<Eigen::Vector2d> Positions(const Scene& scene, const std::vector<int>& scene_robot, double t) const;
-  // The unit-power waveform of a disturbance of `kind` (frequency for a whine), `n` samples.
-  std::vector<double> Waveform(world_sim::NoiseKind kind, double frequency, std::size_t n, std::uint32_t seed) const;
+  // The unit-power waveform of a disturbance of `kind` (frequency for a whine; `recording`, at the
+  // scene's rate, for a recording), `n` samples.
+  std::vector<double> Waveform(world_sim::NoiseKind kind, double frequency, std::size_t n, std::uint32_t seed,
+                               const std::vector<float>& recording = {}) const;
 
   const AcousticModel& model_;
   std::vector<std::string> robot_names_;
   std::vector<Eigen::Vector2d> resting_;
   SceneRenderOptions options_;
   double speech_power_ = 0.0;
+  std::vector<std::vector<float>> recordings_;  // per noise source: a recording's samples, else empty
 };
 
 }  // namespace audio_propagation

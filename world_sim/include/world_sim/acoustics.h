@@ -16,10 +16,11 @@ namespace world_sim {
 
 // What a noise sounds like; the receivers suffer each kind differently (speech and a whine hit
 // a few tones hard, white and pink noise spread over the band).
-enum class NoiseKind { kWhite, kPink, kSpeech, kWhine };
-std::optional<NoiseKind> ParseNoiseKind(const std::string& name);  // white | pink | speech | whine
+// kRecording: a recording of the noise itself (a fan, a corridor, a kitchen), played in a loop.
+enum class NoiseKind { kWhite, kPink, kSpeech, kWhine, kRecording };
+std::optional<NoiseKind> ParseNoiseKind(const std::string& name);  // white | pink | speech | whine | recording
 const char* NoiseKindName(NoiseKind kind);
-inline const char* kNoiseKindNames = "white, pink, speech or whine";
+inline const char* kNoiseKindNames = "white, pink, speech, whine or recording";
 
 // A room's reverberation. The critical distance is where the direct sound and the reverberant
 // field are equally loud; beyond it a microphone hears more room than speaker. From Sabine's
@@ -51,6 +52,7 @@ struct NoiseSourceSpec {
   double level_db = 60.0;   // at 1 m
   NoiseKind kind = NoiseKind::kPink;
   double frequency = 0.0;   // Hz, a whine's fundamental (harmonics at 2x and 3x)
+  std::string file;         // a recording's audio file (absolute once loaded from a world file)
   double duty = 1.0;        // fraction of the time it sounds, (0, 1]
   double period = 10.0;     // s
   double phase = 0.0;       // s

@@ -20,6 +20,9 @@ struct LoadedWorld {
 //   robots:   [{name: robot_0, pose: [x, y, yaw], microphone: omni, battery: 1.0}, ...]
 //   markers:  [{id: 1, position: [x, y]}, ...]
 //   chargers: [{pose: [x, y, yaw], radius: 0.2, marker: 100}, ...]
+//   acoustics: {...}              # optional, for the acoustic channel model (acoustics.h); a
+//                                 # noise source of kind recording names its audio file
+//                                 # (`file:`, relative to this file or absolute), which must exist
 //
 // `map_override`, when not empty, replaces the file's map. The map's path is kept canonical
 // (grid::CanonicalPath), so worlds that name one map through different links compare equal.

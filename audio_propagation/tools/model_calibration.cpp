@@ -1,0 +1,147 @@
+#include "model_calibration.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "audio_propagation/acoustic_model.h"
+#include "audio_propagation/decode_table.h"
+#include "measured_rooms.h"
+#include "nava_modem/measured_response.h"
+#include "nava_modem/recorded_noise.h"
+#include "nava_modem/room_channel.h"
+#include "nava_modem/wav_file.h"
+#include "table_cells.h"
+
+namespace audio_propagation::tools {
+namespace {
+
+struct Case {
+  std::size_t room = 0;
+  bool recorded = false;  // the recorded noise, else white
+  double snr_db = 0.0;
+  double predicted = 0.0, decoded = 0.0;
+};
+
+struct Bin {
+  double low, high;
+  int cases = 0;
+  double predicted = 0.0, decoded = 0.0;  // sums
+};
+
+}  // namespace
+
+int CalibrateModel(const DecodeTableRequest& request) {
+  const multirobot_audio::tools::ToolUsage& usage = request.usage;
+  const std::string profile_name = nava_modem::ProfileName(request.profile);
+  CellSetup setup;
+  setup.profile = request.profile;
+  setup.seed = request.seed;
+  const double rate = setup.modem.sample_rate;
+  DecodeTable table;
+  try {
+    table = LoadDecodeTable(request.table_file.empty() ? ShippedDecodeTable(profile_name) : request.table_file,
+                            profile_name);
+  } catch (const std::exception& e) {
+    usage.Fail(e.what());
+  }
+  setup.table = table;
+  setup.table.packets = request.packets;
+  const std::vector<nava_modem::tools::MeasuredRoom> rooms = nava_modem::tools::MeasuredRooms(request.rir_dir, usage);
+  std::vector<std::vector<float>> responses;
+  for (const nava_modem::tools::MeasuredRoom& room : rooms) {
+    if (const auto problem = nava_modem::ResponseProblem(room.figures)) usage.Fail(room.name + ": " + *problem);
+    responses.push_back(nava_modem::LoadImpulseResponse(room.path, room.channel, rate));
+  }
+  // The recorded noise: heard as an interferer (the cells' speech kind) and weighed by the model
+  // as white noise with its power where the receiver listens.
+  double recorded_offset_db = 0.0;
+  if (!request.noise_file.empty()) {
+    try {
+      const nava_modem::Audio audio = nava_modem::ReadAudioFile(request.noise_file);
+      const nava_modem::RecordedNoise noise(audio.samples, audio.sample_rate);
+      recorded_offset_db =
+          nava_modem::WhiteEquivalentOffsetDb(noise, nava_modem::ListeningBands(request.profile), kTableSampleRate);
+      setup.speech = nava_modem::ReadAudioAt(request.noise_file, rate);
+    } catch (const std::exception& e) {
+      usage.Fail("--noise-file " + request.noise_file + ": " + e.what());
+    }
+  }
+  const std::vector<double> snrs =
+      request.snr_db.empty() ? std::vector<double>{-15, -10, -5, 0, 5, 10, 15, 20} : request.snr_db;
+
+  std::vector<Case> cases;
+  for (std::size_t r = 0; r < rooms.size(); ++r) {
+    for (const bool recorded : {false, true}) {
+      if (recorded && request.noise_file.empty()) continue;
+      for (double snr : snrs) {
+        Case c{r, recorded, snr};
+        c.predicted = PredictOutcome(table, Interference::kWhite, snr + (recorded ? recorded_offset_db : 0.0),
+                                     rooms[r].figures.drr_db, rooms[r].figures.rt60_s)
+                          .packet;
+        cases.push_back(c);
+      }
+    }
+  }
+  std::fprintf(stderr, "decode_table_bench --calibrate: %zu rooms, %zu cases of %d packets on %d threads\n",
+               rooms.size(), cases.size(), request.packets, request.threads);
+  std::atomic<std::size_t> next{0};
+  std::mutex progress;
+  std::size_t done = 0;
+  auto work = [&] {
+    const auto mine = nava_modem::MakeProfile(setup.profile, setup.modem);  // a profile per thread
+    for (std::size_t k = next++; k < cases.size(); k = next++) {
+      CellSetup s = setup;
+      s.response = responses[cases[k].room];
+      const Interference kind = cases[k].recorded ? Interference::kSpeech : Interference::kWhite;
+      const CellCounts n = MeasureCell(s, *mine, k, kind, 0.0, 0.0, cases[k].snr_db);
+      cases[k].decoded = static_cast<double>(n.heard[static_cast<int>(Heard::kPacket)]) / request.packets;
+      const std::lock_guard<std::mutex> lock(progress);
+      if (++done % std::max<std::size_t>(1, cases.size() / 20) == 0) {
+        std::fprintf(stderr, "  %zu/%zu cases\n", done, cases.size());
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < request.threads; ++t) pool.emplace_back(work);
+  for (std::thread& th : pool) th.join();
+
+  std::printf("calibration of the %s model on %s: %d packets a case; noise white%s\n", profile_name.c_str(),
+              request.rir_dir.c_str(), request.packets,
+              request.noise_file.empty() ? "" : (" and " + request.noise_file).c_str());
+  std::printf("%-44s %7s %6s %-9s %6s %9s %9s\n", "room", "drr_dB", "rt60_s", "noise", "snr_dB", "predicted", "decoded");
+  std::vector<Bin> bins = {{0.0, 0.2}, {0.2, 0.6}, {0.6, 1.0001}};
+  for (const Case& c : cases) {
+    const nava_modem::tools::MeasuredRoom& room = rooms[c.room];
+    std::printf("%-44s %+7.1f %6.2f %-9s %+6.0f %8.0f%% %8.0f%%\n", room.name.c_str(), room.figures.drr_db,
+                room.figures.rt60_s, c.recorded ? "recorded" : "white", c.snr_db, 100.0 * c.predicted,
+                100.0 * c.decoded);
+    for (Bin& b : bins) {
+      if (c.predicted >= b.low && c.predicted < b.high) {
+        ++b.cases;
+        b.predicted += c.predicted;
+        b.decoded += c.decoded;
+      }
+    }
+  }
+  double worst = 0.0;
+  for (const Bin& b : bins) {
+    if (b.cases == 0) {
+      std::printf("bin %3.0f-%3.0f %%: no case\n", 100.0 * b.low, std::min(100.0, 100.0 * b.high));
+      continue;
+    }
+    const double predicted = 100.0 * b.predicted / b.cases, decoded = 100.0 * b.decoded / b.cases;
+    worst = std::max(worst, std::fabs(predicted - decoded));
+    std::printf("bin %3.0f-%3.0f %%: %4d cases, mean predicted %5.1f %%, mean decoded %5.1f %% (%+.1f points)\n",
+                100.0 * b.low, std::min(100.0, 100.0 * b.high), b.cases, predicted, decoded, decoded - predicted);
+  }
+  std::printf("calibration: worst bin %.1f points apart (the target: within 10)\n", worst);
+  return 0;
+}
+
+}  // namespace audio_propagation::tools
