@@ -95,8 +95,8 @@ int CalibrateModel(const DecodeTableRequest& request) {
   std::size_t done = 0;
   auto work = [&] {
     const auto mine = nava_modem::MakeProfile(setup.profile, setup.modem);  // a profile per thread
+    CellSetup s = setup;  // once per thread (the noise recording is long); only the room changes
     for (std::size_t k = next++; k < cases.size(); k = next++) {
-      CellSetup s = setup;
       s.response = responses[cases[k].room];
       const Interference kind = cases[k].recorded ? Interference::kSpeech : Interference::kWhite;
       const CellCounts n = MeasureCell(s, *mine, k, kind, 0.0, 0.0, cases[k].snr_db);
