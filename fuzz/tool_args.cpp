@@ -39,6 +39,7 @@ const std::vector<std::function<void(const Words&)>> kParsers = {
     [](const Words& w) { audio_propagation::tools::ParseDecodeTableBenchArgs(w); },  // 12
     [](const Words& w) { audio_propagation::tools::ParseRangingBenchArgs(w); },     // 13
     [](const Words& w) { audio_propagation::tools::ParsePredictArgs(w); },          // 14
+    [](const Words& w) { audio_propagation::tools::ParseSurveyArgs(w); },           // 15
 };
 
 }  // namespace

@@ -22,9 +22,9 @@ prefix=$work/prefix
 cmake --install "$build" --prefix "$prefix" >"$work/install.log" 2>&1 || { tail -20 "$work/install.log"; fail "cmake --install failed"; }
 
 programs=(world_sim wanderer audio_propagation nava_modem local_mutex mutex_client sounds_good_explorer task_monitor
-          charging_demo nava_encode nava_decode nava_room nava_bench audio_propagation_query audio_propagation_bench
-          audio_scene_render audio_channel_validate audio_channel_predict decode_table_bench ranging_bench world_sim_bench local_mutex_sim
-          sounds_good_experiment charging_experiment)
+          charging_demo nava_encode nava_decode nava_room nava_bench survey_bench audio_propagation_query audio_propagation_bench
+          audio_scene_render audio_channel_validate audio_channel_predict nava_survey decode_table_bench ranging_bench world_sim_bench
+          local_mutex_sim sounds_good_experiment charging_experiment)
 for p in "${programs[@]}"; do
   [ -x "$prefix/lib/multirobot_audio/$p" ] || fail "lib/multirobot_audio/$p is not installed"
 done

@@ -3,6 +3,13 @@
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
+# wav OUT KIND [ARGS]: test responses and noises (test/make_wav.py says which).
+wav() { /usr/bin/python3 "$(dirname "${BASH_SOURCE[0]}")/make_wav.py" "$@" || fail "could not write $1"; }
+# field NAME LINE: the number after "NAME": in a JSON line.
+field() { echo "$2" | sed -n "s/.*\"$1\": \\([-0-9.enull]*\\).*/\\1/p"; }
+# near A B TOLERANCE: whether |A - B| <= TOLERANCE.
+near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
+
 # expect_error WORDS ARGS...: the tool run with ARGS must exit with status 1 and say WORDS
 # (a grep pattern) on stderr.
 expect_error() {

@@ -105,6 +105,11 @@ LinkLevels LinkBudget(double source_db, double d0, double length, int corners, d
   return l;
 }
 
+double CriticalDistanceFromDrr(double drr_db, double distance, double rt60) {
+  // drr = 20 log10(rc / d) + kReverberantDecay d / rt60 (LinkBudget with d0 = 1 m, no corners).
+  return distance * std::pow(10.0, (drr_db - kReverberantDecay * distance / rt60) / 20.0);
+}
+
 AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Acoustics acoustics,
                              DecodeTable table, std::vector<std::string> robot_names)
     : propagation_(propagation),

@@ -13,12 +13,6 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 source "$(dirname "$0")/../../test/tool_checks.sh"
 
-# make_wav.py OUT KIND [ARGS]: test responses and noises (test/make_wav.py says which).
-wav() { /usr/bin/python3 "$(dirname "$0")/../../test/make_wav.py" "$@" || fail "could not write $1"; }
-# field NAME LINE: the number after "NAME": in a JSON line.
-field() { echo "$2" | sed -n "s/.*\"$1\": \\([-0-9.enull]*\\).*/\\1/p"; }
-near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
-
 for case in "0.5 0" "1.2 -6" "0.3 8"; do
   set -- $case
   wav "$out/room.wav" room "$1" "$2"

@@ -34,7 +34,6 @@ grep -q "CPU on $t threads" "$out/summary$t" || { cat "$out/summary$t"; fail "su
 # Calibration: the room profile through a dry and a reverberant room, at -25 and +20 dB, in white
 # noise and in a recorded tone; a tone on nava's mark for nava.
 mkdir -p "$out/rooms"
-wav() { /usr/bin/python3 "$(dirname "$0")/../../test/make_wav.py" "$@" || fail "could not write $1"; }
 wav "$out/rooms/dry.wav" room 0.3 6
 wav "$out/rooms/hall.wav" room 1.2 -6
 wav "$out/tone.wav" tone 2300

@@ -34,6 +34,12 @@ Eigen::Vector2d ParsePoint(const ToolArgs& args, const std::string& text) {
   return {x, y};
 }
 
+// --channel K of an audio file (0-based), if given.
+std::optional<int> ChannelArg(const ToolArgs& args) {
+  if (args.String("--channel", "").empty()) return std::nullopt;
+  return static_cast<int>(args.Int("--channel", 0, 0, 1023));
+}
+
 }  // namespace
 
 QueryArgs ParseQueryArgs(const std::vector<std::string>& words) {
@@ -95,13 +101,40 @@ PredictArgs ParsePredictArgs(const std::vector<std::string>& words) {
   PredictArgs p;
   p.profile = Profile(args, args.Required("--profile"));
   p.rir_file = args.Required("--rir");
-  if (!args.String("--channel", "").empty()) p.channel = static_cast<int>(args.Int("--channel", 0, 0, 1023));
+  p.channel = ChannelArg(args);
   p.noise = args.Required("--noise");
   p.snr_db = args.Double("--snr-db", 0.0, -100.0, 100.0);
   if (args.String("--snr-db", "").empty()) args.Fail("--snr-db is required");
   p.table_file = args.String("--table", "");
   args.CheckAllUsed();
   return p;
+}
+
+SurveyArgs ParseSurveyArgs(const std::vector<std::string>& words) {
+  const ToolArgs args("nava_survey",
+                      "nava_survey [--profile room] [--channel K] [--distance M [--source-level-db 70] "
+                      "[--world-out FILE.yaml]] [--response-out FILE.wav] RECORDING.wav...",
+                      words);
+  SurveyArgs s;
+  if (const std::string profile = args.String("--profile", "room"); profile != "room") {
+    args.Fail("--profile " + profile + ": a survey needs the room profile's packets (nava's two tones do not cover "
+              "the 600-5400 Hz a response is measured in)");
+  }
+  s.channel = ChannelArg(args);
+  if (!args.String("--distance", "").empty()) s.distance = args.Double("--distance", 1.0, 0.01, 1000.0);
+  s.source_level_db = args.Double("--source-level-db", s.source_level_db, -1000.0, 1000.0);
+  s.world_out = args.String("--world-out", "");
+  s.response_out = args.String("--response-out", "");
+  s.files = args.positional();
+  if (s.files.empty()) args.Fail("expected at least one recording");
+  if (!s.world_out.empty() && !s.distance) {
+    args.Fail("--world-out needs --distance: the robots' distance turns the DRR into a critical distance and the "
+              "noise into the world's dB scale");
+  }
+  if (!args.String("--source-level-db", "").empty() && !s.distance) args.Fail("--source-level-db needs --distance");
+  if (!s.response_out.empty() && s.files.size() != 1) args.Fail("--response-out takes one recording");
+  args.CheckAllUsed();
+  return s;
 }
 
 ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {

@@ -83,4 +83,15 @@ struct PredictArgs {
 };
 PredictArgs ParsePredictArgs(const std::vector<std::string>& words);
 
+// nava_survey: a room's figures from recorded room packets (tools/nava_survey.cpp).
+struct SurveyArgs {
+  std::vector<std::string> files;  // recordings, one JSON line each
+  std::optional<int> channel;      // of each recording (none: mono, or the channels mixed)
+  std::optional<double> distance;  // m between the robots while recording
+  double source_level_db = 70.0;   // the sender's level at 1 m, in the worlds' dB scale
+  std::string world_out;           // --world-out: the acoustics section, "" for none
+  std::string response_out;        // --response-out: the estimated response (one recording)
+};
+SurveyArgs ParseSurveyArgs(const std::vector<std::string>& words);
+
 }  // namespace audio_propagation::tools

@@ -1,39 +1,22 @@
 // Measured impulse responses: reading one channel of a file (resampled, its delay kept), the
 // refusals that name the file, the figures (RT60 and DRR in 600-5400 Hz) on responses whose
 // figures are known, and rendering through one.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "known_response.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 
 namespace nava_modem {
 namespace {
-
-// A response with its direct sound (1) at `delay` samples and, from 5 ms after it, white noise
-// decaying by 60 dB in `rt60` seconds, scaled so that the direct sound's energy over the rest is
-// `drr_db` (the same in every band: both are white).
-std::vector<float> KnownResponse(double rt60, double drr_db, double rate, std::size_t delay, unsigned seed) {
-  std::vector<float> h(delay + static_cast<std::size_t>(1.5 * rt60 * rate), 0.0f);
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  std::vector<double> tail(h.size(), 0.0);
-  double energy = 0.0;
-  for (std::size_t k = delay + static_cast<std::size_t>(0.005 * rate); k < h.size(); ++k) {
-    const double t = static_cast<double>(k - delay) / rate;
-    tail[k] = gauss(rng) * std::exp(-6.907755 * t / rt60);
-    energy += tail[k] * tail[k];
-  }
-  const double scale = std::sqrt(std::pow(10.0, -drr_db / 10.0) / energy);
-  for (std::size_t k = 0; k < h.size(); ++k) h[k] = static_cast<float>(scale * tail[k]);
-  h[delay] = 1.0f;
-  return h;
-}
 
 std::string TempPath(const std::string& name) { return ::testing::TempDir() + "/measured_response_" + name; }
 
@@ -86,6 +69,60 @@ TEST(MeasuredResponseTest, ARoomsResponseServesAndShortOrNoisyOnesAreToldWhy) {
   ASSERT_TRUE(no_peak.has_value());
   EXPECT_NE(no_peak->find("no direct peak"), std::string::npos) << *no_peak;
   EXPECT_GT(heard.before_db, kMaxBeforeDb);
+}
+
+// A response carrying noise of its own (as one estimated from packets does): white noise whose
+// power per sample is `floor_db` under the response's reverberation at its start, over the
+// response and 3 s past its end.
+struct NoisyResponse {
+  std::vector<float> clean, noisy;
+  double noise_power = 0.0;  // in 600-5400 Hz, as MeasureResponseOverNoise takes it
+};
+NoisyResponse WithNoise(const std::vector<float>& clean, double rate, double floor_db, unsigned seed) {
+  NoisyResponse r;
+  r.clean = clean;
+  r.clean.resize(clean.size() + static_cast<std::size_t>(3.0 * rate), 0.0f);
+  double early = 0.0;  // mean energy over the 50 ms after the direct sound
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(clean.begin(), clean.end()) - clean.begin());
+  const std::size_t span = static_cast<std::size_t>(0.05 * rate);
+  for (std::size_t k = peak + 1; k <= peak + span; ++k) early += clean[k] * clean[k] / static_cast<double>(span);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, std::sqrt(early * std::pow(10.0, -floor_db / 10.0)));
+  std::vector<float> noise(r.clean.size());
+  for (float& v : noise) v = static_cast<float>(gauss(rng));
+  r.noisy = r.clean;
+  for (std::size_t k = 0; k < noise.size(); ++k) r.noisy[k] += noise[k];
+  r.noise_power = InBandPower(noise, rate);
+  return r;
+}
+
+TEST(MeasuredResponseTest, OverItsNoiseFloorAResponseGivesTheFiguresItWouldGiveWithout) {
+  constexpr double kRate = 48000.0;
+  for (double rt60 : {0.5, 1.7}) {
+    for (double drr : {-8.0, 2.0}) {
+      // The decay stands 25 dB above the floor: short of the 35 dB that T30 reads.
+      const NoisyResponse r = WithNoise(KnownResponse(rt60, drr, kRate, 960, 5), kRate, 25.0, 9);
+      const ResponseMeasures truth = MeasureResponse(r.clean, kRate);
+      const ResponseMeasures m = MeasureResponseOverNoise(r.noisy, r.noise_power, kRate);
+      EXPECT_NEAR(m.rt60_s, truth.rt60_s, 0.1 * truth.rt60_s) << rt60 << " " << drr;
+      EXPECT_NEAR(m.drr_db, truth.drr_db, 1.0) << rt60 << " " << drr;
+      EXPECT_EQ(m.peak, truth.peak);
+      // Read as if the noise were the room, the decay comes out far too long.
+      EXPECT_GT(MeasureResponse(r.noisy, kRate).rt60_s, 1.3 * truth.rt60_s) << rt60 << " " << drr;
+    }
+  }
+}
+
+TEST(MeasuredResponseTest, WithoutNoiseTheFiguresOverNoiseAreTheFigures) {
+  const std::vector<float> h = KnownResponse(0.8, -3.0, 48000.0, 480, 2);
+  const ResponseMeasures a = MeasureResponse(h, 48000.0), b = MeasureResponseOverNoise(h, 0.0, 48000.0);
+  EXPECT_EQ(a.peak, b.peak);
+  EXPECT_DOUBLE_EQ(a.rt60_s, b.rt60_s);
+  EXPECT_DOUBLE_EQ(a.drr_db, b.drr_db);
+  EXPECT_DOUBLE_EQ(a.after_s, b.after_s);
+  for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    EXPECT_THROW(MeasureResponseOverNoise(h, bad, 48000.0), std::invalid_argument) << bad;
+  }
 }
 
 TEST(MeasuredResponseTest, LoadsTheChannelAskedForResampledWithItsDelayKept) {

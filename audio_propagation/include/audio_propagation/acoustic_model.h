@@ -47,6 +47,10 @@ struct LinkLevels {
 // corners, in `room`.
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
                       const world_sim::RoomAcoustics& room);
+// Pure: the critical distance (m) of a room of `rt60` s in which a listener `distance` m from a
+// speaker (a straight path) hears the direct-to-reverberant ratio `drr_db`: LinkBudget inverted,
+// so that a surveyed room (nava_survey) gives back its DRR in the model.
+double CriticalDistanceFromDrr(double drr_db, double distance, double rt60);
 
 // What the table says of a packet heard at `snr_db` against a disturbance of `kind`, through a
 // room of `drr_db` and `rt60` s. Below the table's quietest SNR its figures fade out over

@@ -53,6 +53,25 @@ struct ResponseMeasures {
 // 2 x kResponseBandHighHz.
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate);
 
+// The same figures for a response that carries a noise floor of its own: one estimated from
+// recorded packets (response_survey.h), whose every sample holds estimation noise as well as the
+// room. `noise_power` is that noise's mean square per sample in 600-5400 Hz; it is taken out of
+// every sample's energy. The decay is followed down to where it meets that floor, after
+// Lundeby's method: the response's 10 ms energies are fitted (least squares, in dB) with an
+// exponential decay over the floor, from where Schroeder's curve has fallen 5 dB (or over the
+// last kLateFitDb above the floor, when the decay stands higher) to the end; the response is cut
+// where the decay meets the floor, and the energy the decay puts beyond the cut is added back to
+// Schroeder's integral, which then follows the decay down to where T30 is read, and to the
+// reverberant energy. after_s is the time from the direct sound to the cut; a decay that never
+// stands kFloorMarginDb above the floor is cut at the direct sound (too short). With a noise
+// power of 0 the figures are MeasureResponse's. Throws std::invalid_argument as MeasureResponse
+// does, and for a noise power below 0 or not finite.
+ResponseMeasures MeasureResponseOverNoise(const std::vector<float>& response, double noise_power, double sample_rate);
+constexpr double kFloorMarginDb = 10.0;
+constexpr double kLateFitDb = 20.0;
+// The mean square of `x` in 600-5400 Hz, through the same filters as the figures (0 for empty x).
+double InBandPower(const std::vector<float>& x, double sample_rate);
+
 // The least a response must go on after its direct sound to give its figures.
 constexpr double kMinTailS = 0.05;
 // The most sound a response may hold before its direct sound, over the direct sound's, dB. A

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# nava_survey end to end: room packets (nava_encode) played through a response written here with
+# a known RT60 and DRR (nava_room, white noise at SNR 10 dB) are surveyed back to the figures
+# audio_channel_predict reads from the response itself; the acoustics section it writes, in a
+# world, makes the acoustic model give back the surveyed DRR and the recording's SNR at the
+# surveyed distance; one measured room when ../shared/realrooms is beside the project (its
+# survey_bench row); then the tool's answers to bad input.
+#   survey_tool_checks.sh NAVA_SURVEY NAVA_ENCODE NAVA_ROOM AUDIO_CHANNEL_PREDICT AUDIO_CHANNEL_VALIDATE MAPS_DIR
+#                         [SURVEY_BENCH REALROOMS_DIR]
+set -uo pipefail
+export PATH="/usr/bin:/bin:${PATH}"
+tool=$1 encode=$2 room=$3 predict=$4 validate=$5 maps=$6
+bench=${7:-} realrooms=${8:-}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+source "$(dirname "$0")/../../test/tool_checks.sh"
+
+"$encode" --profile room --gap 0.4 --out "$out/clean.wav" 01020304 a0b1c2d3 55aa55aa 0f1e2d3c 99887766 13572468 ||
+  fail "nava_encode"
+wav "$out/response.wav" room 0.6 -3
+"$room" --in "$out/clean.wav" --out "$out/recording.wav" --rir "$out/response.wav" --noise white --snr 10 --seed 2 \
+  >/dev/null 2>&1 || fail "nava_room"
+truth=$("$predict" --profile room --rir "$out/response.wav" --noise white --snr-db 10) || fail "audio_channel_predict"
+line=$("$tool" --distance 1.5 --world-out "$out/section.yaml" --response-out "$out/estimate.wav" "$out/recording.wav") ||
+  fail "the survey of a recording of 6 packets"
+echo "$line"
+[ "$(field packets "$line")" = 6 ] || fail "6 packets sent, $(field packets "$line") used"
+rt60=$(field rt60_s "$truth")
+near "$(field rt60_s "$line")" "$rt60" "$(awk -v r="$rt60" 'BEGIN { print 0.1 * r }')" ||
+  fail "RT60 surveyed at $(field rt60_s "$line") s, the response gives $rt60"
+near "$(field drr_db "$line")" "$(field drr_db "$truth")" 2.0 ||
+  fail "DRR surveyed at $(field drr_db "$line") dB, the response gives $(field drr_db "$truth")"
+echo "$line" | grep -q '"noise_kind": "white"' || fail "white noise not told as white"
+[ -s "$out/estimate.wav" ] || fail "--response-out wrote nothing"
+
+# The section in a world: two robots 1.5 m apart (the surveyed distance) in the test room.
+grep -q "^acoustics:" "$out/section.yaml" || fail "--world-out wrote no acoustics section"
+{ printf 'map: %s/test_room.yaml\nrobots:\n' "$maps"
+  printf '  - {name: robot_0, pose: [1.0, 1.0, 0.0]}\n  - {name: robot_1, pose: [2.5, 1.0, 0.0]}\n'
+  cat "$out/section.yaml"; } >"$out/world.yaml"
+model=$("$validate" --world "$out/world.yaml" --profile room --predict 1,1 2.5,1) ||
+  { cat "$out/world.yaml"; fail "the surveyed section does not load in a world"; }
+echo "$model"
+near "$(field drr_db "$model")" "$(field drr_db "$line")" 0.05 || fail "the world's DRR at 1.5 m: $(field drr_db "$model")"
+near "$(field rt60 "$model")" "$(field rt60_s "$line")" 0.001 || fail "the world's RT60: $(field rt60 "$model")"
+# nava_room's SNR is over the recording's whole band, as the model's is.
+near "$(field snr_db "$model")" 10 2.0 || fail "the world gives SNR $(field snr_db "$model") dB where the recording had 10"
+
+if [ -n "$bench" ] && [ -n "$realrooms" ] && [ -f "$realrooms/rir_clap.wav" ]; then
+  mkdir -p "$out/rooms" && ln -s "$realrooms/rir_clap.wav" "$out/rooms/"
+  report=$("$bench" --rir-dir "$out/rooms" --threads 1) || fail "survey_bench"
+  echo "$report"
+  echo "$report" | grep -q "^survey: 1 of 1 rooms within 10 % of their RT60 and 2 dB of their DRR" ||
+    fail "the measured seminar room surveyed outside the target"
+else
+  echo "no measured rooms beside the project: the seminar room's survey is skipped"
+fi
+
+wav "$out/silent.wav" silent
+expect_error "$out/silent.wav: no room packet decoded" "$out/silent.wav"
+expect_error "$out/nothing.wav" "$out/nothing.wav"
+expect_error "a survey needs the room profile" --profile nava "$out/recording.wav"
+expect_error "--world-out needs --distance" --world-out "$out/x.yaml" "$out/recording.wav"
+expect_error "channel 2 asked for" --channel 2 "$out/recording.wav"
+expect_error "--response-out takes one recording" --response-out "$out/x.wav" "$out/recording.wav" "$out/recording.wav"
+expect_error "expected at least one recording"
+echo "survey_tool_checks: all checks passed"

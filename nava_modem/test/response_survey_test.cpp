@@ -1,0 +1,105 @@
+// The survey of a room from its own packets: room packets played through responses whose RT60
+// and DRR are known, with noise, give those figures back; a packet heard but not decoded is left
+// out of the fit; what cannot be surveyed is refused.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "known_response.h"
+#include "nava_modem/measured_response.h"
+#include "nava_modem/response_survey.h"
+#include "nava_modem/room_channel.h"
+#include "nava_modem/room_phy.h"
+
+namespace nava_modem {
+namespace {
+
+constexpr double kRate = 48000.0;
+
+// `count` room packets `gap` s apart, then 1 s of silence.
+std::vector<float> PacketTrain(int count, double gap, unsigned seed) {
+  std::vector<float> out = SurveyTrain(kRate, count, gap, seed);
+  out.resize(out.size() + static_cast<std::size_t>(1.0 * kRate), 0.0f);
+  return out;
+}
+
+// The packets through `response` with white noise at full-band `snr_db`.
+std::vector<float> Recorded(const std::vector<float>& clean, const std::vector<float>& response, double snr_db,
+                            RoomRenderInfo* info = nullptr) {
+  RoomOptions room;
+  room.response = response;
+  room.noise = RoomOptions::Noise::kWhite;
+  room.snr_db = snr_db;
+  room.seed = 4;
+  return RenderRoom(clean, kRate, room, {}, info);
+}
+
+TEST(ResponseSurveyTest, PacketsThroughAKnownRoomGiveItsFiguresBack) {
+  const std::vector<float> clean = PacketTrain(6, 0.3, 1);
+  for (const auto& [rt60, drr] : {std::pair{0.6, -4.0}, std::pair{1.2, 3.0}}) {
+    const std::vector<float> response = KnownResponse(rt60, drr, kRate, 480, 7);
+    const ResponseMeasures truth = MeasureResponse(response, kRate);
+    RoomRenderInfo info;
+    const std::vector<float> recording = Recorded(clean, response, 10.0, &info);
+    const SurveyHeard heard = FindSurveyPackets(recording, kRate);
+    ASSERT_GE(heard.packets.size(), 5u) << rt60;
+    const SurveyResult r = SurveyResponse(recording, kRate, heard);
+    EXPECT_NEAR(r.figures.rt60_s, truth.rt60_s, 0.1 * truth.rt60_s) << rt60;
+    EXPECT_NEAR(r.figures.drr_db, truth.drr_db, 2.0) << rt60;
+    EXPECT_EQ(r.packets.size(), heard.packets.size());
+    // The added noise: white, so a fifth of its power lies in 600-5400 Hz.
+    const double noise = info.noise_rms * info.output_gain;
+    EXPECT_NEAR(r.noise_db, 10.0 * std::log10(noise * noise * 4800.0 / 24000.0), 1.5) << rt60;
+    for (double band : r.band_noise_db) EXPECT_NEAR(band, r.noise_db - 10.0 * std::log10(12.0), 1.5) << rt60;
+    EXPECT_GT(r.signal_db, r.noise_db + 5.0) << rt60;
+  }
+}
+
+TEST(ResponseSurveyTest, APacketHeardButNotDecodedIsLeftOutOfTheFit) {
+  std::vector<float> clean = PacketTrain(6, 0.3, 2);
+  // Packet 3's data turned to noise: its chirps are heard, its CRC fails.
+  const std::size_t packet = static_cast<std::size_t>((0.3 + 3 * (room_phy::kPacketSeconds + 0.3)) * kRate);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> gauss(0.0, 0.2);
+  for (std::size_t k = packet + static_cast<std::size_t>(room_phy::kDataStart * kRate);
+       k < packet + static_cast<std::size_t>(room_phy::kPostChirpStart * kRate); ++k) {
+    clean[k] = static_cast<float>(gauss(rng));
+  }
+  const std::vector<float> response = KnownResponse(0.9, -2.0, kRate, 480, 8);
+  const ResponseMeasures truth = MeasureResponse(response, kRate);
+  const std::vector<float> recording = Recorded(clean, response, 15.0);
+  const SurveyHeard heard = FindSurveyPackets(recording, kRate);
+  ASSERT_EQ(heard.undecoded_s.size(), 1u);
+  EXPECT_NEAR(heard.undecoded_s[0] * kRate, static_cast<double>(packet), 0.05 * kRate);
+  const SurveyResult r = SurveyResponse(recording, kRate, heard);
+  EXPECT_EQ(r.undecoded, 1u);
+  EXPECT_NEAR(r.figures.rt60_s, truth.rt60_s, 0.1 * truth.rt60_s);
+  EXPECT_NEAR(r.figures.drr_db, truth.drr_db, 2.0);
+}
+
+TEST(ResponseSurveyTest, RefusesWhatCannotBeSurveyed) {
+  const std::vector<float> silence(static_cast<std::size_t>(10 * kRate), 0.0f);
+  const SurveyHeard none = FindSurveyPackets(silence, kRate);
+  EXPECT_TRUE(none.packets.empty());
+  EXPECT_THROW(SurveyResponse(silence, kRate, none), SurveyError);
+  // A room profile needs its band under Nyquist.
+  EXPECT_THROW(FindSurveyPackets(silence, 8000.0), SurveyError);
+  // Shorter than two packets.
+  const std::vector<float> clean = PacketTrain(1, 0.1, 3);
+  const SurveyHeard one = FindSurveyPackets(clean, kRate);
+  ASSERT_EQ(one.packets.size(), 1u);
+  EXPECT_THROW(SurveyResponse(clean, kRate, one), SurveyError);
+  const std::vector<float> longer = PacketTrain(2, 0.5, 3);
+  const SurveyHeard two = FindSurveyPackets(longer, kRate);
+  SurveyOptions bad;
+  bad.regularisation = 0.0;
+  EXPECT_THROW(SurveyResponse(longer, kRate, two, bad), std::invalid_argument);
+  bad = SurveyOptions{};
+  bad.iterations = -1;
+  EXPECT_THROW(SurveyResponse(longer, kRate, two, bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace nava_modem
