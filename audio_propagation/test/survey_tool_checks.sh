@@ -1,22 +1,24 @@
 #!/usr/bin/env bash
-# nava_survey end to end: room packets (nava_encode) played through a response written here with
+# nava_survey end to end: room packets (its --write-train) played through a response written here with
 # a known RT60 and DRR (nava_room, white noise at SNR 10 dB) are surveyed back to the figures
 # audio_channel_predict reads from the response itself; the acoustics section it writes, in a
 # world, makes the acoustic model give back the surveyed DRR and the recording's SNR at the
 # surveyed distance; one measured room when ../shared/realrooms is beside the project (its
 # survey_bench row); then the tool's answers to bad input.
-#   survey_tool_checks.sh NAVA_SURVEY NAVA_ENCODE NAVA_ROOM AUDIO_CHANNEL_PREDICT AUDIO_CHANNEL_VALIDATE MAPS_DIR
+#   survey_tool_checks.sh NAVA_SURVEY NAVA_DECODE NAVA_ROOM AUDIO_CHANNEL_PREDICT AUDIO_CHANNEL_VALIDATE MAPS_DIR
 #                         [SURVEY_BENCH REALROOMS_DIR]
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
-tool=$1 encode=$2 room=$3 predict=$4 validate=$5 maps=$6
+tool=$1 decode=$2 room=$3 predict=$4 validate=$5 maps=$6
 bench=${7:-} realrooms=${8:-}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 source "$(dirname "$0")/../../test/tool_checks.sh"
 
-"$encode" --profile room --gap 0.4 --out "$out/clean.wav" 01020304 a0b1c2d3 55aa55aa 0f1e2d3c 99887766 13572468 ||
-  fail "nava_encode"
+# What the sending robot plays (random data, random gaps): every packet of it decodes.
+"$tool" --write-train "$out/clean.wav" --packets 6 --gap 0.4 --seed 3 | grep -q '"packets": 6' || fail "--write-train"
+decoded=$("$decode" --profile room "$out/clean.wav" | grep -c '"kind": "packet"')
+[ "$decoded" = 6 ] || fail "the written train decodes to $decoded packets, expected 6"
 wav "$out/response.wav" room 0.6 -3
 "$room" --in "$out/clean.wav" --out "$out/recording.wav" --rir "$out/response.wav" --noise white --snr 10 --seed 2 \
   >/dev/null 2>&1 || fail "nava_room"
@@ -64,4 +66,6 @@ expect_error "--world-out needs --distance" --world-out "$out/x.yaml" "$out/reco
 expect_error "channel 2 asked for" --channel 2 "$out/recording.wav"
 expect_error "--response-out takes one recording" --response-out "$out/x.wav" "$out/recording.wav" "$out/recording.wav"
 expect_error "expected at least one recording"
+expect_error "--write-train writes the packets to play; it takes no recordings" --write-train "$out/t.wav" "$out/recording.wav"
+expect_error "--rate 8000: profile room: sample rate 8000 Hz cannot carry its band" --write-train "$out/t.wav" --rate 8000
 echo "survey_tool_checks: all checks passed"

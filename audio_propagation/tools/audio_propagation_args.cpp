@@ -113,9 +113,20 @@ PredictArgs ParsePredictArgs(const std::vector<std::string>& words) {
 SurveyArgs ParseSurveyArgs(const std::vector<std::string>& words) {
   const ToolArgs args("nava_survey",
                       "nava_survey [--profile room] [--channel K] [--distance M [--source-level-db 70] "
-                      "[--world-out FILE.yaml]] [--response-out FILE.wav] RECORDING.wav...",
+                      "[--world-out FILE.yaml]] [--response-out FILE.wav] RECORDING.wav... | "
+                      "nava_survey --write-train FILE.wav [--packets 10] [--gap 0.5] [--rate 48000] [--seed 1]",
                       words);
   SurveyArgs s;
+  s.train_out = args.String("--write-train", "");
+  if (!s.train_out.empty()) {
+    s.train_packets = static_cast<int>(args.Int("--packets", s.train_packets, 1, 1000));
+    s.train_gap = args.Double("--gap", s.train_gap, 0.0, 60.0);
+    s.train_rate = args.Double("--rate", s.train_rate, 1.0, 1e6);
+    s.train_seed = static_cast<unsigned>(args.Int("--seed", s.train_seed, 0, 1000000));
+    if (!args.positional().empty()) args.Fail("--write-train writes the packets to play; it takes no recordings");
+    args.CheckAllUsed();
+    return s;
+  }
   if (const std::string profile = args.String("--profile", "room"); profile != "room") {
     args.Fail("--profile " + profile + ": a survey needs the room profile's packets (nava's two tones do not cover "
               "the 600-5400 Hz a response is measured in)");

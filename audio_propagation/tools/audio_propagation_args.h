@@ -91,6 +91,12 @@ struct SurveyArgs {
   double source_level_db = 70.0;   // the sender's level at 1 m, in the worlds' dB scale
   std::string world_out;           // --world-out: the acoustics section, "" for none
   std::string response_out;        // --response-out: the estimated response (one recording)
+  // --write-train FILE.wav: write what the sending robot plays (no recordings then).
+  std::string train_out;
+  int train_packets = 10;
+  double train_gap = 0.5;  // s, the mean silence between packets
+  double train_rate = 48000.0;
+  unsigned train_seed = 1;
 };
 SurveyArgs ParseSurveyArgs(const std::vector<std::string>& words);
 

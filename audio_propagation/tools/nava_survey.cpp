@@ -4,6 +4,11 @@
 //
 //   nava_survey [--profile room] [--channel K] [--distance M [--source-level-db 70]
 //               [--world-out FILE.yaml]] [--response-out FILE.wav] RECORDING.wav...
+//   nava_survey --write-train FILE.wav [--packets 10] [--gap 0.5] [--rate 48000] [--seed 1]
+//
+// --write-train writes what the sending robot plays: room packets of random data with silences
+// drawn from 0.5 to 1.5 times --gap between them (a train at a fixed period would let the
+// estimate confuse a tap with one a period later).
 //
 // One JSON line per recording: "rt60_s" and "drr_db" (the definitions of the measured rooms'
 // README: T30 in 600-5400 Hz; the energy within 2.5 ms of the direct peak over the energy after
@@ -139,12 +144,33 @@ void WriteWorldSection(const std::string& path, const std::vector<Survey>& surve
   if (!out) audio_propagation::tools::Fail(kProgram, path + ": write failed (--world-out)");
 }
 
+// What the sending robot plays: room packets of random data, silences drawn around --gap.
+void WriteTrain(const audio_propagation::tools::SurveyArgs& a) {
+  std::vector<float> train;
+  try {
+    train = nava_modem::SurveyTrain(a.train_rate, a.train_packets, a.train_gap, a.train_seed);
+  } catch (const std::invalid_argument& e) {
+    audio_propagation::tools::Fail(kProgram, "--rate " + JsonNumber(a.train_rate, 0) + ": " + e.what());
+  }
+  try {
+    nava_modem::WriteWavFile(a.train_out, train, a.train_rate);
+  } catch (const std::exception& e) {
+    audio_propagation::tools::Fail(kProgram, a.train_out + ": " + e.what() + " (--write-train)");
+  }
+  std::printf("{\"train\": %s, \"packets\": %d, \"seconds\": %s}\n", JsonString(a.train_out).c_str(), a.train_packets,
+              JsonNumber(static_cast<double>(train.size()) / a.train_rate, 2).c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return multirobot_audio::tools::RunTool([&] {
     const audio_propagation::tools::SurveyArgs a =
         audio_propagation::tools::ParseSurveyArgs(multirobot_audio::tools::Words(argc, argv));
+    if (!a.train_out.empty()) {
+      WriteTrain(a);
+      return 0;
+    }
     std::vector<Survey> surveys;
     for (const std::string& file : a.files) surveys.push_back(SurveyOne(a, file));
     if (!a.world_out.empty()) WriteWorldSection(a.world_out, surveys, a.files);

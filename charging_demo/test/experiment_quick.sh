@@ -4,7 +4,8 @@
 # whole run's report; then the tool's answers to bad input.
 #   experiment_quick.sh CHARGING_EXPERIMENT MAPS_DIR [sanitized]
 # With "sanitized" (the AddressSanitizer build, where a trial runs several times slower) the
-# acoustic channel runs one seed and its shards are left to the main suite.
+# main run has two seeds, the shards' runs a third of their hours, the acoustic channel one seed,
+# and the acoustic shards are left to the main suite.
 set -uo pipefail
 tool=$1
 maps=$2
@@ -13,17 +14,19 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 source "$(dirname "$0")/../../test/tool_checks.sh"
 
-"$tool" --map "$maps/test_room.yaml" --robots 4 --chargers 1 --hours 2 --seeds 3 --out "$out/run" \
+seeds=3 shard_hours=0.3
+[ "$sanitized" = sanitized ] && seeds=2 shard_hours=0.1
+"$tool" --map "$maps/test_room.yaml" --robots 4 --chargers 1 --hours 2 --seeds "$seeds" --out "$out/run" \
   --timeline "$out/timeline.png" >"$out/stdout" 2>"$out/stderr" || { cat "$out/stderr"; fail "exited $?"; }
 cat "$out/stdout"
-for f in trials.csv robots.csv worlds/seed_001.yaml worlds/seed_003.yaml; do
+for f in trials.csv robots.csv worlds/seed_001.yaml "worlds/seed_00$seeds.yaml"; do
   [ -s "$out/run/$f" ] || fail "missing or empty $f"
 done
 [ "$(head -c 4 "$out/timeline.png" | tail -c 3)" = "PNG" ] || fail "the timeline is not a PNG"
 rows=$(($(wc -l <"$out/run/trials.csv") - 1))
-[ "$rows" -eq 3 ] || fail "trials.csv has $rows rows, expected 3"
+[ "$rows" -eq "$seeds" ] || fail "trials.csv has $rows rows, expected $seeds"
 rows=$(($(wc -l <"$out/run/robots.csv") - 1))
-[ "$rows" -eq 12 ] || fail "robots.csv has $rows rows, expected 3 seeds x 4 robots"
+[ "$rows" -eq $((seeds * 4)) ] || fail "robots.csv has $rows rows, expected $seeds seeds x 4 robots"
 # Every robot charged at least once (column 3 of robots.csv).
 awk -F, 'NR > 1 && $3 < 1 { bad = 1 } END { exit bad }' "$out/run/robots.csv" || fail "a robot never charged"
 line=$(tail -1 "$out/stdout")
@@ -36,7 +39,7 @@ echo "$line" | grep -Eq '^double_dockings 0 robots_flat 0 charges [0-9]+ utilisa
 # Over machines: shards 1/2 and 2/2 of a small run merge into the whole run's report (the
 # timeline too), to the byte.
 report_args=(--out @OUT@ --timeline @OUT@/timeline.png)
-check_shards --map "$maps/test_room.yaml" --robots 3 --hours 0.3 --seeds 3
+check_shards --map "$maps/test_room.yaml" --robots 3 --hours "$shard_hours" --seeds 3
 # The acoustic channel (the test room's acoustics, links keeping their fate): the run finishes
 # with no double docking, its saved worlds carry the acoustics, and its shards merge to the byte.
 acoustic=(--map "$maps/test_room.yaml" --robots 3 --hours 0.2 --channel acoustic

@@ -263,14 +263,17 @@ std::vector<float> SurveyTrain(double sample_rate, int count, double gap, unsign
   modem.sample_rate = sample_rate;
   const std::unique_ptr<ModemProfile> profile = MakeProfile(Profile::kRoom, modem);
   std::mt19937 rng(seed);
-  const std::size_t silence = static_cast<std::size_t>(std::lround(gap * sample_rate));
-  std::vector<float> out(silence, 0.0f);
+  // Each gap drawn from 0.5 to 1.5 times `gap`: packets at a fixed period would repeat their
+  // chirps at that period, and the estimate could not tell a tap from one a period later as well.
+  std::uniform_real_distribution<double> spread(0.5, 1.5);
+  const auto silence = [&] { return static_cast<std::size_t>(std::lround(gap * spread(rng) * sample_rate)); };
+  std::vector<float> out(silence(), 0.0f);
   for (int p = 0; p < count; ++p) {
     std::vector<std::uint8_t> data(4);
     for (auto& b : data) b = static_cast<std::uint8_t>(rng() & 0xFF);
     const std::vector<float> packet = profile->ModulatePacket(data);
     out.insert(out.end(), packet.begin(), packet.end());
-    out.resize(out.size() + silence, 0.0f);
+    out.resize(out.size() + silence(), 0.0f);
   }
   return out;
 }

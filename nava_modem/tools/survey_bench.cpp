@@ -1,8 +1,8 @@
 // survey_bench: how well a survey from the robots' own packets (nava_survey) reads rooms that
-// were measured. Room packets with random data are played through each measured response of a
-// folder (every file and channel a room) with noise, and the survey's RT60 and DRR are held
-// against the figures the response itself gives (measured_response.h: the definitions of
-// ../shared/realrooms/README.md).
+// were measured. The survey's train (room packets with random data, SurveyTrain) is played
+// through each measured response of a folder (every file and channel a room) with noise, and the
+// survey's RT60 and DRR are held against the figures the response itself gives
+// (measured_response.h: the definitions of ../shared/realrooms/README.md).
 //
 //   survey_bench --rir-dir DIR [--packets 10] [--snr-db 10] [--noise white|pink] [--gap 0.5]
 //                [--seed 1] [--threads 2] [--regularisation 0.01] [--iterations 20]
@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
       row.drr_error = row.error.empty() ? row.survey.drr_db - row.truth.drr_db : NAN;
       row.ok = row.error.empty() && std::abs(row.rt60_error) <= kRt60Tolerance && std::abs(row.drr_error) <= kDrrToleranceDb;
     });
-    std::printf("survey_bench: %d packets per room, %s noise at SNR %.1f dB, %.2f s apart\n", a.packets,
+    std::printf("survey_bench: %d packets per room, %s noise at SNR %.1f dB, gaps drawn around %.2f s\n", a.packets,
                 a.noise == RoomOptions::Noise::kPink ? "pink" : "white", a.snr_db, a.gap);
     std::printf("%-44s %8s %8s %8s %8s %7s %8s %8s\n", "room", "RT60 s", "survey", "DRR dB", "survey", "packets",
                 "RT60 err", "DRR err");

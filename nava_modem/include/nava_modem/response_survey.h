@@ -79,7 +79,8 @@ struct SurveyResult {
 };
 
 // What one robot plays for another to survey the room by: `count` room packets with random data
-// (from `seed`), `gap` s of silence before, between and after them, at `sample_rate`. Throws
+// (from `seed`), silences of 0.5 to 1.5 times `gap` s (drawn) before, between and after them, at
+// `sample_rate`. Throws
 // std::invalid_argument for a rate the room profile cannot run at, or count < 1, or gap < 0.
 std::vector<float> SurveyTrain(double sample_rate, int count, double gap, unsigned seed);
 
