@@ -131,6 +131,16 @@ void WriteWorldSection(const std::string& path, const std::vector<Survey>& surve
     mean.ambient += s.ambient / surveys.size();
     pink += s.pink ? 1 : 0;
   }
+  // What a world file takes (world_file.cpp): a survey outside it has no section to give.
+  const auto refuse = [&](const std::string& field, double value, const std::string& expected) {
+    audio_propagation::tools::Fail(kProgram, "--world-out " + path + ": the surveyed " + field + " " +
+                                                 JsonNumber(value, 3) + " is not " + expected);
+  };
+  if (!(mean.rt60 > 0.0 && mean.rt60 <= 10.0)) refuse("rt60", mean.rt60, "a reverberation time in (0, 10] s");
+  if (!(mean.critical_distance > 0.0 && mean.critical_distance <= 1000.0)) {
+    refuse("critical_distance", mean.critical_distance, "a distance in (0, 1000] m (a DRR that high leaves no room)");
+  }
+  if (!(mean.ambient >= -50.0 && mean.ambient <= 150.0)) refuse("ambient_db", mean.ambient, "a level in [-50, 150] dB");
   std::ofstream out(path);
   if (!out) audio_propagation::tools::Fail(kProgram, path + ": cannot write (--world-out)");
   out << "# The acoustics section of a world file, surveyed by nava_survey from";
