@@ -10,6 +10,7 @@
 #include "nava_modem/fft_plan.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/noise_spectrum.h"
+#include "nava_modem/parabola.h"
 #include "nava_modem/power_of_two.h"
 
 namespace nava_modem {
@@ -188,9 +189,7 @@ void ChirpDetector::Judge(std::int64_t n, double p, std::vector<ChirpPeak>& peak
     if (n < peak_deadline_) return;
     // Sub-sample position from a parabola through the peak and its neighbours.
     const std::int64_t m = static_cast<std::int64_t>(best_.sample);
-    const double a = at(m - 1), b = at(m), c = at(m + 1);
-    const double denom = a - 2.0 * b + c;
-    if (denom < 0.0) best_.sample += std::clamp(0.5 * (a - c) / denom, -0.5, 0.5);
+    best_.sample += ParabolaOffset(at(m - 1), at(m), at(m + 1));
     peaks.push_back(best_);
     peaking_ = false;
     // The chirp's own reflections follow it for a while, weaker: they are not chirps of their own.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "nava_modem/fft_plan.h"
+#include "nava_modem/parabola.h"
 #include "nava_modem/power_of_two.h"
 
 namespace nava_modem {
@@ -60,13 +61,6 @@ std::vector<double> Window(std::size_t n) {
 double Bearing(double y, double x) {
   const double a = std::atan2(y, x);
   return a <= -M_PI ? M_PI : a;
-}
-
-// The peak's offset from the middle point of a parabola through (-1, a), (0, b), (1, c).
-double ParabolaOffset(double a, double b, double c) {
-  const double curvature = a - 2.0 * b + c;
-  if (curvature >= 0.0) return 0.0;
-  return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
 }
 
 // An array on a robot spans centimetres to a metre or two; farther is a typo (and would ask the

@@ -9,6 +9,7 @@
 
 #include "nava_modem/fft_plan.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/parabola.h"
 #include "nava_modem/real_fft.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_phy.h"
@@ -71,12 +72,6 @@ double BandPower(const Spectrum& s, std::size_t n, double sample_rate, double lo
 
 double Db(double power) { return 10.0 * std::log10(std::max(power, 1e-30)); }
 
-// Where the three values around a maximum put it, as a fraction of a sample from the middle one.
-double ParabolicOffset(double before, double at, double after) {
-  const double curvature = before - 2.0 * at + after;
-  return curvature < 0.0 ? std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5) : 0.0;
-}
-
 // The lag (fractional) within `reach` of 0 at which the circular sequence `c` is largest.
 double PeakLag(const std::vector<double>& c, std::size_t reach) {
   const std::size_t n = c.size();
@@ -85,7 +80,7 @@ double PeakLag(const std::vector<double>& c, std::size_t reach) {
   for (long lag = -static_cast<long>(reach); lag <= static_cast<long>(reach); ++lag) {
     if (at(lag) > at(best)) best = lag;
   }
-  return static_cast<double>(best) + ParabolicOffset(at(best - 1), at(best), at(best + 1));
+  return static_cast<double>(best) + ParabolaOffset(at(best - 1), at(best), at(best + 1));
 }
 
 // The packet as sent, at our clock: the sender's clock ran 1 + rate_error times ours.
@@ -167,7 +162,7 @@ void PlaceByDecode(Train& train, const std::vector<SurveyPacket>& packets, const
     if (c[lag] > loudest) {
       loudest = c[lag];
       const double peak = static_cast<double>(lag) +
-                          (lag > 0 && lag + 1 < c.size() ? ParabolicOffset(c[lag - 1], c[lag], c[lag + 1]) : 0.0);
+                          (lag > 0 && lag + 1 < c.size() ? ParabolaOffset(c[lag - 1], c[lag], c[lag + 1]) : 0.0);
       offset = static_cast<double>(first) + peak - decoded;
     }
   }
