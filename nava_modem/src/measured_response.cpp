@@ -10,21 +10,7 @@
 #include "nava_modem/wav_file.h"
 
 namespace nava_modem {
-namespace {
 
-// The response in [lo, hi] Hz: 4th-order Butterworth high- and low-pass, run forwards and
-// backwards (zero phase, so the direct sound stays where it was). The figures of
-// ../shared/realrooms/README.md come out to within 0.05 dB this way; a brick-wall FFT band, which
-// this replaced, read up to 0.6 dB higher where the direct sound is strong.
-std::vector<double> BandPass(const std::vector<float>& x, double sample_rate, double lo, double hi) {
-  std::vector<Biquad> sections = Butterworth(sample_rate, lo, true, 4);
-  const std::vector<Biquad> low_pass = Butterworth(sample_rate, hi, false, 4);
-  sections.insert(sections.end(), low_pass.begin(), low_pass.end());
-  return FilterForwardBackward(std::vector<double>(x.begin(), x.end()), sections);
-}
-
-// The decay time from Schroeder's curve (dB, from 0 at the start) between -from and -to dB:
-// the least-squares line's slope extended to 60 dB; NaN when the curve does not reach -to dB.
 double DecayTime(const std::vector<double>& curve_db, double sample_rate, double from, double to) {
   std::size_t first = curve_db.size(), last = curve_db.size();
   for (std::size_t k = 0; k < curve_db.size(); ++k) {
@@ -44,6 +30,8 @@ double DecayTime(const std::vector<double>& curve_db, double sample_rate, double
   const double slope = (n * sty - st * sy) / (n * stt - st * st);  // dB per second, negative
   return slope < 0.0 ? -60.0 / slope : std::numeric_limits<double>::quiet_NaN();
 }
+
+namespace {
 
 void CheckMeasurable(const std::vector<float>& response, double sample_rate) {
   if (!(sample_rate > 2.0 * kResponseBandHighHz)) {
@@ -151,8 +139,18 @@ Cut CutAtFloor(const std::vector<double>& band, double sample_rate, double floor
   return Cut{static_cast<std::size_t>(end), floor, tail, best_slope};
 }
 
-// The figures of a band-passed response up to `cut`.
-ResponseMeasures Figures(const std::vector<double>& band, double sample_rate, const Cut& cut) {
+std::size_t LeadSamples(double sample_rate) { return static_cast<std::size_t>(std::lround(kMeasureLeadS * sample_rate)); }
+
+// The response in the modems' band with LeadSamples() of silence before it.
+std::vector<double> LeadBand(const std::vector<float>& response, double sample_rate) {
+  std::vector<float> led(LeadSamples(sample_rate), 0.0f);
+  led.insert(led.end(), response.begin(), response.end());
+  return ResponseBand(led, sample_rate, kResponseBandLowHz, kResponseBandHighHz);
+}
+
+// The figures of a band-passed response up to `cut`; `lead`: the silence put before it, which
+// holds no sound from before the direct one and is taken off the peak's sample.
+ResponseMeasures Figures(const std::vector<double>& band, double sample_rate, const Cut& cut, std::size_t lead) {
   ResponseMeasures m;
   m.peak = LargestPeak(band);
   const std::size_t half = static_cast<std::size_t>(std::lround(kDirectHalfWidthS * sample_rate));
@@ -161,7 +159,7 @@ ResponseMeasures Figures(const std::vector<double>& band, double sample_rate, co
   const std::size_t direct_start = m.peak >= half ? m.peak - half : 0;
   const auto energy = [&](std::size_t k) { return band[k] * band[k] - cut.floor; };
   double before = 0.0, direct = 0.0, after = cut.tail;
-  for (std::size_t k = 0; k < direct_start; ++k) before += energy(k);
+  for (std::size_t k = std::min(lead, direct_start); k < direct_start; ++k) before += energy(k);
   for (std::size_t k = direct_start; k < direct_end; ++k) direct += energy(k);
   for (std::size_t k = direct_end; k < end; ++k) after += energy(k);
   constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -188,10 +186,21 @@ ResponseMeasures Figures(const std::vector<double>& band, double sample_rate, co
   }
   m.rt60_s = DecayTime(curve, sample_rate, 5.0, 35.0);
   if (!std::isfinite(m.rt60_s)) m.rt60_s = DecayTime(curve, sample_rate, 5.0, 25.0);
+  m.peak = m.peak >= lead ? m.peak - lead : 0;
   return m;
 }
 
 }  // namespace
+
+std::vector<double> ResponseBand(const std::vector<float>& x, double sample_rate, double lo, double hi) {
+  // Zero phase, so the direct sound stays where it was. The figures of ../shared/realrooms/README.md
+  // come out to within 0.05 dB this way; a brick-wall FFT band, which this replaced, read up to
+  // 0.6 dB higher where the direct sound is strong.
+  std::vector<Biquad> sections = Butterworth(sample_rate, lo, true, 4);
+  const std::vector<Biquad> low_pass = Butterworth(sample_rate, hi, false, 4);
+  sections.insert(sections.end(), low_pass.begin(), low_pass.end());
+  return FilterForwardBackward(std::vector<double>(x.begin(), x.end()), sections);
+}
 
 std::vector<float> LoadImpulseResponse(const std::string& path, std::optional<int> channel, double sample_rate) {
   if (!(sample_rate > 0.0 && std::isfinite(sample_rate))) {
@@ -225,8 +234,8 @@ std::vector<float> LoadImpulseResponse(const std::string& path, std::optional<in
 
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate) {
   CheckMeasurable(response, sample_rate);
-  const std::vector<double> band = BandPass(response, sample_rate, kResponseBandLowHz, kResponseBandHighHz);
-  return Figures(band, sample_rate, Cut{band.size(), 0.0, 0.0});
+  const std::vector<double> band = LeadBand(response, sample_rate);
+  return Figures(band, sample_rate, Cut{band.size(), 0.0, 0.0}, LeadSamples(sample_rate));
 }
 
 ResponseMeasures MeasureResponseOverNoise(const std::vector<float>& response, double noise_power, double sample_rate) {
@@ -234,14 +243,14 @@ ResponseMeasures MeasureResponseOverNoise(const std::vector<float>& response, do
   if (!(noise_power >= 0.0 && std::isfinite(noise_power))) {
     throw std::invalid_argument("impulse response's noise power " + std::to_string(noise_power) + ": expected 0 or above");
   }
-  const std::vector<double> band = BandPass(response, sample_rate, kResponseBandLowHz, kResponseBandHighHz);
-  return Figures(band, sample_rate, CutAtFloor(band, sample_rate, noise_power));
+  const std::vector<double> band = LeadBand(response, sample_rate);
+  return Figures(band, sample_rate, CutAtFloor(band, sample_rate, noise_power), LeadSamples(sample_rate));
 }
 
 double InBandPower(const std::vector<float>& x, double sample_rate) {
   if (x.empty()) return 0.0;
   double sum = 0.0;
-  for (double v : BandPass(x, sample_rate, kResponseBandLowHz, kResponseBandHighHz)) sum += v * v;
+  for (double v : ResponseBand(x, sample_rate, kResponseBandLowHz, kResponseBandHighHz)) sum += v * v;
   return sum / static_cast<double>(x.size());
 }
 

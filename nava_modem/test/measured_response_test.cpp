@@ -36,6 +36,21 @@ TEST(MeasuredResponseTest, FiguresOfResponsesWhoseFiguresAreKnown) {
   }
 }
 
+// A file cut at its direct sound (and every response the renderer makes) starts with it: the
+// band's zero-phase filters spread the direct pulse both ways, and the half before the file's
+// start was lost, reading the DRR 3 dB low.
+TEST(MeasuredResponseTest, AResponseThatStartsWithItsDirectSoundReadsAsOneWithSilenceBefore) {
+  for (double drr : {-6.0, 0.0, 6.0}) {
+    const ResponseMeasures at_start = MeasureResponse(KnownResponse(0.6, drr, 48000.0, 0, 5), 48000.0);
+    const ResponseMeasures delayed = MeasureResponse(KnownResponse(0.6, drr, 48000.0, 960, 5), 48000.0);
+    EXPECT_EQ(at_start.peak, 0u);
+    EXPECT_NEAR(at_start.drr_db, drr, 0.5) << drr;
+    EXPECT_NEAR(at_start.drr_db, delayed.drr_db, 0.05) << drr;
+    EXPECT_NEAR(at_start.rt60_s, delayed.rt60_s, 0.01) << drr;
+    EXPECT_EQ(at_start.before_db, -std::numeric_limits<double>::infinity());
+  }
+}
+
 TEST(MeasuredResponseTest, AResponseWithNothingAfterItsDirectSoundHasAnInfiniteDrr) {
   std::vector<float> h(4800, 0.0f);
   h[100] = 0.5f;

@@ -69,6 +69,19 @@ ResponseMeasures MeasureResponse(const std::vector<float>& response, double samp
 ResponseMeasures MeasureResponseOverNoise(const std::vector<float>& response, double noise_power, double sample_rate);
 constexpr double kFloorMarginDb = 10.0;
 constexpr double kLateFitDb = 20.0;
+// Silence put before a response before it is band-passed for its figures: a response whose direct
+// sound is at its first samples (a file cut at its direct sound, or one rendered here) would
+// otherwise lose the half of the filtered pulse that the zero-phase filters spread before it, and
+// read its DRR 3 dB low (-2.9 dB for a rendered room of DRR 0).
+constexpr double kMeasureLeadS = 0.010;
+
+// `x` in [lo, hi] Hz: 4th-order Butterworth high- and low-pass filters run forwards and backwards
+// (zero phase), as every figure here is read.
+std::vector<double> ResponseBand(const std::vector<float>& x, double sample_rate, double lo, double hi);
+// The decay time from Schroeder's curve (dB, 0 at its start) between -from and -to dB: the
+// least-squares line's slope extended to 60 dB; NaN when the curve does not reach -to dB.
+double DecayTime(const std::vector<double>& curve_db, double sample_rate, double from, double to);
+
 // The mean square of `x` in 600-5400 Hz, through the same filters as the figures (0 for empty x).
 double InBandPower(const std::vector<float>& x, double sample_rate);
 
