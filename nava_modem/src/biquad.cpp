@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace nava_modem {
 
@@ -31,6 +32,21 @@ Biquad PassSection(double sample_rate, double hz, bool high_pass, double q) {
   return s;
 }
 
+Biquad PeakingSection(double sample_rate, double hz, double gain_db, double q) {
+  const double w = 2.0 * M_PI * hz / sample_rate;
+  const double alpha = std::sin(w) / (2.0 * q);
+  const double amplitude = std::pow(10.0, gain_db / 40.0);
+  const double c = std::cos(w);
+  const double a0 = 1.0 + alpha / amplitude;
+  Biquad s;
+  s.b0 = (1.0 + alpha * amplitude) / a0;
+  s.b1 = -2.0 * c / a0;
+  s.b2 = (1.0 - alpha * amplitude) / a0;
+  s.a1 = -2.0 * c / a0;
+  s.a2 = (1.0 - alpha / amplitude) / a0;
+  return s;
+}
+
 std::vector<Biquad> Butterworth(double sample_rate, double hz, bool high_pass, int order) {
   if (order < 2 || order > 16 || order % 2 != 0) {
     throw std::invalid_argument("Butterworth order " + std::to_string(order) + ": expected an even number 2..16");
@@ -49,11 +65,16 @@ std::vector<Biquad> Butterworth(double sample_rate, double hz, bool high_pass, i
   return sections;
 }
 
+std::vector<double> FilterForward(std::vector<double> x, const std::vector<Biquad>& sections) {
+  for (Biquad s : sections) {
+    for (double& v : x) v = s.Run(v);
+  }
+  return x;
+}
+
 std::vector<double> FilterForwardBackward(std::vector<double> x, const std::vector<Biquad>& sections) {
   for (int pass = 0; pass < 2; ++pass) {
-    for (Biquad s : sections) {
-      for (double& v : x) v = s.Run(v);
-    }
+    x = FilterForward(std::move(x), sections);
     std::reverse(x.begin(), x.end());
   }
   return x;

@@ -7,6 +7,7 @@
 
 #include <samplerate.h>
 
+#include "nava_modem/measured_like_response.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/real_fft.h"
@@ -56,6 +57,12 @@ void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
   Check(sample_rate > 0.0 && std::isfinite(sample_rate), "sample_rate", sample_rate, " Hz", "above 0");
   Check(Within(o.rt60, 0.0, 10.0), "rt60", o.rt60, " s", "0 (no reverberation) or above 0 and at most 10");
   Check(Within(o.drr_db, -40.0, 40.0), "drr_db", o.drr_db, " dB", "from -40 to 40");
+  Check(o.model == RoomOptions::Model::kStatistical || o.model == RoomOptions::Model::kMeasuredLike, "model",
+        static_cast<double>(o.model), "", "statistical or measured-like");
+  if (o.model == RoomOptions::Model::kMeasuredLike) {
+    Check(sample_rate > 2.0 * kResponseBandHighHz, "model", sample_rate, " Hz",
+          "a sample rate above " + Number(2.0 * kResponseBandHighHz) + " Hz for a measured-like room (its band)");
+  }
   if (!o.response.empty()) {
     Check(o.rt60 == 0.0, "rt60", o.rt60, " s", "0 with a measured response (the response is the room)");
     Check(o.drr_db == 0.0, "drr_db", o.drr_db, " dB", "0 with a measured response (the response is the room)");
@@ -148,12 +155,16 @@ std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rat
   const std::vector<float> sent = options.clock_offset == 0.0 ? clean : Resample(clean, 1.0 / (1.0 + options.clock_offset));
 
   // 2-3. Tilt and room in one spectrum.
-  const bool measured = !options.response.empty();
+  const bool given = !options.response.empty();
+  const bool like = !given && options.model == RoomOptions::Model::kMeasuredLike && options.rt60 > 0.0;
   const std::vector<float>& response =
-      measured ? options.response : RoomImpulseResponse(options.rt60, options.drr_db, sample_rate, options.seed);
-  // Where the packet is heard: a measured response's delay to its largest peak (0 for ours).
+      given ? options.response
+            : like ? MeasuredLikeResponse(options.rt60, options.drr_db, sample_rate, options.seed)
+                   : RoomImpulseResponse(options.rt60, options.drr_db, sample_rate, options.seed);
+  // Where the packet is heard: a measured (or measured-like) response's delay to its largest
+  // peak (0 for the statistical one).
   std::size_t delay = 0;
-  if (measured) {
+  if (given || like) {
     report.measured_drr_db = sample_rate > 2.0 * kResponseBandHighHz ? MeasureResponse(response, sample_rate).drr_db
                                                                       : MeasureDrrDb(response);
     for (std::size_t k = 0; k < response.size(); ++k) {

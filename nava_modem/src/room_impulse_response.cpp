@@ -56,35 +56,50 @@ std::vector<EarlyReflection> DrawEarlyReflections(double rt60, RandomSource& ran
   return reflections;
 }
 
-// Gaussian noise of length n split at the crossover into (below, above), each band then given
-// its own exponential decay, starting at kTailStartS with a raised-cosine fade-in.
-std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, RandomSource& random) {
+std::vector<double> BandedTail(std::size_t n, const std::vector<TailBand>& bands, double start_s, double fade_s,
+                               double sample_rate, RandomSource& random) {
   const std::size_t size = FftSize(n);
   std::vector<double> noise(size);
   for (double& v : noise) v = random.Gaussian();
   const std::vector<std::complex<double>> spectrum = ForwardFft(noise, size);
-  std::vector<std::complex<double>> low(spectrum.size()), high(spectrum.size());
-  for (std::size_t k = 0; k < spectrum.size(); ++k) {
-    (BinHz(k, size, sample_rate) < kRoomCrossoverHz ? low : high)[k] = spectrum[k];
+  // Each band's noise (bins from the band before's top to its own), then its decay rate.
+  std::vector<std::vector<double>> band_noise;
+  std::vector<double> rate;
+  double bottom = -1.0;
+  for (const TailBand& band : bands) {
+    std::vector<std::complex<double>> part(spectrum.size());
+    for (std::size_t k = 0; k < spectrum.size(); ++k) {
+      const double hz = BinHz(k, size, sample_rate);
+      if (hz >= bottom && hz < band.top_hz) part[k] = spectrum[k];
+    }
+    band_noise.push_back(InverseFft(part, size));
+    rate.push_back(kLn1000 / band.t60_s);
+    bottom = band.top_hz;
   }
-  const std::vector<double> low_band = InverseFft(low, size);
-  const std::vector<double> high_band = InverseFft(high, size);
-  const double low_rate = kLn1000 / rt60, high_rate = kLn1000 / (kHighBandDecayRatio * rt60);
   std::vector<double> tail(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / sample_rate;
-    if (t < kTailStartS) continue;
-    const double fade = t < kTailStartS + kTailFadeS ? 0.5 - 0.5 * std::cos(kPi * (t - kTailStartS) / kTailFadeS) : 1.0;
+    if (t < start_s) continue;
+    const double fade = t < start_s + fade_s ? 0.5 - 0.5 * std::cos(kPi * (t - start_s) / fade_s) : 1.0;
     // Decay counted from the tail's start, not from 0: the same shape up to a factor (which the
-    // caller's scaling removes), and no underflow to zero for very short rt60.
-    const double since = t - kTailStartS;
-    tail[i] = fade * (low_band[i] * std::exp(-low_rate * since) + high_band[i] * std::exp(-high_rate * since));
+    // caller's scaling removes), and no underflow to zero for very short decays.
+    const double since = t - start_s;
+    double sum = 0.0;
+    for (std::size_t b = 0; b < bands.size(); ++b) sum += band_noise[b][i] * std::exp(-rate[b] * since);
+    tail[i] = fade * sum;
   }
   return tail;
 }
 
+// Gaussian noise of length n split at the crossover into (below, above), each band then given
+// its own exponential decay, starting at kTailStartS with a raised-cosine fade-in.
+std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, RandomSource& random) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  return BandedTail(n, {{kRoomCrossoverHz, rt60}, {infinity, kHighBandDecayRatio * rt60}}, kTailStartS, kTailFadeS,
+                    sample_rate, random);
+}
 
-std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample_rate, std::uint32_t seed) {
+void ValidateRoomResponseArguments(double rt60, double drr_db, double sample_rate) {
   if (!(sample_rate > 0.0) || !std::isfinite(sample_rate)) {
     throw std::invalid_argument("sample rate " + std::to_string(sample_rate) + " Hz: expected above 0");
   }
@@ -94,6 +109,10 @@ std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample
   if (!(std::fabs(drr_db) <= 40.0)) {
     throw std::invalid_argument("drr_db " + std::to_string(drr_db) + " dB: expected from -40 to 40");
   }
+}
+
+std::vector<float> RoomImpulseResponse(double rt60, double drr_db, double sample_rate, std::uint32_t seed) {
+  ValidateRoomResponseArguments(rt60, drr_db, sample_rate);
   if (rt60 == 0.0) return {1.0f};
 
   const std::size_t n = RoomResponseSamples(rt60, sample_rate);

@@ -3,9 +3,11 @@
 // the model and the level definitions. With --mics, what each microphone of an array hears of a
 // source at --bearing and --distance, one channel per microphone (room_array.h). With --rir,
 // through a measured impulse response instead of the statistical room (channel K of the file,
-// resampled to the input's rate, its own delay kept).
+// resampled to the input's rate, its own delay kept); with --response measured-like, through a
+// room like measured ones (measured_like_response.h) of the RT60 and DRR given.
 //
-//   nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB | --rir FILE.wav [--channel K]]
+//   nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S --drr DB [--response statistical|measured-like]
+//             | --rir FILE.wav [--channel K]]
 //             [--tilt DB] [--tilt-band LO,HI]
 //             [--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB]
 //             [--whine HZ] [--whine-sir DB] [--whine-am HZ] [--seed N]

@@ -30,13 +30,15 @@ const std::string& NavaRoomFlag(const std::string& field) {
       {"tilt_low_hz", "--tilt-band"}, {"tilt_high_hz", "--tilt-band"}, {"clock_offset", "--clock"},
       {"snr_db", "--snr"},         {"sir_db", "--sir"},        {"whine_hz", "--whine"},
       {"whine_sir_db", "--whine-sir"}, {"whine_am_hz", "--whine-am"}, {"sample_rate", "--in"},
-      {"bearing", "--bearing"},    {"distance", "--distance"}, {"response", "--rir"}};
+      {"bearing", "--bearing"},    {"distance", "--distance"}, {"response", "--rir"},
+      {"model", "--response"}};
   return flags.at(field);
 }
 
 NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   const std::string usage =
-      "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S] [--drr DB | --rir FILE.wav [--channel K]] [--tilt DB] [--tilt-band LO,HI] "
+      "nava_room --in CLEAN.wav --out ROOM.wav [--rt60 S --drr DB [--response statistical|measured-like] | --rir FILE.wav "
+      "[--channel K]] [--tilt DB] [--tilt-band LO,HI] "
       "[--clock PERCENT] [--noise white|pink] [--snr DB] [--interferer FILE] [--sir DB] [--whine HZ] "
       "[--whine-sir DB] [--whine-am HZ] [--seed N] [--mics X1,Y1,X2,Y2,... [--bearing DEG] [--distance M]]";
   const ToolArgs args("nava_room", usage, words);
@@ -47,6 +49,12 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   RoomOptions& o = r.room;
   o.rt60 = Number(args, "--rt60", o.rt60);
   o.drr_db = Number(args, "--drr", o.drr_db);
+  const std::string model = args.String("--response", "statistical");
+  if (model == "measured-like") {
+    o.model = RoomOptions::Model::kMeasuredLike;
+  } else if (model != "statistical") {
+    args.Fail("--response " + model + ": expected statistical or measured-like");
+  }
   r.rir_path = args.String("--rir", "");
   if (!args.String("--channel", "").empty()) r.rir_channel = static_cast<int>(args.Int("--channel", 0, 0, 255));
   o.tilt_db = Number(args, "--tilt", o.tilt_db);
@@ -80,6 +88,9 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   source.bearing = Number(args, "--bearing", 0.0) * 3.141592653589793 / 180.0;
   source.distance = Number(args, "--distance", source.distance);
   args.CheckAllUsed();
+  if (!r.mics.empty() && o.model != RoomOptions::Model::kStatistical) {
+    args.Fail("--response " + model + ": an array's microphones hear the statistical room (room_array.h); drop one of them");
+  }
   if (!r.mics.empty()) {
     try {
       source.mics = ParseMicPositions(r.mics);
@@ -95,7 +106,7 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   if (!r.rir_path.empty()) {
     // A measured response is the whole room: a statistical one beside it, or an array's
     // microphones that one response cannot serve, would be a mistake in the command.
-    for (const char* flag : {"--rt60", "--drr", "--mics"}) {
+    for (const char* flag : {"--rt60", "--drr", "--mics", "--response"}) {
       if (!args.String(flag, "").empty()) args.Fail(std::string(flag) + ": the room is the measured response of --rir; drop one of them");
     }
   } else if (r.rir_channel) {

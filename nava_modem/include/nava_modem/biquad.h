@@ -17,8 +17,15 @@ struct Biquad {
 // Butterworth), from the bilinear transform, as in R. Bristow-Johnson's audio EQ cookbook.
 Biquad PassSection(double sample_rate, double hz, bool high_pass, double q);
 
+// A peaking section at `hz`: `gain_db` at its centre, 0 dB far from it, with quality `q` (the
+// cookbook's peaking EQ). Minimum phase, as a loudspeaker's or a microphone's resonance is.
+Biquad PeakingSection(double sample_rate, double hz, double gain_db, double q);
+
 // An `order`-th order Butterworth high- or low-pass (order even, 2..16) as order / 2 sections.
 std::vector<Biquad> Butterworth(double sample_rate, double hz, bool high_pass, int order);
+
+// `x` through the sections in turn (causal: each starts from rest).
+std::vector<double> FilterForward(std::vector<double> x, const std::vector<Biquad>& sections);
 
 // `x` through the sections in turn, then through fresh copies of them backwards in time: zero
 // phase, the magnitude response squared (as scipy's sosfiltfilt, without its edge padding).

@@ -33,6 +33,12 @@ namespace nava_modem {
 struct RoomOptions {
   double rt60 = 0.0;    // s, mid-frequency reverberation time; 0 = no reverberation (the direct sound only)
   double drr_db = 0.0;  // direct-to-reverberant energy ratio of the impulse response, dB
+  // The room's response for rt60 and drr_db: the statistical one (room_impulse_response.h) or one
+  // like measured rooms' (measured_like_response.h: the transducers' colouring, the floor's and
+  // walls' reflections, absorption rising with frequency; its DRR read in 600-5400 Hz as
+  // ../shared/realrooms/README.md reads it; the sample rate then above 10800 Hz).
+  enum class Model { kStatistical, kMeasuredLike };
+  Model model = Model::kStatistical;
   // A measured impulse response at the render's sample rate (LoadImpulseResponse), used as given
   // in place of the statistical room: rt60 and drr_db must then be 0. Its own delay is kept.
   std::vector<float> response;
@@ -68,7 +74,7 @@ class RoomOptionError : public std::invalid_argument {
 };
 
 // Throws RoomOptionError (a std::invalid_argument) for: sample_rate not above 0; rt60 < 0 or
-// > 10 s; |drr_db| > 40; a response that is silent or not finite, or given with rt60 or
+// > 10 s; |drr_db| > 40; the measured-like model at a sample rate not above 10800 Hz; a response that is silent or not finite, or given with rt60 or
 // drr_db; |tilt_db| > 40; tilt_low_hz <= 0 or >= tilt_high_hz; |clock_offset| > 0.05; snr_db, sir_db or whine_sir_db outside -60..100; whine_hz < 0 or whose 1 % wander would
 // reach Nyquist (whine_hz >= Nyquist / 1.01); whine_am_hz < 0 or > 100; an unknown noise kind.
 void ValidateRoomOptions(const RoomOptions& o, double sample_rate);

@@ -54,6 +54,24 @@ std::vector<EarlyReflection> DrawEarlyReflections(double rt60, RandomSource& ran
 // before 5 ms; rt60 above 0.
 std::vector<double> DiffuseTail(std::size_t n, double rt60, double sample_rate, RandomSource& random);
 
+// One band of a diffuse tail: the frequencies from the band before's top (0 for the first) up to
+// top_hz, decaying by 60 dB in t60_s.
+struct TailBand {
+  double top_hz;
+  double t60_s;
+};
+
+// Gaussian noise of length n (from one RandomSource, one FFT) split into `bands` (ascending tops;
+// the last's top above the Nyquist frequency to take every bin), each decaying at its own rate
+// from start_s on, faded in with a raised cosine over fade_s (above 0). DiffuseTail is this with
+// two bands split at kRoomCrossoverHz, from kTailStartS.
+std::vector<double> BandedTail(std::size_t n, const std::vector<TailBand>& bands, double start_s, double fade_s,
+                               double sample_rate, RandomSource& random);
+
+// Throws std::invalid_argument, naming the argument, for rt60 < 0 or > 10, |drr_db| > 40 or a
+// sample rate not above 0 (the arguments every room response takes).
+void ValidateRoomResponseArguments(double rt60, double drr_db, double sample_rate);
+
 // Direct-to-reverberant ratio of a response whose direct sound is at index 0, in dB
 // (energy of index 0 over the energy of everything after it); +infinity when nothing follows.
 double MeasureDrrDb(const std::vector<float>& response);

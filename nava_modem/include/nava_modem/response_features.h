@@ -1,0 +1,56 @@
+#pragma once
+
+// What a room impulse response holds beyond its RT60 and DRR, read in the modems' band: the
+// features that tell a measured response (a real loudspeaker or clap, a real microphone, a floor
+// and walls at real distances) from a statistical one, and that a modem's receiver feels. They
+// let the renderer's responses be held against measured ones (room_impulse_response.h). No ROS.
+#include <vector>
+
+#include "nava_modem/measured_response.h"
+
+namespace nava_modem {
+
+// The end of the early part after the direct sound: the floor's, walls' and ceiling's first
+// reflections in a room of a few metres.
+constexpr double kEarlyEndS = 0.050;
+// Third-octave bands whose centres lie in the modems' band (630 Hz to 5 kHz): where the colouring
+// is read.
+constexpr int kColourBands = 10;
+
+struct ResponseFeatures {
+  ResponseMeasures measures;  // RT60, DRR, the direct sound's peak (MeasureResponse)
+  // The direct sound's duration: the RMS spread of its energy (within kDirectHalfWidthS of the
+  // peak) about the peak, ms. A single sample through the band's filters gives about 0.2 ms.
+  double direct_spread_ms = 0.0;
+  // Energy from kDirectHalfWidthS to kEarlyEndS after the peak over the direct sound's, dB.
+  double early_db = 0.0;
+  // The strongest reflection within the early part: its delay after the peak (ms) and its level
+  // over the direct sound's peak level (dB), both from the 0.5 ms energy envelope.
+  double strongest_early_ms = 0.0;
+  double strongest_early_db = 0.0;
+  // The third-octave levels (dB, energy per Hz, relative to their mean) of the whole response
+  // and of the direct sound alone (Hann window over its +-kDirectHalfWidthS): the colouring of
+  // the room with the transducers, and of the transducers (and the nearest reflections) alone.
+  double band_db[kColourBands] = {};
+  double direct_band_db[kColourBands] = {};
+  // The standard deviations of those levels, dB: how far from flat each is.
+  double colour_db = 0.0;
+  double direct_colour_db = 0.0;
+  // The whole response's energy within +-150 Hz of `tone_a_hz` over that around `tone_b_hz`, dB
+  // (for nava's two tones: a room and its transducers can make one 10 dB weaker than the other).
+  double tone_ratio_db = 0.0;
+  // T30 in the octave about 4 kHz (2828-5400 Hz) over T30 in the octave about 1 kHz
+  // (707-1414 Hz): air and surfaces absorb high frequencies more, so this is below 1 in a
+  // measured room. NaN where either octave's decay gives no RT60.
+  double decay_ratio = 0.0;
+};
+
+// The features of `response` at `sample_rate` (above 2 x kResponseBandHighHz); tone_ratio_db at
+// the two tones given. Throws std::invalid_argument as MeasureResponse does.
+ResponseFeatures MeasureFeatures(const std::vector<float>& response, double sample_rate, double tone_a_hz,
+                                 double tone_b_hz);
+
+// The centre (Hz) of colour band k: 630 Hz x 2^(k/3).
+double ColourBandHz(int k);
+
+}  // namespace nava_modem
