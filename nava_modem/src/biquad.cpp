@@ -33,6 +33,12 @@ Biquad PassSection(double sample_rate, double hz, bool high_pass, double q) {
 }
 
 Biquad PeakingSection(double sample_rate, double hz, double gain_db, double q) {
+  // Beyond Nyquist the section's poles leave the unit circle: refused, not run unstable.
+  if (!(hz > 0.0 && hz < sample_rate / 2.0) || !(q > 0.0) || !std::isfinite(gain_db)) {
+    throw std::invalid_argument("peaking section at " + std::to_string(hz) + " Hz, q " + std::to_string(q) + ", " +
+                                std::to_string(gain_db) + " dB: expected a centre between 0 and half of " +
+                                std::to_string(sample_rate) + " Hz, q above 0 and a finite gain");
+  }
   const double w = 2.0 * M_PI * hz / sample_rate;
   const double alpha = std::sin(w) / (2.0 * q);
   const double amplitude = std::pow(10.0, gain_db / 40.0);

@@ -65,9 +65,18 @@ void CheckGeometry(const ResponseGeometry& g) {
   check(g.source_height_m, "source_height_m");
   check(g.microphone_height_m, "microphone_height_m");
   check(g.ceiling_m, "ceiling_m");
-  if (g.ceiling_m > 0.0 && (g.source_height_m >= g.ceiling_m || g.microphone_height_m >= g.ceiling_m)) {
-    throw std::invalid_argument("geometry: a height at or above the ceiling (" + std::to_string(g.ceiling_m) +
-                                " m): expected the loudspeaker and the microphone below it");
+  for (const auto& [height, field] :
+       {std::pair{g.source_height_m, "source_height_m"}, std::pair{g.microphone_height_m, "microphone_height_m"}}) {
+    if (g.ceiling_m > 0.0 && height >= g.ceiling_m) {
+      throw std::invalid_argument(std::string("geometry ") + field + " " + std::to_string(height) +
+                                  " m: expected below the ceiling (ceiling_m " + std::to_string(g.ceiling_m) + " m)");
+    }
+  }
+  if (g.distance_m > 0.0 && g.source_height_m > 0.0 && g.microphone_height_m > 0.0 &&
+      g.distance_m <= std::fabs(g.source_height_m - g.microphone_height_m)) {
+    throw std::invalid_argument("geometry distance_m " + std::to_string(g.distance_m) +
+                                " m: expected more than the heights' difference (" +
+                                std::to_string(std::fabs(g.source_height_m - g.microphone_height_m)) + " m)");
   }
 }
 
@@ -83,10 +92,13 @@ Room DrawRoom(double rt60, double drr_db, const ResponseGeometry& g, RandomSourc
   room.length = std::max(2.0, std::sqrt(room.volume / (room.height * aspect)));
   room.width = std::max(2.0, aspect * room.length);
   const double distance = g.distance_m > 0.0 ? g.distance_m : std::clamp(critical * std::pow(10.0, -drr_db / 20.0), 0.3, 60.0);
+  // (With drawn heights a given distance can be shorter than their difference: then the two
+  // stand 10 cm apart across the floor.)
   const double across = std::sqrt(std::max(distance * distance - (source_h - mic_h) * (source_h - mic_h), 0.01));
   // A room too small for the distance is a hall that long.
   constexpr double kMargin = 0.3;
   room.length = std::max(room.length, across + 2.0 * kMargin);
+  room.volume = room.length * room.width * room.height;
   const double angle = Draw(random, 0.0, 2.0 * kPi);
   // Where the pair fits at its angle, drawn uniformly; along the room's length if it does not.
   const double dx = across * std::cos(angle), dy = across * std::sin(angle);
@@ -133,21 +145,27 @@ std::vector<Image> Images(const Room& room, RandomSource& random) {
 
 // The loudspeaker's and microphone's colouring (on everything) and the loudspeaker's directivity
 // (on the direct sound): a high-pass and resonances, each a minimum-phase section.
+// The highest centre of a resonance at `sample_rate`: `hz`, or below Nyquist at low rates.
+double Highest(double hz, double sample_rate) { return std::min(hz, 0.45 * sample_rate); }
+
 std::vector<Biquad> Transducers(double sample_rate, RandomSource& random) {
   std::vector<Biquad> sections = {PassSection(sample_rate, Draw(random, 200.0, 500.0), true, 1.0 / std::sqrt(2.0))};
   for (int k = 0; k < 5; ++k) {
-    const double hz = DrawLog(random, 500.0, 7000.0), gain = std::clamp(8.0 * random.Gaussian(), -18.0, 18.0);
+    const double hz = DrawLog(random, 500.0, Highest(7000.0, sample_rate));
+    const double gain = std::clamp(8.0 * random.Gaussian(), -18.0, 18.0);
     sections.push_back(PeakingSection(sample_rate, hz, gain, DrawLog(random, 0.5, 3.0)));
   }
   // A broad tilt of the highs (a small speaker's rising or falling top, a microphone's presence).
-  sections.push_back(PeakingSection(sample_rate, DrawLog(random, 3000.0, 8000.0), 5.0 * random.Gaussian(), 0.5));
+  const double tilt_hz = DrawLog(random, 3000.0, Highest(8000.0, sample_rate));
+  sections.push_back(PeakingSection(sample_rate, tilt_hz, 5.0 * random.Gaussian(), 0.5));
   return sections;
 }
 
 std::vector<Biquad> Directivity(double sample_rate, RandomSource& random) {
   std::vector<Biquad> sections;
   for (int k = 0; k < 3; ++k) {
-    const double hz = DrawLog(random, 1000.0, 7000.0), gain = std::clamp(7.0 * random.Gaussian(), -15.0, 15.0);
+    const double hz = DrawLog(random, 1000.0, Highest(7000.0, sample_rate));
+    const double gain = std::clamp(7.0 * random.Gaussian(), -15.0, 15.0);
     sections.push_back(PeakingSection(sample_rate, hz, gain, DrawLog(random, 0.7, 2.0)));
   }
   return sections;
@@ -203,7 +221,8 @@ std::vector<float> MeasuredLikeResponse(double rt60, double drr_db, double sampl
     AddPulse(within ? near : far, at + image.delay_s * sample_rate, image.amplitude);
     if (!within) first_far = std::min(first_far, image.delay_s);
   }
-  // The diffuse tail: from the first wall's reflection (or 5 ms), building up over the mixing time.
+  // The diffuse tail: from the first reflection after the direct window (a wall's or the
+  // ceiling's), but not before 5 ms, building up over the mixing time.
   const double mixing = std::clamp(1e-3 * std::sqrt(room.volume), 0.005, 0.080);
   const double start = std::max(0.005, std::isfinite(first_far) ? first_far : 0.005);
   const RandomSource tail_random = random;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "nava_modem/real_fft.h"
 
@@ -71,6 +73,13 @@ ResponseFeatures MeasureFeatures(const std::vector<float>& response, double samp
                                  double tone_b_hz) {
   ResponseFeatures f;
   f.measures = MeasureResponse(response, sample_rate);
+  for (double tone : {tone_a_hz, tone_b_hz}) {
+    if (!(tone > kToneHalfWidthHz && tone + kToneHalfWidthHz < sample_rate / 2.0)) {
+      throw std::invalid_argument("tone " + std::to_string(tone) + " Hz: expected its +-" +
+                                  std::to_string(kToneHalfWidthHz) + " Hz between 0 and half of " +
+                                  std::to_string(sample_rate) + " Hz");
+    }
+  }
   const auto samples = [&](double s) { return static_cast<std::size_t>(std::lround(s * sample_rate)); };
   // With silence before it, as the figures are read (kMeasureLeadS).
   std::vector<float> led(samples(kMeasureLeadS), 0.0f);

@@ -64,6 +64,8 @@ void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
           "a sample rate above " + Number(2.0 * kResponseBandHighHz) + " Hz for a measured-like room (its band)");
   }
   if (!o.response.empty()) {
+    Check(o.model == RoomOptions::Model::kStatistical, "model", static_cast<double>(o.model), "",
+          "the statistical model (the default) with a measured response (the response is the room)");
     Check(o.rt60 == 0.0, "rt60", o.rt60, " s", "0 with a measured response (the response is the room)");
     Check(o.drr_db == 0.0, "drr_db", o.drr_db, " dB", "0 with a measured response (the response is the room)");
     const bool finite = std::all_of(o.response.begin(), o.response.end(), [](float v) { return std::isfinite(v); });

@@ -58,6 +58,16 @@ std::vector<EarlyReflection> DrawEarlyReflections(double rt60, RandomSource& ran
 
 std::vector<double> BandedTail(std::size_t n, const std::vector<TailBand>& bands, double start_s, double fade_s,
                                double sample_rate, RandomSource& random) {
+  if (bands.empty() || !(fade_s > 0.0) || !(start_s >= 0.0)) {
+    throw std::invalid_argument("diffuse tail: expected at least one band, a fade above 0 s and a start at or after 0 s");
+  }
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    if (!(bands[b].t60_s > 0.0) || (b > 0 && !(bands[b].top_hz > bands[b - 1].top_hz))) {
+      throw std::invalid_argument("diffuse tail band " + std::to_string(b) + " (top " + std::to_string(bands[b].top_hz) +
+                                  " Hz, T60 " + std::to_string(bands[b].t60_s) +
+                                  " s): expected a T60 above 0 and tops ascending");
+    }
+  }
   const std::size_t size = FftSize(n);
   std::vector<double> noise(size);
   for (double& v : noise) v = random.Gaussian();

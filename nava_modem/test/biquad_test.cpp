@@ -76,5 +76,14 @@ TEST(BiquadTest, RefusesOddOrdersAndCornersOutsideTheBand) {
   EXPECT_THROW(Butterworth(kRate, 0.0, true, 4), std::invalid_argument);
 }
 
+TEST(BiquadTest, APeakingSectionHasItsGainAtItsCentreAndNoneFarFromIt) {
+  for (double gain : {-9.0, 6.0}) {
+    EXPECT_NEAR(GainDb({PeakingSection(kRate, 2000.0, gain, 2.0)}, 2000.0), gain, 0.2) << gain;
+    EXPECT_NEAR(GainDb({PeakingSection(kRate, 2000.0, gain, 2.0)}, 200.0), 0.0, 0.3) << gain;
+  }
+  EXPECT_THROW(PeakingSection(kRate, 30000.0, 6.0, 1.0), std::invalid_argument);  // beyond Nyquist: unstable
+  EXPECT_THROW(PeakingSection(kRate, 2000.0, 6.0, 0.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace nava_modem

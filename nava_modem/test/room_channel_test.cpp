@@ -344,6 +344,11 @@ TEST(RoomChannelTest, ValidationNamesTheField) {
       {"whine_hz", [](RoomOptions& o) { o.whine_hz = -5.0; }},
       {"whine_am_hz", [](RoomOptions& o) { o.whine_am_hz = -1.0; }},
       {"noise", [](RoomOptions& o) { o.noise = static_cast<RoomOptions::Noise>(7); }},
+      {"model", [](RoomOptions& o) { o.model = static_cast<RoomOptions::Model>(5); }},
+      {"model", [](RoomOptions& o) {
+         o.model = RoomOptions::Model::kMeasuredLike;
+         o.response = {1.0f, 0.5f};
+       }},
   };
   for (const auto& [field, spoil] : cases) {
     RoomOptions o;

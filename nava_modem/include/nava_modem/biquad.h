@@ -19,6 +19,8 @@ Biquad PassSection(double sample_rate, double hz, bool high_pass, double q);
 
 // A peaking section at `hz`: `gain_db` at its centre, 0 dB far from it, with quality `q` (the
 // cookbook's peaking EQ). Minimum phase, as a loudspeaker's or a microphone's resonance is.
+// Throws std::invalid_argument for a centre not between 0 and half the sample rate, q not above 0
+// or a gain not finite.
 Biquad PeakingSection(double sample_rate, double hz, double gain_db, double q);
 
 // An `order`-th order Butterworth high- or low-pass (order even, 2..16) as order / 2 sections.

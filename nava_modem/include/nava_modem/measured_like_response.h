@@ -15,9 +15,10 @@
 //   sound within a fraction of a millisecond and cuts a notch into the band that moves with
 //   the distance;
 // - absorption that rises with frequency: the diffuse tail decays in five bands, each with its
-//   own T60 = rt60 x (f / 1500 Hz)^-a, a drawn from 0.1 to 0.3 (measured: T30 at 4 kHz over
+//   own T60 = rt60 x (f / 1500 Hz)^-a, a drawn from 0.15 to 0.3 (measured: T30 at 4 kHz over
 //   T30 at 1 kHz 0.68-0.77; a stone basement 1.1), and builds up over the room's mixing time
-//   (about sqrt(V) ms) from the first wall's reflection on.
+//   (about sqrt(V) ms) from the first reflection after the direct sound's 2.5 ms (a wall's or
+//   the ceiling's), but not before 5 ms.
 // The room's size follows from its reverberation and its critical distance (Sabine: a critical
 // distance of 0.057 sqrt(V / RT60) m); the critical distance is drawn from 0.7 to 4 m and the
 // distance between the robots then follows from the DRR, unless the geometry gives it.
@@ -49,7 +50,8 @@ constexpr std::size_t kMeasuredLikeDelay = 16;
 // The response for `rt60` (s, above 0, at most 10) and `drr_db` (-40..40) at `sample_rate`
 // (above 2 x 5400 Hz); the same arguments give the same response. Length: the delay plus
 // max(1.2 x rt60, 45 ms). Throws std::invalid_argument for arguments out of range (naming them)
-// and for a geometry with a negative length or heights above its ceiling.
+// and for a geometry with a negative length, a height at or above its ceiling, or a distance no
+// longer than the heights' difference.
 std::vector<float> MeasuredLikeResponse(double rt60, double drr_db, double sample_rate, std::uint32_t seed,
                                         const ResponseGeometry& geometry = {});
 

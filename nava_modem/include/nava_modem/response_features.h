@@ -46,7 +46,8 @@ struct ResponseFeatures {
 };
 
 // The features of `response` at `sample_rate` (above 2 x kResponseBandHighHz); tone_ratio_db at
-// the two tones given. Throws std::invalid_argument as MeasureResponse does.
+// the two tones given. Throws std::invalid_argument as MeasureResponse does, and for a tone whose
+// +-150 Hz do not lie between 0 and half the sample rate.
 ResponseFeatures MeasureFeatures(const std::vector<float>& response, double sample_rate, double tone_a_hz,
                                  double tone_b_hz);
 

@@ -64,7 +64,8 @@ struct TailBand {
 // Gaussian noise of length n (from one RandomSource, one FFT) split into `bands` (ascending tops;
 // the last's top above the Nyquist frequency to take every bin), each decaying at its own rate
 // from start_s on, faded in with a raised cosine over fade_s (above 0). DiffuseTail is this with
-// two bands split at kRoomCrossoverHz, from kTailStartS.
+// two bands split at kRoomCrossoverHz, from kTailStartS. Throws std::invalid_argument for no band,
+// a T60 not above 0, tops not ascending, fade_s not above 0 or start_s below 0.
 std::vector<double> BandedTail(std::size_t n, const std::vector<TailBand>& bands, double start_s, double fade_s,
                                double sample_rate, RandomSource& random);
 
