@@ -30,6 +30,15 @@ if [ "$sanitized" != sanitized ]; then
 fi
 grep -q '^packet ' "$out/summary$t" || { cat "$out/summary$t"; fail "summary without the packet kind"; }
 grep -q "CPU on $t threads" "$out/summary$t" || { cat "$out/summary$t"; fail "summary without the CPU time"; }
+# --rt60 replaces the RT60 axis (and --snr-db the SNR axis), in the table written.
+"$tool" --profile nava --quick --packets 1 --snr-db 0 --rt60 0.2,2.5 --dir "$out" --out "$out/axes.yaml" \
+  >/dev/null 2>"$out/stderr" || { cat "$out/stderr"; fail "--rt60 0.2,2.5 failed"; }
+grep -q '^rt60: \[0.2, 2.5\]$' "$out/axes.yaml" || fail "--rt60 0.2,2.5 is not the table's RT60 axis"
+grep -q '^snr_db: \[0\]$' "$out/axes.yaml" || fail "--snr-db 0 is not the table's SNR axis"
+# A table over rooms like measured ones: measured, and its command says so.
+"$tool" --profile room --quick --packets 1 --snr-db 0 --response measured-like --dir "$out" --out "$out/like.yaml" \
+  >/dev/null 2>"$out/stderr" || { cat "$out/stderr"; fail "--response measured-like failed"; }
+grep -q '^command: ".*--response measured-like' "$out/like.yaml" || fail "the measured-like table's command does not say so"
 
 # Calibration: the room profile through a dry and a reverberant room, at -25 and +20 dB, in white
 # noise and in a recorded tone; a tone on nava's mark for nava.
@@ -57,6 +66,14 @@ expect_error "noise.wav: no direct peak" --profile room --calibrate --rir-dir "$
 expect_error "--profile: expected nava or room, got fsk" --profile fsk --quick
 expect_error "--profile is required" --quick
 expect_error "--snr-db: expected ascending numbers" --profile nava --quick --snr-db 0,-3
+expect_error "--rt60: expected ascending reverberation times from 0.001 to 10 (s) separated by commas, got 0,1" \
+  --profile nava --quick --rt60 0,1
+expect_error "--rt60: expected ascending reverberation times" --profile nava --quick --rt60 1,0.5
+expect_error "--rt60: expected ascending reverberation times" --profile nava --quick --rt60 12
+expect_error "--rt60 is a table's axis: it does not go with --calibrate" --profile room --calibrate --rir-dir "$out/rooms" --rt60 1
+expect_error "--response odd: expected statistical or measured-like" --profile nava --quick --response odd
+expect_error "--response: the calibration's rooms are the measured ones of --rir-dir" --profile room --calibrate \
+  --rir-dir "$out/rooms" --response measured-like
 expect_error "--threads: expected a whole number from 1" --profile nava --quick --threads 0
 expect_error "--out: no folder $out/no/such" --profile nava --quick --out "$out/no/such/t.yaml"
 echo "table tool checks passed"

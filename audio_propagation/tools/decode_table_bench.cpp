@@ -80,6 +80,7 @@ int DecodeTableBench(const DecodeTableRequest& request) {
   const multirobot_audio::tools::ToolUsage& usage = request.usage;
   CellSetup s;
   s.profile = request.profile;
+  s.model = request.model;
   DecodeTable& t = s.table;
   t.profile = ProfileName(s.profile);
   t.packets = request.packets;
@@ -103,6 +104,7 @@ int DecodeTableBench(const DecodeTableRequest& request) {
     t.rt60 = {0.3, 0.6, 1.2};
   }
   if (!request.snr_db.empty()) t.snr_db = request.snr_db;
+  if (!request.rt60.empty()) t.rt60 = request.rt60;
   // The band: the nava tones and ~150 Hz about each (a bit's main lobe is +-300 Hz wide, the
   // receiver's filters narrower), or the room profile's chirp. The whine sits in the band where
   // a motor's would hurt most without sitting on a tone: midway between nava's two tones, and

@@ -5,17 +5,20 @@
 // audio_propagation/tables/ and read by the `acoustic` channel model.
 //
 //   decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2]
-//                      [--seed 1] [--dir DIR] [--snr-db LIST]
+//                      [--seed 1] [--dir DIR] [--snr-db LIST] [--rt60 LIST]
+//                      [--response statistical|measured-like]
 //
 // (Tables made before the tool moved here name the same measurement `nava_bench --table PROFILE`.)
 //
 // Axes: SNR -15, -12, -9, -6, -3, 0, 3, 6, 9, 12, 18, 30 dB (room from -27 dB: see the code),
 // DRR -30, -24, -18, -12, -6, 0, 6, 12, 24 dB, RT60 0.3, 0.6, 1.2 s, every kind; --quick: SNR
 // -12, 0, 12, DRR -18, 0, 18, RT60 0.5, 4 packets a cell (for tests); --snr-db -30,-27,...
-// replaces the SNR axis. The profile runs at its default options (48 kHz).
+// replaces the SNR axis, --rt60 0.3,0.6,... the RT60 axis. The profile runs at its default
+// options (48 kHz).
 // For every cell (kind, rt60, DRR, SNR) N packets of random data, each alone in its own recording
 // through its own room (RenderRoom, a seed per packet and cell: its own impulse response and
-// stretch of noise), with the cell's disturbance at the cell's SNR:
+// stretch of noise; --response: the statistical room, or rooms like measured ones:
+// measured_like_response.h), with the cell's disturbance at the cell's SNR:
 //   white, pink  RoomOptions' noise at snr_db = SNR;
 //   speech       make_speech.sh's speech as the interferer at sir_db = SNR, a random stretch per
 //                packet, over a faint white floor (below);

@@ -9,8 +9,9 @@ namespace {
 
 using multirobot_audio::tools::ToolArgs;
 
-// A comma-separated list of ascending numbers from -60 to 60 (dB).
-std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const std::string& list) {
+// A comma-separated list of ascending numbers from `low` to `high` (`what` names them for the error).
+std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const std::string& list, double low, double high,
+                            const char* what) {
   std::vector<double> axis;
   std::size_t at = 0;
   while (at <= list.size()) {
@@ -18,8 +19,8 @@ std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const
     const std::string item = list.substr(at, comma - at);
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(v) || std::fabs(v) > 60.0 || (!axis.empty() && v <= axis.back())) {
-      args.Fail(flag + ": expected ascending numbers from -60 to 60 separated by commas, got " + list);
+    if (item.empty() || *end || !std::isfinite(v) || v < low || v > high || (!axis.empty() && v <= axis.back())) {
+      args.Fail(flag + ": expected ascending " + what + " separated by commas, got " + list);
     }
     axis.push_back(v);
     at = comma + 1;
@@ -32,7 +33,7 @@ std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const
 DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& words) {
   const ToolArgs args("decode_table_bench",
                       "decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] "
-                      "[--dir DIR] [--snr-db LIST] | --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav] "
+                      "[--dir DIR] [--snr-db LIST] [--rt60 LIST] [--response statistical|measured-like] | --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav] "
                       "[--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR]",
                       words, {"--quick", "--calibrate"});
   DecodeTableRequest r;
@@ -49,6 +50,13 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   r.out = args.String("--out", std::string("decode_table_") + nava_modem::ProfileName(r.profile) + ".yaml");
   r.dir = args.String("--dir", "");
   const std::string snr_list = args.String("--snr-db", "");
+  const std::string rt60_list = args.String("--rt60", "");
+  const std::string response = args.String("--response", "statistical");
+  if (response == "measured-like") {
+    r.model = nava_modem::RoomOptions::Model::kMeasuredLike;
+  } else if (response != "statistical") {
+    args.Fail("--response " + response + ": expected statistical or measured-like");
+  }
   r.rir_dir = args.String("--rir-dir", "");
   r.noise_file = args.String("--noise-file", "");
   r.table_file = args.String("--table", "");
@@ -59,7 +67,13 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   } else if (!r.rir_dir.empty() || !r.noise_file.empty() || !r.table_file.empty()) {
     args.Fail("--rir-dir, --noise-file and --table go with --calibrate");
   }
-  if (!snr_list.empty()) r.snr_db = AxisArg(args, "--snr-db", snr_list);
+  if (!rt60_list.empty() && r.calibrate) args.Fail("--rt60 is a table's axis: it does not go with --calibrate");
+  if (!args.String("--response", "").empty() && r.calibrate) {
+    args.Fail("--response: the calibration's rooms are the measured ones of --rir-dir");
+  }
+  if (!snr_list.empty()) r.snr_db = AxisArg(args, "--snr-db", snr_list, -60.0, 60.0, "numbers from -60 to 60 (dB)");
+  // The renderer's limit (RoomImpulseResponse): above 0, at most 10 s.
+  if (!rt60_list.empty()) r.rt60 = AxisArg(args, "--rt60", rt60_list, 1e-3, 10.0, "reverberation times from 0.001 to 10 (s)");
   r.command = "decode_table_bench";
   for (const std::string& word : words) r.command += " " + word;
   return r;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/room_channel.h"
 #include "tool_args/tool_args.h"
 
 namespace audio_propagation::tools {
@@ -22,6 +23,9 @@ struct DecodeTableRequest {
   unsigned seed = 1;
   std::string out, dir;
   std::vector<double> snr_db;  // --snr-db; empty: the default axis
+  std::vector<double> rt60;    // --rt60; empty: the profile's default axis
+  // --response statistical|measured-like: the rooms the table's packets are heard through.
+  nava_modem::RoomOptions::Model model = nava_modem::RoomOptions::Model::kStatistical;
   // --calibrate: the model held against the real receiver through measured rooms
   // (model_calibration.h) instead of a table measured.
   bool calibrate = false;

@@ -43,6 +43,7 @@ std::vector<float> Recording(const CellSetup& s, Interference kind, double rt60,
   if (s.response.empty()) {
     room.rt60 = rt60;
     room.drr_db = drr_db;
+    room.model = s.model;
   } else {
     room.response = s.response;
   }

@@ -11,6 +11,7 @@
 #include "audio_propagation/decode_table.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/room_channel.h"
 
 namespace audio_propagation::tools {
 
@@ -31,8 +32,9 @@ struct CellSetup {
   // with a recorded noise, that recording, which then sounds as a speaker's would.
   std::vector<float> speech;
   // A measured impulse response (at the modem's rate) every packet is heard through; empty: each
-  // packet's own statistical room of the cell's RT60 and DRR.
+  // packet's own room of the cell's RT60 and DRR, of this model.
   std::vector<float> response;
+  nava_modem::RoomOptions::Model model = nava_modem::RoomOptions::Model::kStatistical;
 };
 
 // One 32-bit seed from a few numbers (splitmix64's finaliser over them), so that every packet of
