@@ -23,7 +23,7 @@ namespace {
 constexpr double kRate = 48000.0;
 
 TEST(MeasuredLikeResponseTest, ReadsTheAskedRt60AndDrr) {
-  for (double rt60 : {0.3, 1.2, 4.8}) {
+  for (double rt60 : {0.3, 2.4}) {
     for (double drr : {-24.0, -6.0, 0.0, 12.0}) {
       const std::vector<float> h = MeasuredLikeResponse(rt60, drr, kRate, 3);
       const ResponseMeasures m = MeasureResponse(h, kRate);
