@@ -246,7 +246,9 @@ std::vector<float> MeasuredLikeResponse(double rt60, double drr_db, double sampl
   const ResponseMeasures first = MeasureResponse(std::vector<float>(a.begin(), a.end()), sample_rate);
   const std::size_t half = static_cast<std::size_t>(std::lround(kDirectHalfWidthS * sample_rate));
   const std::size_t begin = first.peak >= half ? first.peak - half : 0, end = first.peak + half + 1;
-  const auto [direct_in, direct_out] = Energies(a, sample_rate, begin, end);
+  // (Named, not a structured binding: a lambda below uses them, which C++17 does not allow.)
+  const std::pair<double, double> direct = Energies(a, sample_rate, begin, end);
+  const double direct_in = direct.first, direct_out = direct.second;
   const double far_out = Energies(b, sample_rate, begin, end).second;
   const double budget = direct_in * std::pow(10.0, -drr_db / 10.0);
   // The later images as the geometry made them and the tail for the rest of the reverberant
