@@ -174,10 +174,8 @@ std::vector<Biquad> Directivity(double sample_rate, RandomSource& random) {
 // In-band energy of x's samples inside [begin, end) and after `end` (with silence before x, as
 // MeasureResponse reads it: the direct sound's filtered pulse is whole).
 std::pair<double, double> Energies(const std::vector<double>& x, double sample_rate, std::size_t begin, std::size_t end) {
-  const std::size_t lead = static_cast<std::size_t>(std::lround(kMeasureLeadS * sample_rate));
-  std::vector<float> led(lead, 0.0f);
-  led.insert(led.end(), x.begin(), x.end());
-  const std::vector<double> band = ResponseBand(led, sample_rate, kResponseBandLowHz, kResponseBandHighHz);
+  const std::size_t lead = MeasureLeadSamples(sample_rate);
+  const std::vector<double> band = LeadBand(std::vector<float>(x.begin(), x.end()), sample_rate);
   double inside = 0.0, after = 0.0;
   for (std::size_t k = lead + begin; k < band.size(); ++k) (k < lead + end ? inside : after) += band[k] * band[k];
   return {inside, after};

@@ -139,15 +139,6 @@ Cut CutAtFloor(const std::vector<double>& band, double sample_rate, double floor
   return Cut{static_cast<std::size_t>(end), floor, tail, best_slope};
 }
 
-std::size_t LeadSamples(double sample_rate) { return static_cast<std::size_t>(std::lround(kMeasureLeadS * sample_rate)); }
-
-// The response in the modems' band with LeadSamples() of silence before it.
-std::vector<double> LeadBand(const std::vector<float>& response, double sample_rate) {
-  std::vector<float> led(LeadSamples(sample_rate), 0.0f);
-  led.insert(led.end(), response.begin(), response.end());
-  return ResponseBand(led, sample_rate, kResponseBandLowHz, kResponseBandHighHz);
-}
-
 // The figures of a band-passed response up to `cut`; `lead`: the silence put before it, which
 // holds no sound from before the direct one and is taken off the peak's sample.
 ResponseMeasures Figures(const std::vector<double>& band, double sample_rate, const Cut& cut, std::size_t lead) {
@@ -202,6 +193,20 @@ std::vector<double> ResponseBand(const std::vector<float>& x, double sample_rate
   return FilterForwardBackward(std::vector<double>(x.begin(), x.end()), sections);
 }
 
+std::size_t MeasureLeadSamples(double sample_rate) {
+  return static_cast<std::size_t>(std::lround(kMeasureLeadS * sample_rate));
+}
+
+std::vector<float> WithLead(const std::vector<float>& response, double sample_rate) {
+  std::vector<float> led(MeasureLeadSamples(sample_rate), 0.0f);
+  led.insert(led.end(), response.begin(), response.end());
+  return led;
+}
+
+std::vector<double> LeadBand(const std::vector<float>& response, double sample_rate) {
+  return ResponseBand(WithLead(response, sample_rate), sample_rate, kResponseBandLowHz, kResponseBandHighHz);
+}
+
 std::vector<float> LoadImpulseResponse(const std::string& path, std::optional<int> channel, double sample_rate) {
   if (!(sample_rate > 0.0 && std::isfinite(sample_rate))) {
     throw std::invalid_argument("sample rate " + std::to_string(sample_rate) + " Hz: expected above 0");
@@ -235,7 +240,7 @@ std::vector<float> LoadImpulseResponse(const std::string& path, std::optional<in
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate) {
   CheckMeasurable(response, sample_rate);
   const std::vector<double> band = LeadBand(response, sample_rate);
-  return Figures(band, sample_rate, Cut{band.size(), 0.0, 0.0}, LeadSamples(sample_rate));
+  return Figures(band, sample_rate, Cut{band.size(), 0.0, 0.0}, MeasureLeadSamples(sample_rate));
 }
 
 ResponseMeasures MeasureResponseOverNoise(const std::vector<float>& response, double noise_power, double sample_rate) {
@@ -244,7 +249,7 @@ ResponseMeasures MeasureResponseOverNoise(const std::vector<float>& response, do
     throw std::invalid_argument("impulse response's noise power " + std::to_string(noise_power) + ": expected 0 or above");
   }
   const std::vector<double> band = LeadBand(response, sample_rate);
-  return Figures(band, sample_rate, CutAtFloor(band, sample_rate, noise_power), LeadSamples(sample_rate));
+  return Figures(band, sample_rate, CutAtFloor(band, sample_rate, noise_power), MeasureLeadSamples(sample_rate));
 }
 
 double InBandPower(const std::vector<float>& x, double sample_rate) {

@@ -74,6 +74,11 @@ constexpr double kLateFitDb = 20.0;
 // otherwise lose the half of the filtered pulse that the zero-phase filters spread before it, and
 // read its DRR 3 dB low (-2.9 dB for a rendered room of DRR 0).
 constexpr double kMeasureLeadS = 0.010;
+std::size_t MeasureLeadSamples(double sample_rate);
+// `response` with MeasureLeadSamples() of silence before it; and that in 600-5400 Hz (the band
+// every figure is read in, sample k of the response at k + MeasureLeadSamples()).
+std::vector<float> WithLead(const std::vector<float>& response, double sample_rate);
+std::vector<double> LeadBand(const std::vector<float>& response, double sample_rate);
 
 // `x` in [lo, hi] Hz: 4th-order Butterworth high- and low-pass filters run forwards and backwards
 // (zero phase), as every figure here is read.
