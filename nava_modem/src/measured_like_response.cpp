@@ -82,8 +82,8 @@ void CheckGeometry(const ResponseGeometry& g) {
 
 Room DrawRoom(double rt60, double drr_db, const ResponseGeometry& g, RandomSource& random) {
   Room room;
-  const double source_h = g.source_height_m > 0.0 ? g.source_height_m : Draw(random, 0.15, 0.6);
-  const double mic_h = g.microphone_height_m > 0.0 ? g.microphone_height_m : Draw(random, 0.15, 0.6);
+  const double source_h = g.source_height_m > 0.0 ? g.source_height_m : Draw(random, 1.0, 1.7);
+  const double mic_h = g.microphone_height_m > 0.0 ? g.microphone_height_m : Draw(random, 1.0, 1.7);
   room.height = g.ceiling_m > 0.0 ? g.ceiling_m : Draw(random, 2.5, 4.0);
   room.height = std::max(room.height, std::max(source_h, mic_h) + 0.1);
   const double critical = DrawLog(random, 0.7, 4.0);
