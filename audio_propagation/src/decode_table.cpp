@@ -194,7 +194,7 @@ DecodeOutcome DecodeTable::Lookup(Interference kind, double snr, double drr, dou
 
 DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected_profile) {
   const grid::YamlFields root = grid::YamlFields::Load(path, "decode table");
-  root.ExpectOnlyKeys({"profile", "packets", "whine_hz", "band_hz", "command", "snr_db", "drr_db", "rt60", "kinds"});
+  root.ExpectOnlyKeys({"profile", "packets", "whine_hz", "band_hz", "command", "rooms", "snr_db", "drr_db", "rt60", "kinds"});
   DecodeTable t;
   t.profile = root.String("profile");
   if (!nava_modem::ParseProfile(t.profile)) {
@@ -217,6 +217,10 @@ DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected
   t.band_low_hz = band[0];
   t.band_high_hz = band[1];
   t.command = root.String("command", "");
+  const std::string rooms = root.String("rooms", nava_modem::RoomModelName(t.rooms));
+  const auto model = nava_modem::ParseRoomModel(rooms);
+  if (!model) root.Fail("rooms", std::string("expected ") + nava_modem::kRoomModelNames + ", got '" + rooms + "'");
+  t.rooms = *model;
   t.snr_db = ReadAxis(root, "snr_db");
   t.drr_db = ReadAxis(root, "drr_db");
   t.rt60 = ReadAxis(root, "rt60");
@@ -262,6 +266,7 @@ void SaveDecodeTable(const std::string& path, const DecodeTable& table) {
   out << YAML::Key << "whine_hz" << YAML::Value << Number(table.whine_hz);
   numbers("band_hz", {table.band_low_hz, table.band_high_hz});
   out << YAML::Key << "command" << YAML::Value << YAML::DoubleQuoted << table.command;
+  out << YAML::Key << "rooms" << YAML::Value << nava_modem::RoomModelName(table.rooms);
   numbers("snr_db", table.snr_db);
   numbers("drr_db", table.drr_db);
   numbers("rt60", table.rt60);

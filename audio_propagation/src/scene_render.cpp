@@ -420,6 +420,12 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       nava_modem::RoomOptions room;
       room.rt60 = levels.rt60;
       room.drr_db = std::clamp(levels.drr_db, -40.0, 40.0);
+      // The rooms the table was measured over; a measured-like room knows the link's length
+      // where the sound goes straight (around a corner its reflections are not a box room's).
+      room.model = model_.table().rooms;
+      if (room.model == nava_modem::RoomOptions::Model::kMeasuredLike && path.bends == 0 && room.rt60 > 0.0) {
+        room.geometry.distance_m = path.length;
+      }
       room.seed = SeedOf(options_.seed, kRoomSeeds, static_cast<std::uint32_t>(p * robot_names_.size() + listener));
       // The speaker's card plays at its rate, the microphone's samples at its own.
       room.clock_offset = (1.0 + speaker.rate_error) / (1.0 + microphone.rate_error) - 1.0;

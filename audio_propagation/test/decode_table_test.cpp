@@ -35,7 +35,8 @@ DecodeTable SmallTable() {
   t.whine_hz = 2500.0;
   t.band_low_hz = 600.0;
   t.band_high_hz = 5400.0;
-  t.command = "decode_table_bench --profile room --quick";
+  t.command = "decode_table_bench --profile room --quick --response measured-like";
+  t.rooms = nava_modem::RoomOptions::Model::kMeasuredLike;
   t.snr_db = {-10.0, 10.0};
   t.drr_db = {-20.0, 0.0};
   t.rt60 = {0.3, 1.2};
@@ -122,6 +123,7 @@ TEST(DecodeTable, SavesAndLoadsBackEqual) {
   EXPECT_EQ(back.band_low_hz, t.band_low_hz);
   EXPECT_EQ(back.band_high_hz, t.band_high_hz);
   EXPECT_EQ(back.command, t.command);
+  EXPECT_EQ(back.rooms, t.rooms);
   EXPECT_EQ(back.snr_db, t.snr_db);
   EXPECT_EQ(back.drr_db, t.drr_db);
   EXPECT_EQ(back.rt60, t.rt60);
@@ -200,6 +202,8 @@ TEST(DecodeTable, LoadsTheValidText) {
   const DecodeTable t = LoadDecodeTable(path, "nava");
   EXPECT_EQ(t.packets, 4);
   EXPECT_EQ(t.cells.size(), 10u);
+  // Tables from before the rooms were named were measured over the statistical ones.
+  EXPECT_EQ(t.rooms, nava_modem::RoomOptions::Model::kStatistical);
   EXPECT_NEAR(t.Lookup(Interference::kSpeech, -6.0, 0.0, 0.5).packet, 0.5, 1e-12);
   EXPECT_NEAR(t.Lookup(Interference::kPacket, 0.0, 0.0, 0.5).bad_crc, 0.25, 1e-12);
   std::remove(path.c_str());
@@ -221,6 +225,7 @@ TEST(DecodeTable, RefusesMalformedFilesNamingTheFileAndField) {
   ExpectRefused(Replaced(valid, "snr_db: [-12, 0]", "snr_db: [-12, x]"), "snr_db[1]");
   ExpectRefused(Replaced(valid, "drr_db: [0]\n", ""), "drr_db");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nseed: 3\n"), "seed");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nrooms: measured\n"), "rooms");
   ExpectRefused(Replaced(valid, "  whine: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n", ""), "kinds.whine");
   ExpectRefused(Replaced(valid, "  pink:", "  brown: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n  pink:"), "kinds.brown");
   // Wrong nesting: one rt60 list too many, a DRR list short, an SNR list long.

@@ -90,6 +90,7 @@ int DecodeTableBench(const DecodeTableRequest& request) {
   const std::filesystem::path folder = std::filesystem::path(out).parent_path();
   if (!folder.empty() && !std::filesystem::is_directory(folder)) usage.Fail("--out: no folder " + folder.string());
   t.command = request.command;
+  t.rooms = request.model;
   if (request.quick) {
     t.snr_db = {-12, 0, 12};
     t.drr_db = {-18, 0, 18};

@@ -52,11 +52,9 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   const std::string snr_list = args.String("--snr-db", "");
   const std::string rt60_list = args.String("--rt60", "");
   const std::string response = args.String("--response", "statistical");
-  if (response == "measured-like") {
-    r.model = nava_modem::RoomOptions::Model::kMeasuredLike;
-  } else if (response != "statistical") {
-    args.Fail("--response " + response + ": expected statistical or measured-like");
-  }
+  const auto model = nava_modem::ParseRoomModel(response);
+  if (!model) args.Fail("--response " + response + ": expected " + nava_modem::kRoomModelNames);
+  r.model = *model;
   r.rir_dir = args.String("--rir-dir", "");
   r.noise_file = args.String("--noise-file", "");
   r.table_file = args.String("--table", "");

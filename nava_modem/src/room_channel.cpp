@@ -53,6 +53,16 @@ constexpr double kTiltMarginS = 0.1;
 
 }  // namespace
 
+std::optional<RoomOptions::Model> ParseRoomModel(const std::string& name) {
+  if (name == "statistical") return RoomOptions::Model::kStatistical;
+  if (name == "measured-like") return RoomOptions::Model::kMeasuredLike;
+  return std::nullopt;
+}
+
+const char* RoomModelName(RoomOptions::Model model) {
+  return model == RoomOptions::Model::kMeasuredLike ? "measured-like" : "statistical";
+}
+
 void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
   Check(sample_rate > 0.0 && std::isfinite(sample_rate), "sample_rate", sample_rate, " Hz", "above 0");
   Check(Within(o.rt60, 0.0, 10.0), "rt60", o.rt60, " s", "0 (no reverberation) or above 0 and at most 10");
@@ -63,6 +73,10 @@ void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
     Check(sample_rate > 2.0 * kResponseBandHighHz, "model", sample_rate, " Hz",
           "a sample rate above " + Number(2.0 * kResponseBandHighHz) + " Hz for a measured-like room (its band)");
   }
+  const ResponseGeometry& g = o.geometry;
+  const bool placed = g.distance_m != 0.0 || g.source_height_m != 0.0 || g.microphone_height_m != 0.0 || g.ceiling_m != 0.0;
+  Check(!placed || o.model == RoomOptions::Model::kMeasuredLike, "geometry", g.distance_m, " m apart",
+        "the measured-like model with a geometry (the statistical room has none)");
   if (!o.response.empty()) {
     Check(o.model == RoomOptions::Model::kStatistical, "model", static_cast<double>(o.model), "",
           "the statistical model (the default) with a measured response (the response is the room)");
@@ -161,7 +175,7 @@ std::vector<float> RenderRoom(const std::vector<float>& clean, double sample_rat
   const bool like = !given && options.model == RoomOptions::Model::kMeasuredLike && options.rt60 > 0.0;
   const std::vector<float>& response =
       given ? options.response
-            : like ? MeasuredLikeResponse(options.rt60, options.drr_db, sample_rate, options.seed)
+            : like ? MeasuredLikeResponse(options.rt60, options.drr_db, sample_rate, options.seed, options.geometry)
                    : RoomImpulseResponse(options.rt60, options.drr_db, sample_rate, options.seed);
   // Where the packet is heard: a measured (or measured-like) response's delay to its largest
   // peak (0 for the statistical one).

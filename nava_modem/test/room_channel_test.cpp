@@ -349,6 +349,10 @@ TEST(RoomChannelTest, ValidationNamesTheField) {
          o.model = RoomOptions::Model::kMeasuredLike;
          o.response = {1.0f, 0.5f};
        }},
+      {"geometry", [](RoomOptions& o) {
+         o.rt60 = 0.5;
+         o.geometry.distance_m = 3.0;  // the statistical room has no geometry to put it in
+       }},
   };
   for (const auto& [field, spoil] : cases) {
     RoomOptions o;
@@ -374,6 +378,23 @@ TEST(RoomChannelTest, ValidationNamesTheField) {
   }
   EXPECT_NO_THROW(ValidateRoomOptions(RoomOptions{}, 16000.0));
   EXPECT_THROW(ValidateRoomOptions(RoomOptions{}, 0.0), RoomOptionError);
+}
+
+TEST(RoomChannelTest, NamesItsModelsAndGivesAMeasuredLikeRoomItsGeometry) {
+  for (const auto model : {RoomOptions::Model::kStatistical, RoomOptions::Model::kMeasuredLike}) {
+    EXPECT_EQ(ParseRoomModel(RoomModelName(model)), model);
+  }
+  EXPECT_FALSE(ParseRoomModel("measured"));
+  const double rate = 48000.0;
+  const std::vector<float> clean = Tone(2300, 0.05, rate);
+  RoomOptions o;
+  o.rt60 = 0.5;
+  o.model = RoomOptions::Model::kMeasuredLike;
+  const std::vector<float> drawn = RenderRoom(clean, rate, o, {});
+  o.geometry.distance_m = 7.5;
+  const std::vector<float> placed = RenderRoom(clean, rate, o, {});
+  EXPECT_NE(drawn, placed);  // the reflections' delays follow the given distance
+  EXPECT_EQ(placed, RenderRoom(clean, rate, o, {}));
 }
 
 TEST(RoomChannelTest, SameSeedSameOutput) {

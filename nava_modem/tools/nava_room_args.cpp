@@ -50,11 +50,9 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   o.rt60 = Number(args, "--rt60", o.rt60);
   o.drr_db = Number(args, "--drr", o.drr_db);
   const std::string model = args.String("--response", "statistical");
-  if (model == "measured-like") {
-    o.model = RoomOptions::Model::kMeasuredLike;
-  } else if (model != "statistical") {
-    args.Fail("--response " + model + ": expected statistical or measured-like");
-  }
+  const auto parsed = ParseRoomModel(model);
+  if (!parsed) args.Fail("--response " + model + ": expected " + kRoomModelNames);
+  o.model = *parsed;
   r.rir_path = args.String("--rir", "");
   if (!args.String("--channel", "").empty()) r.rir_channel = static_cast<int>(args.Int("--channel", 0, 0, 255));
   o.tilt_db = Number(args, "--tilt", o.tilt_db);

@@ -21,6 +21,8 @@
 //   whine_hz: 2500                # the whine of the whine cells
 //   band_hz: [600, 5400]          # the profile's band
 //   command: "decode_table_bench --profile room ..."
+//   rooms: measured-like          # optional (default statistical): the rooms the packets were
+//                                 # heard through (nava_modem::RoomOptions::Model)
 //   snr_db: [-15, -12, ...]       # ascending
 //   drr_db: [-30, ..., 24]        # ascending
 //   rt60: [0.3, 0.6, 1.2]         # ascending, s
@@ -32,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "nava_modem/room_channel.h"
 #include "world_sim/acoustics.h"
 
 namespace audio_propagation {
@@ -63,6 +66,9 @@ struct DecodeTable {
   double whine_hz = 0.0;
   double band_low_hz = 0.0, band_high_hz = 0.0;
   std::string command;  // how the table was made
+  // The rooms it was measured over: a renderer that holds the model against its receiver
+  // (scene_render.h) renders the same kind.
+  nava_modem::RoomOptions::Model rooms = nava_modem::RoomOptions::Model::kStatistical;
   std::vector<double> snr_db, drr_db, rt60;  // each ascending, at least one value
   // Indexed [kind][rt60][drr][snr], every kind of Interference in its enum order.
   std::vector<DecodeOutcome> cells;

@@ -8,6 +8,8 @@
 //  - each packet sent by another robot: the profile's modulated packet through RenderRoom
 //    (nava_modem/room_channel.h) with the RT60 of the listener's room and the link's DRR from
 //    AcousticModel::Levels on the shortest path at send time (clamped to RenderRoom's +-40 dB),
+//    in a room of the kind the model's table was measured over (DecodeTable::rooms; a
+//    measured-like room at the path's length when the path has no corner),
 //    scaled so that its signal power (room_channel.h's definition: the mean square over the
 //    samples where the clean packet sounds) is the link's total (direct plus reverberant) level,
 //    and delayed by the path's travel time. A robot does not hear its own packets (it is sending).

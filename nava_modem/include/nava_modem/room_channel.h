@@ -24,9 +24,12 @@
 // interferer and whine powers are their mean squares over the whole output. Then
 // SNR = 10 log10(signal power / noise power), likewise SIR and the whine's SIR.
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "nava_modem/measured_like_response.h"
 
 namespace nava_modem {
 
@@ -39,6 +42,8 @@ struct RoomOptions {
   // ../shared/realrooms/README.md reads it; the sample rate then above 10800 Hz).
   enum class Model { kStatistical, kMeasuredLike };
   Model model = Model::kStatistical;
+  // Where the sender and the listener stand, for the measured-like model (unknown parts drawn).
+  ResponseGeometry geometry;
   // A measured impulse response at the render's sample rate (LoadImpulseResponse), used as given
   // in place of the statistical room: rt60 and drr_db must then be 0. Its own delay is kept.
   std::vector<float> response;
@@ -73,8 +78,14 @@ class RoomOptionError : public std::invalid_argument {
   std::string field_;
 };
 
+// The models by name: "statistical" and "measured-like" (the tools' --response, a table's rooms).
+std::optional<RoomOptions::Model> ParseRoomModel(const std::string& name);
+const char* RoomModelName(RoomOptions::Model model);
+inline const char* kRoomModelNames = "statistical or measured-like";
+
 // Throws RoomOptionError (a std::invalid_argument) for: sample_rate not above 0; rt60 < 0 or
-// > 10 s; |drr_db| > 40; the measured-like model at a sample rate not above 10800 Hz; a response that is silent or not finite, or given with rt60 or
+// > 10 s; |drr_db| > 40; the measured-like model at a sample rate not above 10800 Hz; a geometry
+// with the statistical model; a response that is silent or not finite, or given with rt60 or
 // drr_db; |tilt_db| > 40; tilt_low_hz <= 0 or >= tilt_high_hz; |clock_offset| > 0.05; snr_db, sir_db or whine_sir_db outside -60..100; whine_hz < 0 or whose 1 % wander would
 // reach Nyquist (whine_hz >= Nyquist / 1.01); whine_am_hz < 0 or > 100; an unknown noise kind.
 void ValidateRoomOptions(const RoomOptions& o, double sample_rate);
