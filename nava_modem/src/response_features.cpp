@@ -83,7 +83,7 @@ ResponseFeatures MeasureFeatures(const std::vector<float>& response, double samp
   const auto samples = [&](double s) { return static_cast<std::size_t>(std::lround(s * sample_rate)); };
   // With silence before it, as the figures are read.
   const std::vector<float> led = WithLead(response, sample_rate);
-  const std::vector<double> band = LeadBand(response, sample_rate);
+  const std::vector<double> band = ResponseBand(led, sample_rate, kResponseBandLowHz, kResponseBandHighHz);
   const std::size_t n = band.size(), peak = f.measures.peak + MeasureLeadSamples(sample_rate);
   const std::size_t half = samples(kDirectHalfWidthS);
   const std::size_t direct_begin = peak >= half ? peak - half : 0, direct_end = std::min(n, peak + half + 1);
