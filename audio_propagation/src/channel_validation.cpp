@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "audio_propagation/decode_table.h"
 #include "grid/option_checks.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/modem_options.h"
@@ -25,8 +26,8 @@ namespace {
 // The tools' carrier threshold (nava_decode --threshold-db, the decode tables' receiver), dB of
 // full scale.
 constexpr double kCarrierThresholdDb = -40.0;
-// Around each packet: silence before the first, and after each one its room's tail and a gap.
-constexpr double kLeadS = 0.2, kGapS = 0.4;
+// After each packet: its room's tail and a gap (before the first: kTableLeadSeconds of noise).
+constexpr double kGapS = 0.4;
 constexpr int kDrawTries = 1000000;
 
 // The longest reverberation anywhere in the world.
@@ -65,9 +66,9 @@ class LinkJudge {
     std::mt19937 rng(seed);
     Scene scene;
     scene.profile = options_.profile;
-    scene.start = link.time - kLeadS;
+    scene.start = link.time - kTableLeadSeconds;
     const double longest_travel = 2.0 * link.path_length / model_.propagation().options().speed_of_sound;
-    scene.duration = kLeadS + options_.packets * spacing_ + longest_travel;
+    scene.duration = kTableLeadSeconds + options_.packets * spacing_ + longest_travel;
     scene.robots = {{kValidationSender, {{link.time, link.sender.x(), link.sender.y(), 0.0}}},
                     {kValidationListener, {{link.time, link.listener.x(), link.listener.y(), 0.0}}}};
     std::set<std::array<std::uint8_t, 4>> sent;

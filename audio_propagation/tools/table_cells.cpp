@@ -15,12 +15,6 @@ namespace {
 using namespace nava_modem;
 using bench_support::SpeechFrom;
 
-// The disturbance sounds this long before each packet, as a fan or a hiss a robot hears has run
-// for long. The room receiver settles only after ~0.5 s: its first block is not yet whitened
-// (no noise heard before it), and that block's output stays in the chirp detector's CFAR
-// background for 0.3 s more. With a 2500 Hz whine 0.3 s ahead it decoded 0 of 8 packets at DRR
-// -18 dB, SIR -3 dB, in measured-like rooms; 0.5 s ahead, 8 of 8.
-constexpr double kLeadSeconds = 1.0;
 constexpr double kQuietSeconds = 0.3;   // after each packet (besides the room's tail)
 constexpr double kMaxOffset = 0.9;      // packet lengths the interferer may start before or after
 constexpr double kFloorBelowDb = 20.0;  // the white floor under the disturbance
@@ -153,7 +147,7 @@ CellCounts MeasureCell(const CellSetup& s, const ModemProfile& profile, std::siz
     const std::vector<std::uint8_t> data = RandomData(rng);
     const std::vector<float> burst = profile.ModulatePacket(data);
     const double offset = kind == Interference::kPacket ? kMaxOffset * burst.size() : 0.0;
-    const std::size_t start = static_cast<std::size_t>(kLeadSeconds * rate + offset);
+    const std::size_t start = static_cast<std::size_t>(kTableLeadSeconds * rate + offset);
     const std::size_t length = start + burst.size() + static_cast<std::size_t>(kQuietSeconds * rate + offset);
     std::vector<std::uint8_t> other;
     std::vector<float> other_burst;
