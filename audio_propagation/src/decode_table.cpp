@@ -194,7 +194,7 @@ DecodeOutcome DecodeTable::Lookup(Interference kind, double snr, double drr, dou
 
 DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected_profile) {
   const grid::YamlFields root = grid::YamlFields::Load(path, "decode table");
-  root.ExpectOnlyKeys({"profile", "packets", "whine_hz", "band_hz", "command", "rooms", "snr_db", "drr_db", "rt60", "kinds"});
+  root.ExpectOnlyKeys({"profile", "packets", "whine_hz", "band_hz", "command", "rooms", "lead_s", "snr_db", "drr_db", "rt60", "kinds"});
   DecodeTable t;
   t.profile = root.String("profile");
   if (!nava_modem::ParseProfile(t.profile)) {
@@ -221,6 +221,8 @@ DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected
   const auto model = nava_modem::ParseRoomModel(rooms);
   if (!model) root.Fail("rooms", std::string("expected ") + nava_modem::kRoomModelNames + ", got '" + rooms + "'");
   t.rooms = *model;
+  t.lead_s = root.Number("lead_s", kFormerTableLeadSeconds);
+  if (!(t.lead_s >= 0.0 && t.lead_s <= 60.0)) root.Fail("lead_s", "expected seconds from 0 to 60, got " + Number(t.lead_s));
   t.snr_db = ReadAxis(root, "snr_db");
   t.drr_db = ReadAxis(root, "drr_db");
   t.rt60 = ReadAxis(root, "rt60");
@@ -267,6 +269,7 @@ void SaveDecodeTable(const std::string& path, const DecodeTable& table) {
   numbers("band_hz", {table.band_low_hz, table.band_high_hz});
   out << YAML::Key << "command" << YAML::Value << YAML::DoubleQuoted << table.command;
   out << YAML::Key << "rooms" << YAML::Value << nava_modem::RoomModelName(table.rooms);
+  out << YAML::Key << "lead_s" << YAML::Value << Number(table.lead_s);
   numbers("snr_db", table.snr_db);
   numbers("drr_db", table.drr_db);
   numbers("rt60", table.rt60);

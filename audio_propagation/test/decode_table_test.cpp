@@ -37,6 +37,7 @@ DecodeTable SmallTable() {
   t.band_high_hz = 5400.0;
   t.command = "decode_table_bench --profile room --quick --response measured-like";
   t.rooms = nava_modem::RoomOptions::Model::kMeasuredLike;
+  t.lead_s = 1.5;
   t.snr_db = {-10.0, 10.0};
   t.drr_db = {-20.0, 0.0};
   t.rt60 = {0.3, 1.2};
@@ -124,6 +125,7 @@ TEST(DecodeTable, SavesAndLoadsBackEqual) {
   EXPECT_EQ(back.band_high_hz, t.band_high_hz);
   EXPECT_EQ(back.command, t.command);
   EXPECT_EQ(back.rooms, t.rooms);
+  EXPECT_EQ(back.lead_s, t.lead_s);
   EXPECT_EQ(back.snr_db, t.snr_db);
   EXPECT_EQ(back.drr_db, t.drr_db);
   EXPECT_EQ(back.rt60, t.rt60);
@@ -204,6 +206,8 @@ TEST(DecodeTable, LoadsTheValidText) {
   EXPECT_EQ(t.cells.size(), 10u);
   // Tables from before the rooms were named were measured over the statistical ones.
   EXPECT_EQ(t.rooms, nava_modem::RoomOptions::Model::kStatistical);
+  // and with 0.3 s of the disturbance before each packet.
+  EXPECT_EQ(t.lead_s, 0.3);
   EXPECT_NEAR(t.Lookup(Interference::kSpeech, -6.0, 0.0, 0.5).packet, 0.5, 1e-12);
   EXPECT_NEAR(t.Lookup(Interference::kPacket, 0.0, 0.0, 0.5).bad_crc, 0.25, 1e-12);
   std::remove(path.c_str());
@@ -226,6 +230,8 @@ TEST(DecodeTable, RefusesMalformedFilesNamingTheFileAndField) {
   ExpectRefused(Replaced(valid, "drr_db: [0]\n", ""), "drr_db");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nseed: 3\n"), "seed");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nrooms: measured\n"), "rooms");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nlead_s: -1\n"), "lead_s");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nlead_s: soon\n"), "lead_s");
   ExpectRefused(Replaced(valid, "  whine: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n", ""), "kinds.whine");
   ExpectRefused(Replaced(valid, "  pink:", "  brown: [[[[0, 1, 0, 0], [1, 0, 0, 0]]]]\n  pink:"), "kinds.brown");
   // Wrong nesting: one rt60 list too many, a DRR list short, an SNR list long.

@@ -52,6 +52,8 @@ int CalibrateModel(const DecodeTableRequest& request) {
   }
   setup.table = table;
   setup.table.packets = request.packets;
+  // What the measured rooms decode is judged in the steady state, whatever lead the table had.
+  setup.table.lead_s = kTableLeadSeconds;
   const std::vector<nava_modem::tools::MeasuredRoom> rooms = nava_modem::tools::MeasuredRooms(request.rir_dir, usage);
   std::vector<std::vector<float>> responses;
   for (const nava_modem::tools::MeasuredRoom& room : rooms) {

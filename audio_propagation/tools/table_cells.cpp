@@ -147,7 +147,7 @@ CellCounts MeasureCell(const CellSetup& s, const ModemProfile& profile, std::siz
     const std::vector<std::uint8_t> data = RandomData(rng);
     const std::vector<float> burst = profile.ModulatePacket(data);
     const double offset = kind == Interference::kPacket ? kMaxOffset * burst.size() : 0.0;
-    const std::size_t start = static_cast<std::size_t>(kTableLeadSeconds * rate + offset);
+    const std::size_t start = static_cast<std::size_t>(s.table.lead_s * rate + offset);
     const std::size_t length = start + burst.size() + static_cast<std::size_t>(kQuietSeconds * rate + offset);
     std::vector<std::uint8_t> other;
     std::vector<float> other_burst;

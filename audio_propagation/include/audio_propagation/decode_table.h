@@ -23,6 +23,8 @@
 //   command: "decode_table_bench --profile room ..."
 //   rooms: measured-like          # optional (default statistical): the rooms the packets were
 //                                 # heard through (nava_modem::RoomOptions::Model)
+//   lead_s: 1                     # optional (default 0.3, as tables were measured before the
+//                                 # field): s of the disturbance before each packet
 //   snr_db: [-15, -12, ...]       # ascending
 //   drr_db: [-30, ..., 24]        # ascending
 //   rt60: [0.3, 0.6, 1.2]         # ascending, s
@@ -43,13 +45,13 @@ namespace audio_propagation {
 // rate, nava_modem::ModemOptions::sample_rate).
 constexpr double kTableSampleRate = 48000.0;
 
-// How long the disturbance sounds before a packet in what the tables measure (and what
+// How long the disturbance sounds before a packet in what decode_table_bench measures (and what
 // audio_channel_validate renders to hold the model against): the steady state of a robot whose
-// fan or hiss has run for long. The room receiver settles only after ~0.5 s: it whitens each
-// block by the noise heard before it (none in the first), and keeps that block's output in its
-// chirp detector's CFAR background for 0.3 s more. With a 2500 Hz whine 0.3 s ahead it decoded
-// 0 of 8 packets at DRR -18 dB, SIR -3 dB in measured-like rooms; 0.5 s ahead, 8 of 8.
+// fan or hiss has run for long. The room receiver needs about half a second to get there
+// (docs/audio_link.md, "the noise before a packet"). Tables measured before this was 1 s gave
+// 0.3 s, which a table file says by having no `lead_s`.
 constexpr double kTableLeadSeconds = 1.0;
+constexpr double kFormerTableLeadSeconds = 0.3;
 
 // The disturbance a packet is judged against.
 enum class Interference { kWhite, kPink, kSpeech, kWhine, kPacket };
@@ -77,6 +79,7 @@ struct DecodeTable {
   // The rooms it was measured over: a renderer that holds the model against its receiver
   // (scene_render.h) renders the same kind.
   nava_modem::RoomOptions::Model rooms = nava_modem::RoomOptions::Model::kStatistical;
+  double lead_s = kTableLeadSeconds;  // s of the disturbance before each packet
   std::vector<double> snr_db, drr_db, rt60;  // each ascending, at least one value
   // Indexed [kind][rt60][drr][snr], every kind of Interference in its enum order.
   std::vector<DecodeOutcome> cells;
