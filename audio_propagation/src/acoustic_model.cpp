@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "audio_propagation/carrier_share.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/recorded_noise.h"
 #include "nava_modem/wav_file.h"
@@ -43,16 +44,23 @@ double WhineHarm(double hz, double low, double high, const std::vector<double>& 
   return harm / all;
 }
 
-// A recorded noise source's Disturbance::listened for `table`'s profile, at the rate the tables
-// are rendered at.
-double ListenedWeight(const world_sim::NoiseSourceSpec& source, const DecodeTable& table) {
-  const auto profile = nava_modem::ParseProfile(table.profile);
-  if (!profile) throw std::invalid_argument("acoustic model: the table's profile '" + table.profile + "' is unknown");
+// A noise source's Disturbance::listened and Disturbance::heard for `profile`, at the rate the
+// tables are rendered at; a recording's are read from its file.
+struct SourceWeights {
+  double listened = 1.0;
+  double heard = 1.0;
+};
+
+SourceWeights WeightsOf(const world_sim::NoiseSourceSpec& source, nava_modem::Profile profile) {
+  if (source.kind != world_sim::NoiseKind::kRecording) {
+    return {1.0, CarrierShare(source.kind, source.frequency, profile, kTableSampleRate)};
+  }
   try {
     const nava_modem::Audio audio = nava_modem::ReadAudioFile(source.file);
     const nava_modem::RecordedNoise noise(audio.samples, audio.sample_rate);
-    return std::pow(10.0, -nava_modem::WhiteEquivalentOffsetDb(noise, nava_modem::ListeningBands(*profile),
-                                                               kTableSampleRate) / 10.0);
+    const nava_modem::Bands bands = nava_modem::ListeningBands(profile);
+    return {std::pow(10.0, -nava_modem::WhiteEquivalentOffsetDb(noise, bands, kTableSampleRate) / 10.0),
+            noise.Fraction(bands)};
   } catch (const std::exception& e) {
     throw std::invalid_argument("acoustic model: noise source '" + source.name + "' (" + source.file + "): " + e.what());
   }
@@ -126,8 +134,13 @@ AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Aco
     const nava_modem::ModemOptions modem;  // the thesis's tones, which the table was measured with
     tones_ = {modem.mark_hz, modem.space_hz};
   }
+  const auto profile = nava_modem::ParseProfile(table_.profile);
+  if (!profile) throw std::invalid_argument("acoustic model: the table's profile '" + table_.profile + "' is unknown");
+  ambient_heard_ = CarrierShare(acoustics_.ambient_kind, 0.0, *profile, kTableSampleRate);
   for (const world_sim::NoiseSourceSpec& s : acoustics_.noise_sources) {
-    source_listened_.push_back(s.kind == world_sim::NoiseKind::kRecording ? ListenedWeight(s, table_) : 1.0);
+    const SourceWeights w = WeightsOf(s, *profile);
+    source_listened_.push_back(w.listened);
+    source_heard_.push_back(w.heard);
     if (s.robot.empty()) {
       if (!propagation_.map().IsFreeAt({s.x, s.y})) {
         throw std::invalid_argument("acoustic model: noise source '" + s.name + "' at (" + std::to_string(s.x) +
@@ -159,13 +172,14 @@ std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, doubl
 std::vector<Disturbance> AcousticModel::NoiseDuring(const Eigen::Vector2d& at, double t0, double t1,
                                                     const std::vector<Eigen::Vector2d>& robots) const {
   std::vector<Disturbance> out;
-  out.push_back({FromNoiseKind(acoustics_.ambient_kind), Power(acoustics_.ambient_db), 0.0});
+  out.push_back({FromNoiseKind(acoustics_.ambient_kind), Power(acoustics_.ambient_db), 0.0, 1.0, ambient_heard_});
   for (std::size_t k = 0; k < acoustics_.noise_sources.size(); ++k) {
     const world_sim::NoiseSourceSpec& s = acoustics_.noise_sources[k];
     const double sounding = world_sim::SoundingFraction(s, t0, t1);
     if (sounding <= 0.0) continue;
     const std::optional<double> level = SourceLevelDb(k, at, robots);
-    if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency, source_listened_[k]});
+    if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency, source_listened_[k],
+                          source_heard_[k]});
   }
   return out;
 }

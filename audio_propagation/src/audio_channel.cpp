@@ -77,7 +77,8 @@ void AudioChannel::UpdateNoise() {
   acoustic_->PreparePaths(at, at);
   for (std::size_t r = 0; r < at.size(); ++r) {
     double power = 0.0;
-    for (const Disturbance& d : acoustic_->NoiseAt(at[r], time(), at)) power += d.power;
+    // What the robot's level meter reads: each noise by its share in the profile's bands.
+    for (const Disturbance& d : acoustic_->NoiseAt(at[r], time(), at)) power += d.power * d.heard;
     noise_powers_[r] = power;
     level_edge_[r] = 0;  // the level is summed again at the next tick
   }

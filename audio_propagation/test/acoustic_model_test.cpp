@@ -10,6 +10,7 @@
 #include "run_channel.h"
 
 #include "audio_propagation/audio_channel.h"
+#include "audio_propagation/carrier_share.h"
 #include "audio_propagation/delivery_map.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/wav_file.h"
@@ -457,8 +458,12 @@ TEST(AcousticChannel, TheCarrierThresholdSitsAboveTheRoomsNoiseAsACalibratedRobo
   a.ambient_db = 40.0;
   AcousticTeam team({2.0, 6.0}, a);
   team.Run(0.5);
-  EXPECT_NEAR(team.channel->mac(0).threshold_db(), 40.0 + nava_modem::MacOptions().threshold_margin_db, 1e-9);
-  EXPECT_NEAR(team.channel->Level(1), 40.0, 1e-6);
+  // The level meter hears the pink noise's share in nava's bands, as a robot's receiver does.
+  const double heard = 40.0 + 10.0 * std::log10(CarrierShare(a.ambient_kind, 0.0, nava_modem::Profile::kNava,
+                                                             kTableSampleRate));
+  EXPECT_LT(heard, 40.0 - 10.0);
+  EXPECT_NEAR(team.channel->mac(0).threshold_db(), heard + nava_modem::MacOptions().threshold_margin_db, 1e-9);
+  EXPECT_NEAR(team.channel->Level(1), heard, 1e-6);
   EXPECT_FALSE(team.channel->Carrier(1));
   team.channel->Send(0, {1, 2, 3, 4});
   bool carrier = false;
@@ -467,6 +472,31 @@ TEST(AcousticChannel, TheCarrierThresholdSitsAboveTheRoomsNoiseAsACalibratedRobo
     carrier = team.channel->Carrier(1);
   }
   EXPECT_TRUE(carrier);
+}
+
+TEST(AcousticChannel, ANoiseOutsideTheProfilesBandsRaisesNeitherTheThresholdNorTheCarrier) {
+  // A compressor's 300 Hz hum (harmonics 600 and 900 Hz), 70 dB at 1 m beside robot 1: nava's
+  // tone filters hear none of it, so robot 1 still calibrates on the room and still hears robot 0
+  // 4 m off. White noise as loud raises its threshold by its share in the bands.
+  const auto threshold_with = [](world_sim::NoiseKind kind) {
+    world_sim::Acoustics a = Quiet();
+    world_sim::NoiseSourceSpec s;
+    s.name = "hum";
+    s.x = 7.0, s.y = 2.5;
+    s.level_db = 70.0;
+    s.kind = kind;
+    s.frequency = 300.0;
+    a.noise_sources = {s};
+    AcousticTeam team({2.0, 6.0}, a);
+    return team.channel->mac(1).threshold_db();
+  };
+  const double margin = nava_modem::MacOptions().threshold_margin_db;
+  const double quiet = 20.0 + 10.0 * std::log10(CarrierShare(world_sim::NoiseKind::kPink, 0.0,
+                                                              nava_modem::Profile::kNava, kTableSampleRate));
+  EXPECT_LT(threshold_with(world_sim::NoiseKind::kWhine), quiet + margin + 1.0);
+  EXPECT_GT(threshold_with(world_sim::NoiseKind::kWhine), quiet + margin - 1e-6);
+  // At 1 m the white source is 70 dB; the meter hears 2.5 % of it, 16 dB less.
+  EXPECT_NEAR(threshold_with(world_sim::NoiseKind::kWhite), 70.0 - 16.0 + margin, 1.5);
 }
 
 TEST(DeliveryMap, NearCellsHearBetterThanFarOnesAndWallsHaveNoValue) {

@@ -76,6 +76,9 @@ struct Disturbance {
   // noise's of the same power (nava_modem/recorded_noise.h), so that it counts as that much white
   // noise. 1 for every other disturbance.
   double listened = 1.0;
+  // The share of its power in the profile's listening bands (carrier_share.h): what a robot's
+  // carrier sense hears of it.
+  double heard = 1.0;
 };
 
 struct LinkPrediction {
@@ -149,6 +152,8 @@ class AcousticModel {
   std::vector<std::string> robot_names_;
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
   std::vector<double> source_listened_;  // per noise source: Disturbance::listened
+  std::vector<double> source_heard_;     // per noise source: Disturbance::heard
+  double ambient_heard_ = 1.0;           // the ambient noise's Disturbance::heard
   std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
