@@ -5,30 +5,8 @@
 #include <cstdlib>
 
 namespace audio_propagation::tools {
-namespace {
 
 using multirobot_audio::tools::ToolArgs;
-
-// A comma-separated list of ascending numbers from `low` to `high` (`what` names them for the error).
-std::vector<double> AxisArg(const ToolArgs& args, const std::string& flag, const std::string& list, double low, double high,
-                            const char* what) {
-  std::vector<double> axis;
-  std::size_t at = 0;
-  while (at <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', at), list.size());
-    const std::string item = list.substr(at, comma - at);
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(v) || v < low || v > high || (!axis.empty() && v <= axis.back())) {
-      args.Fail(flag + ": expected ascending " + what + " separated by commas, got " + list);
-    }
-    axis.push_back(v);
-    at = comma + 1;
-  }
-  return axis;
-}
-
-}  // namespace
 
 DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& words) {
   const ToolArgs args("decode_table_bench",
@@ -69,9 +47,9 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   if (!args.String("--response", "").empty() && r.calibrate) {
     args.Fail("--response: the calibration's rooms are the measured ones of --rir-dir");
   }
-  if (!snr_list.empty()) r.snr_db = AxisArg(args, "--snr-db", snr_list, -60.0, 60.0, "numbers from -60 to 60 (dB)");
+  if (!snr_list.empty()) r.snr_db = args.AscendingList("--snr-db", -60.0, 60.0, "numbers from -60 to 60 (dB)");
   // The renderer's limit (RoomImpulseResponse): above 0, at most 10 s.
-  if (!rt60_list.empty()) r.rt60 = AxisArg(args, "--rt60", rt60_list, 1e-3, 10.0, "reverberation times from 0.001 to 10 (s)");
+  if (!rt60_list.empty()) r.rt60 = args.AscendingList("--rt60", 1e-3, 10.0, "reverberation times from 0.001 to 10 (s)");
   r.command = "decode_table_bench";
   for (const std::string& word : words) r.command += " " + word;
   return r;

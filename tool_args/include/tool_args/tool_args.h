@@ -3,6 +3,7 @@
 // Command-line parsing shared by the command-line tools: --flag value pairs and positional
 // arguments, with errors that name the flag. Errors throw UsageError and -h/--help throws
 // HelpRequested (usage_error.h); the tool's main (RunTool) prints them and exits 1 or 0.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -80,6 +81,27 @@ class ToolArgs {
       Fail(flag + ": expected a number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + v);
     }
     return x;
+  }
+
+  // A comma-separated list of ascending numbers from `lo` to `hi` (`what` names them for the
+  // error); empty when the flag is not given.
+  std::vector<double> AscendingList(const std::string& flag, double lo, double hi, const std::string& what) const {
+    const std::string list = String(flag, "");
+    std::vector<double> out;
+    if (list.empty()) return out;
+    std::size_t at = 0;
+    while (at <= list.size()) {
+      const std::size_t comma = std::min(list.find(',', at), list.size());
+      const std::string item = list.substr(at, comma - at);
+      char* end = nullptr;
+      const double v = std::strtod(item.c_str(), &end);
+      if (item.empty() || *end || !std::isfinite(v) || v < lo || v > hi || (!out.empty() && v <= out.back())) {
+        Fail(flag + ": expected ascending " + what + " separated by commas, got " + list);
+      }
+      out.push_back(v);
+      at = comma + 1;
+    }
+    return out;
   }
 
   // Arguments that are not --flag VALUE pairs, in order.
