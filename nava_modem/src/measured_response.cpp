@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "nava_modem/biquad.h"
 #include "nava_modem/room_channel.h"
@@ -274,6 +276,32 @@ std::optional<std::string> ResponseProblem(const ResponseMeasures& m) {
   }
   if (!std::isfinite(m.rt60_s)) return std::string("its decay does not fall 25 dB in 600-5400 Hz: no RT60 to read");
   return std::nullopt;
+}
+
+std::vector<float> DrierResponse(const std::vector<float>& response, double sample_rate, double drr_db) {
+  const ResponseMeasures own = MeasureResponse(response, sample_rate);
+  if (!std::isfinite(drr_db) || drr_db < own.drr_db) {
+    throw std::invalid_argument("drier response: expected a DRR of at least the response's own " +
+                                std::to_string(own.drr_db) + " dB, got " + std::to_string(drr_db));
+  }
+  const std::size_t from = own.peak + static_cast<std::size_t>(std::lround(kDirectHalfWidthS * sample_rate));
+  auto scaled = [&](double gain) {
+    std::vector<float> out = response;
+    for (std::size_t k = from; k < out.size(); ++k) out[k] = static_cast<float>(gain * out[k]);
+    return out;
+  };
+  // The DRR falls as the gain rises (the band's filters spread a little of the direct sound past
+  // `from`, so it is not exactly -20 log10(gain) away): bisection on the gain's logarithm.
+  double low = -8.0, high = 0.0;  // log10 of the gain
+  for (int k = 0; k < 60 && high - low > 1e-6; ++k) {
+    const double mid = 0.5 * (low + high);
+    if (MeasureResponse(scaled(std::pow(10.0, mid)), sample_rate).drr_db > drr_db) {
+      low = mid;
+    } else {
+      high = mid;
+    }
+  }
+  return scaled(std::pow(10.0, 0.5 * (low + high)));
 }
 
 }  // namespace nava_modem

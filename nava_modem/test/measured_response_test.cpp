@@ -62,6 +62,23 @@ TEST(MeasuredResponseTest, AResponseWithNothingAfterItsDirectSoundHasAnInfiniteD
   EXPECT_THROW(MeasureResponse(h, 8000.0), std::invalid_argument);
 }
 
+TEST(MeasuredResponseTest, ADrierResponseReadsTheDrrAskedForAndKeepsItsDecayAndDirectSound) {
+  const double rate = 48000.0;
+  const std::vector<float> room = KnownResponse(0.8, -6.0, rate, 960, 7);
+  const ResponseMeasures own = MeasureResponse(room, rate);
+  for (double drr : {own.drr_db, 4.0, 12.0}) {
+    const std::vector<float> drier = DrierResponse(room, rate, drr);
+    const ResponseMeasures m = MeasureResponse(drier, rate);
+    EXPECT_NEAR(m.drr_db, drr, 0.01);
+    EXPECT_NEAR(m.rt60_s, own.rt60_s, 0.05 * own.rt60_s) << drr;
+    EXPECT_EQ(m.peak, own.peak);
+    EXPECT_EQ(drier[960], room[960]);  // the direct sound as it was
+  }
+  // It makes rooms drier only.
+  EXPECT_THROW(DrierResponse(room, rate, own.drr_db - 1.0), std::invalid_argument);
+  EXPECT_THROW(DrierResponse(room, rate, std::nan("")), std::invalid_argument);
+}
+
 TEST(MeasuredResponseTest, ARoomsResponseServesAndShortOrNoisyOnesAreToldWhy) {
   const double rate = 48000.0;
   const ResponseMeasures room = MeasureResponse(KnownResponse(0.5, 0.0, rate, 960, 4), rate);

@@ -85,8 +85,15 @@ cp "$out/response.wav" "$out/rooms/"
 "$bench" --arrival --rir-dir "$out/rooms" --packets 3 >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --arrival failed"; }
 grep -q "^response.wav:1 .* 3/3 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --arrival did not time every packet"; }
 grep -q "target: median <= 100 us and p90 <= 300 us: yes" "$out/bench" || { cat "$out/bench"; fail "nava_bench --arrival missed its target"; }
+# nava_bench --rooms over the same folder, each ear also made drier to +30 dB: rows for both.
+"$bench" --rooms --rir-dir "$out/rooms" --measured-only --profile nava --rir-packets 2 --minimodem none --drier 30 \
+  >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --rooms --drier failed"; }
+grep -q "^response.wav:1 drier +30 dB  *+30.0 .* white 20 dB" "$out/bench" || { cat "$out/bench"; fail "no row made drier to +30 dB"; }
+grep -q "^response.wav:1   .* white 20 dB" "$out/bench" || { cat "$out/bench"; fail "no row as measured"; }
 tool_was=$tool
 tool=$bench
+expect_error "--drier: expected ascending DRRs" --rooms --rir-dir "$out/rooms" --drier 8,4
+expect_error "--drier: there are no measured rooms" --rooms --drier 8
 expect_error "--arrival: expected --rir-dir DIR" --arrival
 mkdir -p "$out/nothing_here"
 expect_error "--rir-dir $out/nothing_here: no audio files" --arrival --rir-dir "$out/nothing_here"

@@ -5,7 +5,7 @@
 //              [--dir DIR] [--minimodem minimodem|none] [modem options]
 //   nava_bench --rooms [--profile nava|room|both] [--packets 60] [--rooms-per-row 6] [--plot-packets 30]
 //              [--plot FILE.png] [--seed 1] [--rate 48000] [--dir DIR] [--minimodem minimodem|none]
-//              [--rir-dir DIR [--rir-packets 20] [--measured-only]]
+//              [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]]
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //   nava_bench --arrival --rir-dir DIR [--packets 10] [--snr 10] [--min-drr -8] [--seed 1] [--rate 48000]
@@ -22,7 +22,8 @@
 // RT60 0.3, 0.6 and 1.0 s; with --rir-dir, also rows through measured impulse responses (every
 // channel of every audio file in DIR a room, its DRR and RT60 read in 600-5400 Hz), under white
 // noise at 20 and 0 dB and speech at SIR 0 dB, with the targets for the nava receiver in measured
-// rooms (--measured-only: those rows alone). Either way each file is decoded by nava_decode (beside this program)
+// rooms (--measured-only: those rows alone; --drier: each room also made drier to each DRR
+// given above its own, DrierResponse, as homes and small rooms are). Either way each file is decoded by nava_decode (beside this program)
 // and by minimodem as child processes, and the table gives the packets each decoded correctly,
 // those decoded wrong (CRC-passing but never sent), and each decoder's CPU time; it ends with
 // each decoder's speed (seconds of audio per CPU second) and the targets. With --doa: for each
@@ -42,6 +43,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <tuple>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -419,51 +421,63 @@ void MeasuredRoomsTable(const RoomsRequest& request, const ToolUsage& usage, con
   int worst_high = packets, worst_mid_pooled = 3 * packets, high_rooms = 0, mid_rooms = 0;
   bool never_fewer = true;
   int wrong[3] = {0, 0, 0}, right[3] = {0, 0, 0}, total[3] = {0, 0, 0};
-  for (std::size_t r = 0; r < rooms.size(); ++r) {
-    const MeasuredRoom& room = rooms[r];
-    const std::vector<float> response = LoadImpulseResponse(room.path, room.channel, options.sample_rate);
-    const double drr = room.figures.drr_db;
-    int worst = packets, pooled = 0;
-    for (std::size_t k = 0; k < conditions.size(); ++k) {
-      RoomRow row;
-      for (Profile p : request.profiles) {
-        RoomOptions o = conditions[k].room;
-        o.response = response;
-        o.seed = request.seed * 7919u + static_cast<unsigned>(r * 10 + k);
-        std::vector<float> talk;
-        if (conditions[k].speech) talk = SpeechFrom(speech, (r * 3 + k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10));
-        const std::vector<float> heard = RenderRoom(clean[p].samples, options.sample_rate, o, talk);
-        const std::string file = dir + "/measured_" + std::to_string(r) + "_" + std::to_string(k) + "_" + ProfileName(p) + ".wav";
-        WriteWavFile(file, heard, options.sample_rate);
-        if (p == Profile::kNava) {
-          row.nava = DecodeWithProject(decoders, p, options, file, clean[p].sent);
-          row.minimodem = DecodeWithMinimodem(decoders, options, file, clean[p].sent);
-        } else {
-          row.room = DecodeWithProject(decoders, p, options, file, clean[p].sent);
-        }
-      }
-      const Decoded* ds[3] = {&row.nava, &row.minimodem, &row.room};
-      for (int d = 0; d < 3; ++d) {
-        if (!ds[d]->ran) continue;
-        right[d] += ds[d]->count.right;
-        wrong[d] += ds[d]->count.wrong;
-        total[d] += packets;
-      }
-      if (row.nava.ran) {
-        worst = std::min(worst, row.nava.count.right);
-        pooled += row.nava.count.right;
-        if (row.minimodem.ran) never_fewer = never_fewer && row.nava.count.right >= row.minimodem.count.right;
-      }
-      std::printf("%-44s %+7.1f %6.2f %-12s %s %s %s\n", room.name.c_str(), drr, room.figures.rt60_s,
-                  conditions[k].name.c_str(), cell(row.nava).c_str(), cell(row.minimodem).c_str(), cell(row.room).c_str());
-      std::fflush(stdout);
+  // Each measured room as measured, then made drier to each of request.drier above its own DRR
+  // (DrierResponse); a drier version draws its noise as a room of its own after the measured ones.
+  std::size_t variant = rooms.size();
+  for (std::size_t m = 0; m < rooms.size(); ++m) {
+    const std::vector<float> measured = LoadImpulseResponse(rooms[m].path, rooms[m].channel, options.sample_rate);
+    std::vector<std::tuple<std::size_t, std::string, std::vector<float>>> versions = {{m, rooms[m].name, measured}};
+    for (double d : request.drier) {
+      if (d <= rooms[m].figures.drr_db) continue;
+      char name[64];
+      std::snprintf(name, sizeof name, " drier %+.0f dB", d);
+      versions.emplace_back(variant++, rooms[m].name + name, DrierResponse(measured, options.sample_rate, d));
     }
-    if (drr >= 3.0) {
-      ++high_rooms;
-      worst_high = std::min(worst_high, worst);
-    } else if (drr >= 0.0) {
-      ++mid_rooms;
-      worst_mid_pooled = std::min(worst_mid_pooled, pooled);
+    for (const auto& [r, room_name, response] : versions) {
+      const ResponseMeasures figures = r == m ? rooms[m].figures : MeasureResponse(response, options.sample_rate);
+      const double drr = figures.drr_db;
+      int worst = packets, pooled = 0;
+      for (std::size_t k = 0; k < conditions.size(); ++k) {
+        RoomRow row;
+        for (Profile p : request.profiles) {
+          RoomOptions o = conditions[k].room;
+          o.response = response;
+          o.seed = request.seed * 7919u + static_cast<unsigned>(r * 10 + k);
+          std::vector<float> talk;
+          if (conditions[k].speech) talk = SpeechFrom(speech, (r * 3 + k) * 7919u * static_cast<std::size_t>(options.sample_rate / 10));
+          const std::vector<float> heard = RenderRoom(clean[p].samples, options.sample_rate, o, talk);
+          const std::string file = dir + "/measured_" + std::to_string(r) + "_" + std::to_string(k) + "_" + ProfileName(p) + ".wav";
+          WriteWavFile(file, heard, options.sample_rate);
+          if (p == Profile::kNava) {
+            row.nava = DecodeWithProject(decoders, p, options, file, clean[p].sent);
+            row.minimodem = DecodeWithMinimodem(decoders, options, file, clean[p].sent);
+          } else {
+            row.room = DecodeWithProject(decoders, p, options, file, clean[p].sent);
+          }
+        }
+        const Decoded* ds[3] = {&row.nava, &row.minimodem, &row.room};
+        for (int d = 0; d < 3; ++d) {
+          if (!ds[d]->ran) continue;
+          right[d] += ds[d]->count.right;
+          wrong[d] += ds[d]->count.wrong;
+          total[d] += packets;
+        }
+        if (row.nava.ran) {
+          worst = std::min(worst, row.nava.count.right);
+          pooled += row.nava.count.right;
+          if (row.minimodem.ran) never_fewer = never_fewer && row.nava.count.right >= row.minimodem.count.right;
+        }
+        std::printf("%-44s %+7.1f %6.2f %-12s %s %s %s\n", room_name.c_str(), drr, figures.rt60_s,
+                    conditions[k].name.c_str(), cell(row.nava).c_str(), cell(row.minimodem).c_str(), cell(row.room).c_str());
+        std::fflush(stdout);
+      }
+      if (drr >= 3.0) {
+        ++high_rooms;
+        worst_high = std::min(worst_high, worst);
+      } else if (drr >= 0.0) {
+        ++mid_rooms;
+        worst_mid_pooled = std::min(worst_mid_pooled, pooled);
+      }
     }
   }
   const char* names[3] = {"nava", "minimodem", "room"};

@@ -41,10 +41,11 @@ RoomsRequest ParseRooms(const ToolArgs& args) {
   r.rir_dir = args.String("--rir-dir", "");
   r.rir_packets = static_cast<int>(args.Int("--rir-packets", 20, 1, 100000));
   r.measured_only = args.Switch("--measured-only");
+  r.drier = args.AscendingList("--drier", -20.0, 40.0, "DRRs from -20 to 40 (dB)");
   r.options = ModemArgs(args);
   args.CheckAllUsed();
   if (r.rir_dir.empty()) {
-    for (const char* flag : {"--rir-packets", "--measured-only"}) {
+    for (const char* flag : {"--rir-packets", "--measured-only", "--drier"}) {
       if (args.Switch(flag)) {  // given at all
         args.Fail(std::string(flag) + ": there are no measured rooms; add --rir-dir DIR");
       }
@@ -104,7 +105,7 @@ LinkCostRequest ParseLinkCost(const ToolArgs& args) {
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
   const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--link-cost", "--measured-only"});
   NavaBenchOptions o;

@@ -27,6 +27,7 @@ struct RoomsRequest {
   std::string rir_dir;       // "" for no measured rows
   int rir_packets = 20;      // per measured room and condition
   bool measured_only = false;  // --measured-only: no rendered rows, no plot
+  std::vector<double> drier;   // --drier: DRRs (dB) each measured room is also made drier to
   unsigned seed = 1;
   std::string dir, minimodem, plot;  // dir "" for a new folder; minimodem "" for not run; plot "" for DIR/delivery_vs_drr.png
   std::vector<Profile> profiles;
