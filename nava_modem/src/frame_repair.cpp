@@ -59,4 +59,19 @@ std::optional<RepairedFrame> RepairFrame(const SoftFrame& soft, CrcVariant crc, 
   return best;
 }
 
+std::optional<RepairedFrame> RepairEvent(const SoftFrame& soft, const std::vector<std::vector<int>>& events,
+                                         CrcVariant crc, int max_events, int max_event_bits) {
+  const Frame hard = HardFrame(soft);
+  int tried = 0;
+  for (const std::vector<int>& event : events) {
+    if (tried >= max_events) break;
+    if (event.size() < 3 || event.size() > static_cast<std::size_t>(max_event_bits)) continue;
+    ++tried;
+    Frame f = hard;
+    for (const int b : event) f.at(static_cast<std::size_t>(b / 8)) ^= static_cast<std::uint8_t>(1u << (b % 8));
+    if (f[0] == kHeader && CrcMatches(f, crc)) return RepairedFrame{f, static_cast<int>(event.size())};
+  }
+  return std::nullopt;
+}
+
 }  // namespace nava_modem

@@ -182,12 +182,42 @@ std::array<std::uint8_t, kPacketBits> KnownAndFirst(const std::uint8_t* first) {
   return bits;
 }
 
+// The error events of a search's best path: `event[k]` names the merge that set bit k's
+// reliability `rel[k]` (-1: none), so bits sharing one were changed together by one competitor.
+ErrorEvents EventsOf(const std::array<int, kPacketBits>& event, const std::array<float, kPacketBits>& rel) {
+  std::vector<std::pair<float, std::vector<int>>> weighed;
+  std::vector<int> seen;
+  for (int k = kBreakBits; k < kPacketBits; ++k) {
+    const int id = event[k];
+    if (id < 0 || std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+    seen.push_back(id);
+    std::vector<int> data;
+    bool framing = false;
+    float weakest = kMaxSoft;
+    for (int i = k; i < kPacketBits; ++i) {
+      if (event[i] != id) continue;
+      weakest = std::min(weakest, rel[i]);
+      const int j = i - kBreakBits, pos = j % kBitsPerByte;
+      if (pos < 1 || pos > 8) {
+        framing = true;
+      } else {
+        data.push_back((j / kBitsPerByte) * 8 + pos - 1);
+      }
+    }
+    if (!framing) weighed.push_back({weakest, std::move(data)});
+  }
+  std::stable_sort(weighed.begin(), weighed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  ErrorEvents events;
+  for (auto& w : weighed) events.push_back(std::move(w.second));
+  return events;
+}
+
 }  // namespace
 
 FskEqualizer::FskEqualizer(const ModemOptions& modem) : modem_(modem) {}
 
 bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
-                            double frequency_error, const std::function<bool(const SoftFrame&)>& accept) const {
+                            double frequency_error, const Accept& accept) const {
   Complex rot[2][2];
   Rotations(modem_, rot);
   std::array<std::uint8_t, kPacketBits> bits = KnownAndFirst(first);
@@ -219,6 +249,7 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
       double metric = std::numeric_limits<double>::infinity();
       std::array<std::uint8_t, kPacketBits> bits;
       std::array<float, kPacketBits> rel;
+      std::array<int, kPacketBits> event;  // the merge that set each bit's reliability (-1: none)
       Complex phasor[2];  // each filter's phase of the next bit
     };
     std::vector<Survivor> now(kStates), next(kStates);
@@ -227,6 +258,7 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
       s.metric = 0.0;
       s.bits = bits;
       s.rel.fill(kMaxSoft);
+      s.event.fill(-1);
       for (int t = 0; t < 2; ++t) {
         Complex p(1.0, 0.0);
         for (int k = 0; k < kBreakBits; ++k) p *= rot[t][ToneOf(bits[k])];
@@ -300,6 +332,7 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
         const double m = n.metric;
         n.bits = s.bits;
         n.rel = s.rel;
+        n.event = s.event;
         if (j < kPacketBits) {
           n.bits[j] = static_cast<std::uint8_t>(to & 1);
           for (int t = 0; t < 2; ++t) n.phasor[t] = s.phasor[t] * rot[t][ToneOf(to & 1)];
@@ -311,15 +344,32 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
           const float delta = static_cast<float>(competitor[to] - m);
           const Survivor& other = now[loser[to]];
           for (int i = kBreakBits; i < std::min(j, kPacketBits); ++i) {
-            if (other.bits[i] != n.bits[i]) n.rel[i] = std::min(n.rel[i], delta);
+            if (other.bits[i] != n.bits[i] && delta < n.rel[i]) {
+              n.rel[i] = delta;
+              n.event[i] = j * kStates + to;
+            }
           }
         }
       }
       std::swap(now, next);
     }
-    const Survivor* best = &now[0];
-    for (const Survivor& s : now)
+    Survivor* best = &now[0];
+    for (Survivor& s : now)
       if (s.metric < best->metric) best = &s;
+    // The packet's last kStateBits bits are the final state's and no merge ever challenged
+    // them (nor, for the same reason, earlier bits where the final survivors still differ): their
+    // reliability is what the other final survivors cost more.
+    for (int f = 0; f < kStates; ++f) {
+      const Survivor& s = now[f];
+      if (&s == best || !std::isfinite(s.metric)) continue;
+      const float delta = static_cast<float>(s.metric - best->metric);
+      for (int i = kBreakBits; i < kPacketBits; ++i)
+        if (s.bits[i] != best->bits[i] && delta < best->rel[i]) {
+          best->rel[i] = delta;
+          best->event[i] = (kPacketBits + kEarly + 1) * kStates + f;
+        }
+    }
+    const ErrorEvents events = EventsOf(best->event, best->rel);
     SoftFrame soft{};
     for (int j = 0; j < kFrameBits; ++j) {
       const int pos = j % kBitsPerByte;
@@ -333,7 +383,7 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
       misframed += best->bits[kBreakBits + c * kBitsPerByte] != 0;
       misframed += best->bits[kBreakBits + c * kBitsPerByte + 9] != 1;
     }
-    if (misframed == 0 && accept(soft)) return true;
+    if (misframed == 0 && accept(soft, events)) return true;
     // A first pass this far off is not a packet the later passes could save (a wrong clock,
     // or noise), and they cost.
     if (pass == 0 && misframed > kMaxMisframedFirst) return false;

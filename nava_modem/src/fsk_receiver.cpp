@@ -80,14 +80,20 @@ constexpr int kMaxMisframedRepaired = 2;
 // Where the equaliser reads a packet no clock read (DecodeFrame): on the nominal bit rate from
 // where the best clock put the break, and up to this far later and earlier, in whole bits
 // (earlier further: a room's echoes and tail make the break look late, by up to 5 bits through
-// a clap's spread direct sound measured on a dummy head); then on the best clock itself when
+// a clap's spread direct sound measured on a dummy head, and by 6 where a first arrival comes
+// 3 bits before the loudest one, as in a measured seminar room made drier; 9 stays within the
+// 12 bits the wide break search covers); then on the best clock itself when
 // its rate is more than kEqualizerOwnClockRate off the nominal one (the equaliser searches the
 // sender's offset 0.3 % either side of the rate it is given; a clock that put a -0.5 % sender at
 // -0.25 % once read packets the nominal rate could not). Half-bit steps read a few more packets
 // in measured rooms, but a reading between two bits lets the equaliser, trained on the known
 // header, make that header out of a wrong one (Modem.EachNoiseClassOnPurpose).
-constexpr int kEqualizerLateBits = 2, kEqualizerEarlyBits = 5;
+constexpr int kEqualizerLateBits = 2, kEqualizerEarlyBits = 9;
 constexpr double kEqualizerOwnClockRate = 0.001;
+// Error events of the equaliser's search tried as repairs (RepairEvent): the weakest this many
+// of 3 to kMaxEventBits bits. A concert hall's tail beyond the equaliser's reach left packets
+// whose only errors were one 3-bit event.
+constexpr int kEventRepairs = 2, kMaxEventBits = 4;
 
 // ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
 // 9.8.2), for x >= 0.
@@ -534,8 +540,13 @@ std::optional<RepairedFrame> FskReceiver::Equalize(const std::int64_t* at_step, 
   Outputs(at_step, heard, at);
   const std::complex<double>* const outputs[2] = {heard[0], heard[1]};
   std::optional<RepairedFrame> repaired;
-  equalizer_.Equalize(outputs, at, first_hard, rate_error, [&](const SoftFrame& soft) {
+  equalizer_.Equalize(outputs, at, first_hard, rate_error, [&](const SoftFrame& soft, const ErrorEvents& events) {
     repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
+    // A sequence search's errors come as events: a competitor path that changes a few bits
+    // together (a transition moved by a bit or two), which one- and two-bit repairs miss.
+    if (!repaired && options_.max_fixed_bits >= 2) {
+      repaired = RepairEvent(soft, events, modem_.crc, kEventRepairs, kMaxEventBits);
+    }
     return repaired.has_value();
   });
   return repaired;

@@ -80,5 +80,22 @@ TEST(FrameRepair, FlipsTheLeastSureBitsOnly) {
   EXPECT_FALSE(RepairFrame(s, CrcVariant::kCcittFalse, 0).has_value());
 }
 
+TEST(FrameRepair, AnErrorEventOfThreeBitsIsFlippedWhole) {
+  const Frame f = MakeFrame({9, 8, 7, 6}, CrcVariant::kCcittFalse);
+  SoftFrame s = Soft(f, 0.9f);
+  for (int b : {41, 42, 43}) s[b] = -s[b];  // a transition moved: three bits wrong together
+  EXPECT_FALSE(RepairFrame(s, CrcVariant::kCcittFalse, 2).has_value());
+  // The event, behind a weaker one of three bits that does not make the CRC right.
+  const std::vector<std::vector<int>> events = {{1, 2}, {20, 21, 22}, {41, 42, 43}, {30, 31, 32}};
+  const auto repaired = RepairEvent(s, events, CrcVariant::kCcittFalse, 2, 4);
+  ASSERT_TRUE(repaired.has_value());
+  EXPECT_EQ(repaired->frame, f);
+  EXPECT_EQ(repaired->fixed_bits, 3);
+  // Only the weakest `max_events` of 3 to `max_event_bits` bits are tried.
+  EXPECT_FALSE(RepairEvent(s, events, CrcVariant::kCcittFalse, 1, 4).has_value());
+  EXPECT_FALSE(RepairEvent(s, {{41, 42, 43}}, CrcVariant::kCcittFalse, 2, 2).has_value());
+  EXPECT_FALSE(RepairEvent(s, {}, CrcVariant::kCcittFalse, 2, 4).has_value());
+}
+
 }  // namespace
 }  // namespace nava_modem

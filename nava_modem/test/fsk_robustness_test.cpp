@@ -3,6 +3,7 @@
 // The signals are made here (test_signals.h), seeded.
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <random>
 
@@ -37,6 +38,36 @@ int DecodedRight(const ModemOptions& o, const std::vector<float>& audio, const s
       --it->second;
       ++right;
     }
+  }
+  return right;
+}
+
+// The packets of `payloads` (their train `clean`) decoded right through `response` with white
+// noise at `snr_db` (and a tilt), the noise drawn with `noise_seed`.
+int DecodedRightThrough(const ModemOptions& o, const std::vector<float>& clean,
+                        const std::vector<std::vector<std::uint8_t>>& payloads, std::vector<float> response,
+                        double snr_db, unsigned noise_seed, double tilt_db = 0.0) {
+  RoomOptions room;
+  room.response = std::move(response);
+  room.noise = RoomOptions::Noise::kWhite;
+  room.snr_db = snr_db;
+  room.tilt_db = tilt_db;
+  room.seed = noise_seed;
+  return DecodedRight(o, RenderRoom(clean, o.sample_rate, room), payloads);
+}
+
+// `packets` random packets (payload seed `payload_seed`) through the room `room(seed)` of each of
+// `seeds` (noise seed noise_base + seed), decoded right, summed; each room's count printed.
+int DecodedRightOverRooms(const ModemOptions& o, int packets, unsigned payload_seed,
+                          const std::function<std::vector<float>(unsigned)>& room, const std::vector<unsigned>& seeds,
+                          double snr_db, unsigned noise_base, double tilt_db, const char* what) {
+  const auto payloads = RandomPayloads(packets, payload_seed);
+  const std::vector<float> clean = PacketTrain(o, payloads, 0.5);
+  int right = 0;
+  for (unsigned seed : seeds) {
+    const int here = DecodedRightThrough(o, clean, payloads, room(seed), snr_db, noise_base + seed, tilt_db);
+    std::printf("%s, seed %u: %d of %d\n", what, seed, here, packets);
+    right += here;
   }
   return right;
 }
@@ -187,12 +218,7 @@ TEST(FskRobustness, AToneCancelledByAReflectionWithinABitAndAReverberantTail) {
   const auto payloads = RandomPayloads(12, 77);
   const std::vector<float> clean = PacketTrain(o, payloads, 0.5);
   for (const double snr : {20.0, 3.0}) {
-    RoomOptions room;
-    room.response = StrongToneWeakToneRoom(o.sample_rate, 8.0, 5);
-    room.noise = RoomOptions::Noise::kWhite;
-    room.snr_db = snr;
-    room.seed = 9;
-    const int right = DecodedRight(o, RenderRoom(clean, o.sample_rate, room), payloads);
+    const int right = DecodedRightThrough(o, clean, payloads, StrongToneWeakToneRoom(o.sample_rate, 8.0, 5), snr, 9);
     EXPECT_GE(right, 11) << "white noise at SNR " << snr << " dB";
   }
 }
@@ -212,12 +238,7 @@ TEST(FskRobustness, DiscreteEarlyReflectionsAFewBitsLate) {
   const double reflections[][2] = {{1.3, -0.5}, {4.1, 0.35}, {7.6, -0.3}, {11.2, 0.25}, {16.5, -0.2}, {23.0, 0.15}};
   for (const auto& r : reflections) h[direct + static_cast<std::size_t>(std::lround(r[0] * 1e-3 * o.sample_rate))] += static_cast<float>(r[1]);
   for (const double snr : {20.0, 3.0}) {
-    RoomOptions room;
-    room.response = h;
-    room.noise = RoomOptions::Noise::kWhite;
-    room.snr_db = snr;
-    room.seed = 11;
-    EXPECT_GE(DecodedRight(o, RenderRoom(clean, o.sample_rate, room), payloads), 11) << "white noise at SNR " << snr << " dB";
+    EXPECT_GE(DecodedRightThrough(o, clean, payloads, h, snr, 11), 11) << "white noise at SNR " << snr << " dB";
   }
 }
 
@@ -240,20 +261,57 @@ std::vector<float> EchoesTwoBitsLateRoom(double rate, unsigned seed) {
 
 TEST(FskRobustness, StrongEchoesTwoBitsLateDoNotTakeTheEqualiserWithTheClock) {
   ModemOptions o;
-  const auto payloads = RandomPayloads(12, 79);
-  const std::vector<float> clean = PacketTrain(o, payloads, 0.5);
+  const auto room = [&](unsigned seed) { return EchoesTwoBitsLateRoom(o.sample_rate, seed); };
+  EXPECT_GE(DecodedRightOverRooms(o, 12, 79, room, {1u, 5u, 6u}, 20.0, 12, 0.0, "echoes two bits late"), 30) << "of 36";
+}
+
+// The mechanisms of the measured concert hall's front seat (DRR +4.5 dB, RT60 1.7 s; 18 of 20
+// in white noise at 0 dB before): its tail lies beyond the equaliser's 20-bit reach, so the bits
+// of the frame's second half keep a residual 6-7 dB under the signal whatever the noise, and a
+// packet's only errors are a few bits the search weighed as one event, or the last few bits,
+// which no merge of the search ever challenged (they were reported as sure as can be, so the
+// two-bit repair never tried them). A tail of our own, as long and as loud.
+std::vector<float> LongTailRoom(double rate, double drr_db, double rt60, unsigned seed) {
+  std::vector<float> h(static_cast<std::size_t>(1.2 * rt60 * rate), 0.0f);
+  const std::size_t direct = static_cast<std::size_t>(0.01 * rate);
+  h[direct] = 1.0f;
+  AddDiffuseTail(h, direct, rate, 0.0025, rt60, 0.0025, std::pow(10.0, -drr_db / 10.0), seed);
+  return h;
+}
+
+TEST(FskRobustness, ATailBeyondTheEqualisersReachLeavesOnlyEventsToRepair) {
+  // DRR +3 dB, SPACE 8 dB weaker (the speaker's and room's colouring), white noise at 0 dB:
+  // 99 of 120 before, 111 with the last bits' reliabilities and the event repairs.
+  ModemOptions o;
   int right = 0;
-  for (unsigned seed : {1u, 5u, 6u}) {
-    RoomOptions room;
-    room.response = EchoesTwoBitsLateRoom(o.sample_rate, seed);
-    room.noise = RoomOptions::Noise::kWhite;
-    room.snr_db = 20.0;
-    room.seed = 12 + seed;
-    const int here = DecodedRight(o, RenderRoom(clean, o.sample_rate, room), payloads);
-    std::printf("echoes two bits late, tail seed %u: %d of 12\n", seed, here);
-    right += here;
+  for (double rt60 : {1.7, 2.5}) {
+    const auto room = [&](unsigned seed) { return LongTailRoom(o.sample_rate, 3.0, rt60, seed); };
+    right += DecodedRightOverRooms(o, 20, 80, room, {1u, 2u, 3u}, 0.0, 20, -8.0, "tail beyond the equaliser");
   }
-  EXPECT_GE(right, 30) << "of 36";
+  EXPECT_GE(right, 108) << "of 120";
+}
+
+// The mechanism of the measured seminar room's dummy-head clap made drier (DRR +4 dB): a first
+// arrival bits before the loudest one (11 ms there) and 9 dB under it. The break then looks some
+// 6 bits late against the loudest arrival and more against the first, beyond the 5 bits earlier
+// the equaliser used to read the packet at. Here 15 ms (4.5 bits): 42 of 60 before, 59 now.
+// (At 11 ms, or with the first arrival 3-6 dB under the loudest, one tail of three still
+// decodes nothing, before and now: a mechanism not understood yet.)
+std::vector<float> EarlyFirstArrivalRoom(double rate, unsigned seed) {
+  std::vector<float> h(static_cast<std::size_t>(0.8 * rate), 0.0f);
+  const std::size_t first = static_cast<std::size_t>(0.01 * rate);
+  const std::size_t loudest = first + static_cast<std::size_t>(std::lround(0.015 * rate));
+  h[first] = static_cast<float>(std::pow(10.0, -9.0 / 20.0));
+  h[loudest] = 1.0f;
+  AddDiffuseTail(h, loudest, rate, 0.0025, 0.6, 0.0025, std::pow(10.0, -4.0 / 10.0), seed);
+  return h;
+}
+
+TEST(FskRobustness, AFirstArrivalBitsBeforeTheLoudestIsReadFrom) {
+  ModemOptions o;
+  const auto room = [&](unsigned seed) { return EarlyFirstArrivalRoom(o.sample_rate, seed); };
+  EXPECT_GE(DecodedRightOverRooms(o, 20, 81, room, {1u, 2u, 3u}, 20.0, 30, 0.0, "first arrival 4.5 bits early"), 55)
+      << "of 60";
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "nava_modem/frame.h"
 
@@ -23,6 +24,14 @@ struct RepairedFrame {
 // least sure (likeliest: the smallest total certainty flipped), if `max_fixed_bits` allows.
 // The 8 header bits and 16 CRC bits make a wrong repair of noise about a 1 in 300000 event.
 std::optional<RepairedFrame> RepairFrame(const SoftFrame& soft, CrcVariant crc, int max_fixed_bits);
+
+// The frame `soft` spells with the bits of one error event flipped together (events: each a list
+// of data-bit indices, byte * 8 + bit, weakest first, as a sequence search weighed them; see
+// FskEqualizer), when header and CRC then match. Only events of 3 to `max_event_bits` bits count
+// (single bits and pairs are RepairFrame's), and only the first `max_events` of them: each is one
+// more candidate for the 24 check bits, so a wrong packet stays a 1 in 16 million chance a try.
+std::optional<RepairedFrame> RepairEvent(const SoftFrame& soft, const std::vector<std::vector<int>>& events,
+                                         CrcVariant crc, int max_events, int max_event_bits);
 
 // The hard decisions as bytes.
 Frame HardFrame(const SoftFrame& soft);

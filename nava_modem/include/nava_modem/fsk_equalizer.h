@@ -11,6 +11,11 @@
 
 namespace nava_modem {
 
+// The errors the search weighed and let pass: each the frame's data bits (byte * 8 + bit) that one
+// competitor path would have changed together (a transition moved by a bit or two changes
+// several), the weakest first; events that would change a start or stop bit are left out.
+using ErrorEvents = std::vector<std::vector<int>>;
+
 // Sequence estimation of a packet's bits through a room, from the complex outputs of the two
 // tone filters (ToneFilters) at the end of each bit.
 //
@@ -44,9 +49,11 @@ class FskEqualizer {
   // `first`: first decisions on the kFrameBits frame bits. `frequency_error`: the sender's
   // estimated clock offset (fraction). Each pass of fitting and deciding whose start and stop
   // bits all came out right offers its soft decisions on the frame to `accept`, until it
-  // returns true (later passes refit on the earlier decisions). True when one was accepted.
+  // returns true (later passes refit on the earlier decisions), with the pass's error events.
+  // True when one was accepted.
+  using Accept = std::function<bool(const SoftFrame&, const ErrorEvents&)>;
   bool Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
-                double frequency_error, const std::function<bool(const SoftFrame&)>& accept) const;
+                double frequency_error, const Accept& accept) const;
 
  private:
   ModemOptions modem_;

@@ -15,7 +15,8 @@ struct ReceiverOptions {
   double detect_threshold = 0.4;
   // nava profile: bit-rate mismatch between sender and receiver searched for, as a fraction.
   double max_rate_error = 0.035;
-  // nava profile: bits the CRC may repair (0, 1 or 2; see RepairFrame).
+  // nava profile: bits the CRC may repair (0, 1 or 2; see RepairFrame); with 2, one error event
+  // of the equaliser's search (3 or 4 bits, RepairEvent) as well.
   int max_fixed_bits = 2;
   // Every profile: in-band level (dB of full scale) above which the air counts as busy, for
   // ZERO_BYTE reports of busy air in which no frame was found. None: such air is not reported.
