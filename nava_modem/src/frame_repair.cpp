@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 namespace nava_modem {
 namespace {
@@ -68,7 +70,18 @@ std::optional<RepairedFrame> RepairEvent(const SoftFrame& soft, const std::vecto
     if (event.size() < 3 || event.size() > static_cast<std::size_t>(max_event_bits)) continue;
     ++tried;
     Frame f = hard;
-    for (const int b : event) f.at(static_cast<std::size_t>(b / 8)) ^= static_cast<std::uint8_t>(1u << (b % 8));
+    for (const int b : event) {
+      if (b < 0 || b >= kFrameDataBits) {
+        throw std::invalid_argument("repair event: bit " + std::to_string(b) + " is not one of the frame's " +
+                                    std::to_string(kFrameDataBits) + " data bits");
+      }
+      f[static_cast<std::size_t>(b / 8)] ^= static_cast<std::uint8_t>(1u << (b % 8));
+    }
+    int changed = 0;
+    for (std::size_t k = 0; k < f.size(); ++k) changed += __builtin_popcount(static_cast<unsigned>(f[k] ^ hard[k]));
+    if (changed != static_cast<int>(event.size())) {
+      throw std::invalid_argument("repair event: a bit is named twice in an event of " + std::to_string(event.size()));
+    }
     if (f[0] == kHeader && CrcMatches(f, crc)) return RepairedFrame{f, static_cast<int>(event.size())};
   }
   return std::nullopt;

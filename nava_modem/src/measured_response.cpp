@@ -301,7 +301,16 @@ std::vector<float> DrierResponse(const std::vector<float>& response, double samp
       high = mid;
     }
   }
-  return scaled(std::pow(10.0, 0.5 * (low + high)));
+  std::vector<float> out = scaled(std::pow(10.0, 0.5 * (low + high)));
+  // A response whose direct sound alone (its filters' spread past `from`) reads below the target
+  // cannot be made that dry by scaling what follows.
+  const double reached = MeasureResponse(out, sample_rate).drr_db;
+  if (!(std::abs(reached - drr_db) <= kDrierToleranceDb)) {
+    throw std::invalid_argument("drier response: a DRR of " + std::to_string(drr_db) +
+                                " dB is out of reach by scaling the reverberation (" + std::to_string(reached) +
+                                " dB with none of it left)");
+  }
+  return out;
 }
 
 }  // namespace nava_modem

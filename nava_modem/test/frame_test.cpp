@@ -1,5 +1,6 @@
 #include "nava_modem/frame.h"
 
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -95,6 +96,9 @@ TEST(FrameRepair, AnErrorEventOfThreeBitsIsFlippedWhole) {
   EXPECT_FALSE(RepairEvent(s, events, CrcVariant::kCcittFalse, 1, 4).has_value());
   EXPECT_FALSE(RepairEvent(s, {{41, 42, 43}}, CrcVariant::kCcittFalse, 2, 2).has_value());
   EXPECT_FALSE(RepairEvent(s, {}, CrcVariant::kCcittFalse, 2, 4).has_value());
+  EXPECT_THROW(RepairEvent(s, {{41, 42, 56}}, CrcVariant::kCcittFalse, 2, 4), std::invalid_argument);
+  EXPECT_THROW(RepairEvent(s, {{-1, 42, 43}}, CrcVariant::kCcittFalse, 2, 4), std::invalid_argument);
+  EXPECT_THROW(RepairEvent(s, {{41, 42, 42}}, CrcVariant::kCcittFalse, 2, 4), std::invalid_argument);
 }
 
 }  // namespace

@@ -77,6 +77,8 @@ TEST(MeasuredResponseTest, ADrierResponseReadsTheDrrAskedForAndKeepsItsDecayAndD
   // It makes rooms drier only.
   EXPECT_THROW(DrierResponse(room, rate, own.drr_db - 1.0), std::invalid_argument);
   EXPECT_THROW(DrierResponse(room, rate, std::nan("")), std::invalid_argument);
+  // Drier than the direct sound alone reads (the band's filters spread it past 2.5 ms): refused.
+  EXPECT_THROW(DrierResponse(room, rate, 200.0), std::invalid_argument);
 }
 
 TEST(MeasuredResponseTest, ARoomsResponseServesAndShortOrNoisyOnesAreToldWhy) {

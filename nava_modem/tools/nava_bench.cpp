@@ -427,11 +427,17 @@ void MeasuredRoomsTable(const RoomsRequest& request, const ToolUsage& usage, con
   for (std::size_t m = 0; m < rooms.size(); ++m) {
     const std::vector<float> measured = LoadImpulseResponse(rooms[m].path, rooms[m].channel, options.sample_rate);
     std::vector<std::tuple<std::size_t, std::string, std::vector<float>>> versions = {{m, rooms[m].name, measured}};
+    // The room's own DRR at the rate the packets are rendered at (the list's is at the file's).
+    const double own_drr = request.drier.empty() ? 0.0 : MeasureResponse(measured, options.sample_rate).drr_db;
     for (double d : request.drier) {
-      if (d <= rooms[m].figures.drr_db) continue;
+      if (d <= own_drr) continue;
       char name[64];
       std::snprintf(name, sizeof name, " drier %+.0f dB", d);
-      versions.emplace_back(variant++, rooms[m].name + name, DrierResponse(measured, options.sample_rate, d));
+      try {
+        versions.emplace_back(variant++, rooms[m].name + name, DrierResponse(measured, options.sample_rate, d));
+      } catch (const std::exception& e) {
+        usage.Fail("--drier: " + rooms[m].name + ": " + e.what());
+      }
     }
     for (const auto& [r, room_name, response] : versions) {
       const ResponseMeasures figures = r == m ? rooms[m].figures : MeasureResponse(response, options.sample_rate);

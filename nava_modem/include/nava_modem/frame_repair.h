@@ -30,6 +30,7 @@ std::optional<RepairedFrame> RepairFrame(const SoftFrame& soft, CrcVariant crc, 
 // FskEqualizer), when header and CRC then match. Only events of 3 to `max_event_bits` bits count
 // (single bits and pairs are RepairFrame's), and only the first `max_events` of them: each is one
 // more candidate for the 24 check bits, so a wrong packet stays a 1 in 16 million chance a try.
+// Throws std::invalid_argument for an index outside 0-55 or one named twice in an event.
 std::optional<RepairedFrame> RepairEvent(const SoftFrame& soft, const std::vector<std::vector<int>>& events,
                                          CrcVariant crc, int max_events, int max_event_bits);
 

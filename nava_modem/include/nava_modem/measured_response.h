@@ -54,11 +54,12 @@ struct ResponseMeasures {
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate);
 
 // The same room with less reverberation: everything from kDirectHalfWidthS after the main peak
-// on scaled by one gain, found so that MeasureResponse reads `drr_db` (within 0.01 dB). Homes and
+// on scaled by one gain, found so that MeasureResponse reads `drr_db` (within kDrierToleranceDb). Homes and
 // small furnished rooms, whose direct sound is 7 to 12 dB above the rest, are stood in for so by
 // measured responses, their colouring and early sound kept. Throws std::invalid_argument when
-// drr_db is not finite or below the response's own DRR (it only makes a room drier), or as
-// MeasureResponse does.
+// drr_db is not finite, below the response's own DRR (it only makes a room drier) or out of reach
+// within kDrierToleranceDb (the direct sound alone reads less), or as MeasureResponse does.
+constexpr double kDrierToleranceDb = 0.01;
 std::vector<float> DrierResponse(const std::vector<float>& response, double sample_rate, double drr_db);
 
 // The same figures for a response that carries a noise floor of its own: one estimated from
