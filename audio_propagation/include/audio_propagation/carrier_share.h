@@ -2,7 +2,8 @@
 
 // How much of a disturbance a robot's carrier sense hears. A robot's MAC reads its receiver's
 // level meter, which listens only in the profile's bands (nava: its two tones, each within half
-// its bit rate; room: its whole band), and calibrates its threshold on what that meter reads of
+// its bit rate; room: its whole band; taken as the bands the receiver decodes in, ListeningBands,
+// though room's meter spans a little more, 500-6000 Hz against 600-5400), and calibrates its threshold on what that meter reads of
 // the room's noise. A noise whose power lies mostly outside those bands (a compressor's 400 Hz
 // hum, the low formants of speech) raises neither the threshold nor the carrier by its whole
 // power. The modem's own packets lie wholly in the bands and count whole. No ROS.
