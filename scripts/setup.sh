@@ -50,6 +50,9 @@ packages=(
   xvfb x11-apps imagemagick mesa-utils libgl1-mesa-dri
   # scripts/fuzz.sh: libFuzzer needs clang; the sanitizers' and the fuzzer's runtimes
   clang-14 libclang-rt-14-dev libfuzzer-14-dev
+  # real recorded noises (running water, CC0; a fire, CC BY 3.0) for the model's calibration in
+  # recorded noise (docs/audio_link.md), read from /usr/share/games/minetest, never copied
+  minetest-data
   # scripts/get_thesis_map.sh downloads the thesis's map from Stage's repository
   curl ca-certificates
 )

@@ -44,23 +44,23 @@ double WhineHarm(double hz, double low, double high, const std::vector<double>& 
   return harm / all;
 }
 
-// A noise source's Disturbance::listened and Disturbance::heard for `profile`, at the rate the
-// tables are rendered at; a recording's are read from its file.
+// A noise source's Disturbance::listened, Disturbance::heard and Disturbance::recording for
+// `profile`, at the rate the tables are rendered at; a recording's are read from its file.
 struct SourceWeights {
   double listened = 1.0;
   double heard = 1.0;
+  std::shared_ptr<const nava_modem::RecordingWeight> recording;
 };
 
 SourceWeights WeightsOf(const world_sim::NoiseSourceSpec& source, nava_modem::Profile profile) {
   if (source.kind != world_sim::NoiseKind::kRecording) {
-    return {1.0, CarrierShare(source.kind, source.frequency, profile, kTableSampleRate)};
+    return {1.0, CarrierShare(source.kind, source.frequency, profile, kTableSampleRate), nullptr};
   }
   try {
     const nava_modem::Audio audio = nava_modem::ReadAudioFile(source.file);
-    const nava_modem::RecordedNoise noise(audio.samples, audio.sample_rate);
-    const nava_modem::Bands bands = nava_modem::ListeningBands(profile);
-    return {std::pow(10.0, -nava_modem::WhiteEquivalentOffsetDb(noise, bands, kTableSampleRate) / 10.0),
-            noise.Fraction(bands)};
+    auto weight =
+        std::make_shared<const nava_modem::RecordingWeight>(audio.samples, audio.sample_rate, profile, kTableSampleRate);
+    return {std::pow(10.0, -weight->in_band_offset_db() / 10.0), weight->in_band_fraction(), weight};
   } catch (const std::exception& e) {
     throw std::invalid_argument("acoustic model: noise source '" + source.name + "' (" + source.file + "): " + e.what());
   }
@@ -91,6 +91,21 @@ DecodeOutcome PredictOutcome(const DecodeTable& table, Interference kind, double
     o.bad_crc *= keep;
   }
   return o;
+}
+
+DecodeOutcome PredictOutcome(const DecodeTable& table, Interference kind, const std::vector<double>& snrs_db,
+                             double drr_db, double rt60) {
+  if (snrs_db.empty()) throw std::invalid_argument("PredictOutcome: no SNR to predict at");
+  DecodeOutcome mean;
+  for (double snr : snrs_db) {
+    const DecodeOutcome o = PredictOutcome(table, kind, snr, drr_db, rt60);
+    mean.packet += o.packet;
+    mean.zero_byte += o.zero_byte;
+    mean.one_byte += o.one_byte;
+    mean.bad_crc += o.bad_crc;
+  }
+  const auto n = static_cast<double>(snrs_db.size());
+  return {mean.packet / n, mean.zero_byte / n, mean.one_byte / n, mean.bad_crc / n};
 }
 
 double AcousticThresholdDb(const world_sim::Acoustics& acoustics) { return acoustics.ambient_db - 30.0; }
@@ -141,6 +156,7 @@ AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Aco
     const SourceWeights w = WeightsOf(s, *profile);
     source_listened_.push_back(w.listened);
     source_heard_.push_back(w.heard);
+    source_recording_.push_back(w.recording);
     if (s.robot.empty()) {
       if (!propagation_.map().IsFreeAt({s.x, s.y})) {
         throw std::invalid_argument("acoustic model: noise source '" + s.name + "' at (" + std::to_string(s.x) +
@@ -179,7 +195,7 @@ std::vector<Disturbance> AcousticModel::NoiseDuring(const Eigen::Vector2d& at, d
     if (sounding <= 0.0) continue;
     const std::optional<double> level = SourceLevelDb(k, at, robots);
     if (level) out.push_back({FromNoiseKind(s.kind), sounding * Power(*level), s.frequency, source_listened_[k],
-                          source_heard_[k]});
+                          source_heard_[k], source_recording_[k].get()});
   }
   return out;
 }
@@ -269,7 +285,8 @@ LinkPrediction AcousticModel::Predict(const SoundPath& path, const Eigen::Vector
   p.path_length = path.length;
   p.corners = path.bends;
   p.signal = Levels(path, listener);
-  double noise = 0.0, loudest = -1.0;
+  double noise = 0.0, loudest = -1.0, loudest_recording = 0.0;
+  const nava_modem::RecordingWeight* recording = nullptr;
   for (const Disturbance& d : disturbances) {
     const double power = EffectivePower(d);
     noise += power;
@@ -277,11 +294,18 @@ LinkPrediction AcousticModel::Predict(const SoundPath& path, const Eigen::Vector
       loudest = power;
       p.kind = d.kind;
     }
+    if (d.recording && power > loudest_recording) {
+      loudest_recording = power;
+      recording = d.recording;
+    }
   }
   noise = std::max(noise, 1e-30);
   p.noise_db = Db(noise);
   p.snr_db = p.signal.total_db - p.noise_db;
-  p.outcome = PredictOutcome(table_, p.kind, p.snr_db, p.signal.drr_db, p.signal.rt60);
+  // The loudest recording is weighed over the receiver's cells, the rest of the noise as steady.
+  p.outcome = recording ? PredictOutcome(table_, p.kind, recording->TableSnrsDb(p.snr_db, loudest_recording / noise),
+                                         p.signal.drr_db, p.signal.rt60)
+                        : PredictOutcome(table_, p.kind, p.snr_db, p.signal.drr_db, p.signal.rt60);
   p.probability = p.outcome.packet;
   return p;
 }

@@ -13,6 +13,7 @@
 #include "audio_propagation/carrier_share.h"
 #include "audio_propagation/delivery_map.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/noise_sources.h"
 #include "nava_modem/wav_file.h"
 
 namespace audio_propagation {
@@ -143,6 +144,47 @@ TEST(RecordedNoise, ARecordingCountsAsWhiteNoiseWithItsPowerWhereTheReceiverList
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("noise source 'source' (" + recorded.file + ")"), std::string::npos) << e.what();
   }
+}
+
+TEST(RecordedNoise, ARecordingThatComesAndGoesHarmsRoomLessThanSteadyNoiseOfItsPower) {
+  // The room profile's code rides over the cells a noise spares (nava_modem::RecordingWeight):
+  // running water, dishes, speech. A table whose packets go from none at -30 dB to all at 0 dB.
+  DecodeTable table = test::FlatTable("room", 0.0);
+  table.snr_db = {-30.0, 0.0};
+  table.Resize();
+  for (std::size_t k = 0; k < kInterferenceCount; ++k) table.At(static_cast<Interference>(k), 0, 0, 1).packet = 1.0;
+  const Strip strip;
+  world_sim::Acoustics a = Quiet();
+  a.ambient_db = -50.0;
+  world_sim::NoiseSourceSpec source;
+  source.name = "tap";
+  source.x = 20.0, source.y = 2.5;
+  source.level_db = 90.0;  // the link at about -15 dB, half way up the table
+  source.kind = world_sim::NoiseKind::kRecording;
+  const auto predict = [&](const std::vector<float>& x, const std::string& name) {
+    const std::string path = ::testing::TempDir() + "/acoustic_model_" + name + ".wav";
+    nava_modem::WriteWavFile(path, x, 48000.0);
+    world_sim::Acoustics with = a;
+    source.file = path;
+    with.noise_sources = {source};
+    const AcousticModel model(strip.model, with, table, {});
+    const Eigen::Vector2d listener(10.0, 2.5);
+    return model.Predict(strip.Path(5.0, 10.0), listener, model.NoiseAt(listener, 0.0, {}));
+  };
+  std::vector<double> white = nava_modem::WhiteNoise(48000 * 8, 4);
+  std::vector<float> steady(white.begin(), white.end()), bursts = steady;
+  // On for 0.1 s in 0.5 s, 40 dB down between, at the same mean power as the steady noise.
+  double power = 0.0;
+  for (std::size_t k = 0; k < bursts.size(); ++k) {
+    if (std::fmod(k / 48000.0, 0.5) >= 0.1) bursts[k] *= 0.01f;
+    power += static_cast<double>(bursts[k]) * bursts[k] / static_cast<double>(bursts.size());
+  }
+  for (float& x : bursts) x = static_cast<float>(x / std::sqrt(power));
+  const LinkPrediction flat = predict(steady, "steady"), coming = predict(bursts, "bursts");
+  ASSERT_NEAR(flat.snr_db, coming.snr_db, 0.3);  // the same power where room listens
+  ASSERT_GT(flat.probability, 0.05);
+  ASSERT_LT(flat.probability, 0.95);
+  EXPECT_GT(coming.probability, flat.probability + 0.05) << "at " << flat.snr_db << " dB";
 }
 
 TEST(LinkBudget, DirectAndReverberantMeetAtTheCriticalDistanceAndCornersCostTheDirectSound) {

@@ -48,12 +48,14 @@ int Run(const audio_propagation::tools::PredictArgs& a) {
 
   audio_propagation::Interference kind = audio_propagation::Interference::kWhite;
   double snr = a.snr_db;
+  std::vector<double> packet_snrs;  // a recording's, one per packet place (RecordingWeight)
   std::string noise_figures;
   if (const auto named = audio_propagation::ParseInterference(a.noise);
       named && *named != audio_propagation::Interference::kWhine && *named != audio_propagation::Interference::kPacket) {
     kind = *named;
   } else {
-    // A recording: read as white noise with the same power where the receiver listens.
+    // A recording: read as white noise with the same power where the receiver listens (for room,
+    // more for what its code gains from a noise that comes and goes: RecordingWeight).
     nava_modem::Audio audio;
     try {
       audio = nava_modem::ReadAudioFile(a.noise);
@@ -61,18 +63,21 @@ int Run(const audio_propagation::tools::PredictArgs& a) {
       Fail(kProgram, std::string(e.what()) + " (--noise: expected white, pink, speech or a recording)");
     }
     try {
-      const nava_modem::RecordedNoise noise(audio.samples, audio.sample_rate);
-      const nava_modem::Bands bands = nava_modem::ListeningBands(a.profile);
-      const double offset = nava_modem::WhiteEquivalentOffsetDb(noise, bands, kRate);
-      snr += offset;
-      noise_figures = ", \"noise_in_band_fraction\": " + JsonNumber(noise.Fraction(bands), 4) +
-                      ", \"white_equivalent_offset_db\": " + JsonNumber(offset, 2);
+      const nava_modem::RecordingWeight weight(audio.samples, audio.sample_rate, a.profile, kRate);
+      snr += weight.in_band_offset_db();
+      packet_snrs = weight.TableSnrsDb(snr);
+      double gain = 0.0;
+      for (double p : packet_snrs) gain += (p - snr) / static_cast<double>(packet_snrs.size());
+      noise_figures = ", \"noise_in_band_fraction\": " + JsonNumber(weight.in_band_fraction(), 4) +
+                      ", \"white_equivalent_offset_db\": " + JsonNumber(weight.in_band_offset_db(), 2) +
+                      ", \"cell_gain_db\": " + JsonNumber(gain, 2);
     } catch (const std::invalid_argument& e) {
       Fail(kProgram, a.noise + ": " + e.what());
     }
   }
   const audio_propagation::DecodeOutcome o =
-      audio_propagation::PredictOutcome(table, kind, snr, room.drr_db, room.rt60_s);
+      audio_propagation::PredictOutcome(table, kind, packet_snrs.empty() ? std::vector<double>{snr} : packet_snrs,
+                                        room.drr_db, room.rt60_s);
   const double unheard = std::max(0.0, 1.0 - o.packet - o.zero_byte - o.one_byte - o.bad_crc);
   std::printf("{\"rir\": %s, \"channel\": %s, \"profile\": %s, \"rt60_s\": %s, \"drr_db\": %s, \"noise\": %s, "
               "\"snr_db\": %s, \"table_kind\": %s, \"table_snr_db\": %s%s, \"probability\": %s, "

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -61,14 +62,12 @@ int CalibrateModel(const DecodeTableRequest& request) {
     responses.push_back(nava_modem::LoadImpulseResponse(room.path, room.channel, rate));
   }
   // The recorded noise: heard as an interferer (the cells' speech kind) and weighed by the model
-  // as white noise with its power where the receiver listens.
-  double recorded_offset_db = 0.0;
+  // as white noise with its power where the receiver listens (RecordingWeight).
+  std::optional<nava_modem::RecordingWeight> recording;
   if (!request.noise_file.empty()) {
     try {
       const nava_modem::Audio audio = nava_modem::ReadAudioFile(request.noise_file);
-      const nava_modem::RecordedNoise noise(audio.samples, audio.sample_rate);
-      recorded_offset_db =
-          nava_modem::WhiteEquivalentOffsetDb(noise, nava_modem::ListeningBands(request.profile), kTableSampleRate);
+      recording.emplace(audio.samples, audio.sample_rate, request.profile, kTableSampleRate);
       setup.speech = nava_modem::ReadAudioAt(request.noise_file, rate);
     } catch (const std::exception& e) {
       usage.Fail("--noise-file " + request.noise_file + ": " + e.what());
@@ -83,9 +82,11 @@ int CalibrateModel(const DecodeTableRequest& request) {
       if (recorded && request.noise_file.empty()) continue;
       for (double snr : snrs) {
         Case c{r, recorded, snr};
-        c.predicted = PredictOutcome(table, Interference::kWhite, snr + (recorded ? recorded_offset_db : 0.0),
-                                     rooms[r].figures.drr_db, rooms[r].figures.rt60_s)
-                          .packet;
+        const std::vector<double> table_snrs =
+            recorded ? recording->TableSnrsDb(snr + recording->in_band_offset_db()) : std::vector<double>{snr};
+        c.predicted =
+            PredictOutcome(table, Interference::kWhite, table_snrs, rooms[r].figures.drr_db, rooms[r].figures.rt60_s)
+                .packet;
         cases.push_back(c);
       }
     }

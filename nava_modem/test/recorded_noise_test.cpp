@@ -1,6 +1,7 @@
 #include "nava_modem/recorded_noise.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -80,6 +81,90 @@ TEST(RecordedNoise, RefusesWhatIsNoRecording) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
   }
+}
+
+TEST(EffectiveSnr, FlatCellsReadAsTheirSnrAndBuriedCellsCostLessThanTheirMeanPower) {
+  EXPECT_NEAR(EffectiveSnrDb(std::vector<double>(42, 1.0), -12.0, -11.0), -12.0, 1e-9);
+  // Half the cells 2.8 dB louder than the mean and half 10 dB quieter (mean 1).
+  const std::vector<double> split = {1.9, 0.1};
+  // Well below beta each cell counts by its SNR: the mean of 1/cell, 7.2 dB better than white
+  // noise of the same power.
+  EXPECT_NEAR(EffectiveSnrDb(split, -40.0, -11.0), -40.0 + 10.0 * std::log10((1.0 / 1.9 + 10.0) / 2.0), 0.05);
+  // At beta, better than white noise of its power, worse than all cells as the quiet half.
+  const double g = EffectiveSnrDb(split, -11.0, -11.0);
+  EXPECT_GT(g, -11.0 + 0.5);
+  EXPECT_LT(g, -11.0 + 10.0);
+  // Far above beta the buried half holds the code back: the gain is gone.
+  EXPECT_LT(EffectiveSnrDb(split, 10.0, -11.0), 10.0);
+  EXPECT_THROW(EffectiveSnrDb({}, 0.0, -11.0), std::invalid_argument);
+}
+
+// White noise switched on for `on` s and off for `off` s, over `seconds`, at 48 kHz.
+std::vector<float> Gated(double on, double off, double seconds, std::uint32_t seed) {
+  std::vector<float> x = Floats(WhiteNoise(static_cast<std::size_t>(seconds * 48000.0), seed));
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (std::fmod(k / 48000.0, on + off) >= on) x[k] *= 0.01f;  // 40 dB down, not digital silence
+  }
+  return x;
+}
+
+TEST(RecordingWeight, WhiteNoiseReadsAsTheTablesWhiteNoiseForBothProfiles) {
+  const std::vector<float> white = Floats(WhiteNoise(48000 * 8, 11));
+  for (Profile p : {Profile::kNava, Profile::kRoom}) {
+    const RecordingWeight w(white, 48000.0, p, 48000.0);
+    EXPECT_NEAR(w.in_band_offset_db(), 0.0, 0.2);
+    for (double snr : {-25.0, -15.0, 0.0}) {
+      const std::vector<double> packets = w.TableSnrsDb(snr);
+      ASSERT_EQ(packets.size(), p == Profile::kRoom ? RecordingWeight::kPacketWindows : 1u);
+      double mean = 0.0;
+      for (double t : packets) mean += t / static_cast<double>(packets.size());
+      EXPECT_NEAR(mean, snr, 0.5) << ProfileName(p) << " at " << snr << " dB";
+    }
+  }
+}
+
+TEST(RecordingWeight, ANoiseThatComesAndGoesHarmsRoomsCodeLessButNotNavasBits) {
+  // On a fifth of the time, in bursts of 0.1 s: 7 dB above its mean while on.
+  const std::vector<float> bursts = Gated(0.1, 0.4, 8.0, 5);
+  const RecordingWeight room(bursts, 48000.0, Profile::kRoom, 48000.0);
+  double mean = 0.0;
+  for (double t : room.TableSnrsDb(-15.0)) mean += t / RecordingWeight::kPacketWindows;
+  EXPECT_GT(mean, -15.0 + 3.0);
+  // Mixed into as much steady noise, it gains less.
+  double mixed = 0.0;
+  for (double t : room.TableSnrsDb(-15.0, 0.5)) mixed += t / RecordingWeight::kPacketWindows;
+  EXPECT_GT(mixed, -15.0);
+  EXPECT_LT(mixed, mean);
+  // nava decides each 3.3 ms bit alone: a burst on a bit costs the packet, the mean power counts.
+  const RecordingWeight nava(bursts, 48000.0, Profile::kNava, 48000.0);
+  EXPECT_EQ(nava.TableSnrsDb(-15.0), std::vector<double>{-15.0});
+}
+
+TEST(RecordingWeight, ABurstCostsOnlyThePacketsItFallsOn) {
+  // Steady white noise with one burst 20 dB louder, 0.3 s long, in 8 s.
+  std::vector<float> x = Floats(WhiteNoise(48000 * 8, 9));
+  for (std::size_t k = 48000 * 4; k < 48000 * 4 + 14400; ++k) x[k] *= 10.0f;
+  const RecordingWeight room(x, 48000.0, Profile::kRoom, 48000.0);
+  const std::vector<double> packets = room.TableSnrsDb(-15.0);
+  const double power_db = 10.0 * std::log10((8.0 - 0.3 + 0.3 * 100.0) / 8.0);  // the mean over white's
+  int clear = 0, hit = 0;
+  for (double t : packets) {
+    if (t > -15.0 + power_db - 0.5) ++clear;  // as the steady noise alone, 6.7 dB quieter than the mean
+    if (t < -15.0 + power_db - 2.0) ++hit;
+  }
+  EXPECT_GT(clear, static_cast<int>(packets.size()) / 2);
+  EXPECT_GT(hit, 0);
+}
+
+TEST(CellPowers, RefusesTooShortARecordingOrNoCell) {
+  const std::vector<float> white = Floats(WhiteNoise(48000, 3));
+  EXPECT_THROW(CellPowers(std::vector<float>(white.begin(), white.begin() + 5000), 48000.0, {{600, 5400}}, 0.04, 400),
+               std::invalid_argument);
+  EXPECT_THROW(CellPowers(white, 48000.0, {{600, 5400}}, 0.0, 400), std::invalid_argument);
+  EXPECT_THROW(CellPowers(white, 48000.0, {{30000, 31000}}, 0.04, 400), std::invalid_argument);
+  const auto cells = CellPowers(white, 48000.0, {{600, 5400}}, 0.04, 400);
+  ASSERT_EQ(cells.size(), 25u);
+  EXPECT_EQ(cells[0].size(), 12u);
 }
 
 }  // namespace

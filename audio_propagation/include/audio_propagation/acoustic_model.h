@@ -33,6 +33,10 @@
 #include "world_sim/acoustics.h"
 #include "world_sim/world_config.h"
 
+namespace nava_modem {
+class RecordingWeight;  // nava_modem/recorded_noise.h
+}
+
 namespace audio_propagation {
 
 // The levels of one source heard at one place.
@@ -57,6 +61,10 @@ double CriticalDistanceFromDrr(double drr_db, double distance, double rt60);
 // kFadeBelowTableDb, as a receiver's do.
 constexpr double kFadeBelowTableDb = 10.0;
 DecodeOutcome PredictOutcome(const DecodeTable& table, Interference kind, double snr_db, double drr_db, double rt60);
+// The mean outcome over packets heard at `snrs_db` each (a recorded noise's packet places,
+// nava_modem::RecordingWeight::TableSnrsDb). Throws std::invalid_argument for no SNR.
+DecodeOutcome PredictOutcome(const DecodeTable& table, Interference kind, const std::vector<double>& snrs_db,
+                             double drr_db, double rt60);
 
 // The quietest direct level worth a path with the acoustic model (propagation threshold_db):
 // 30 dB under the ambient noise, so that the model, not the threshold, judges every link a
@@ -79,6 +87,9 @@ struct Disturbance {
   // The share of its power in the profile's listening bands (carrier_share.h): what a robot's
   // carrier sense hears of it.
   double heard = 1.0;
+  // A recorded noise's weighing over the receiver's cells (RecordingWeight::TableSnrDb), owned by
+  // the model; null for every other disturbance.
+  const nava_modem::RecordingWeight* recording = nullptr;
 };
 
 struct LinkPrediction {
@@ -153,6 +164,7 @@ class AcousticModel {
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
   std::vector<double> source_listened_;  // per noise source: Disturbance::listened
   std::vector<double> source_heard_;     // per noise source: Disturbance::heard
+  std::vector<std::shared_ptr<const nava_modem::RecordingWeight>> source_recording_;  // null but for recordings
   double ambient_heard_ = 1.0;           // the ambient noise's Disturbance::heard
   std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band
   // The path from noise source `source` at `from` to `to`.
