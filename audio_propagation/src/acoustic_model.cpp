@@ -19,7 +19,8 @@ double Db(double power) { return 10.0 * std::log10(power); }
 // the sound has come, i.e. 10 log10(e) * 0.04 = 0.174 dB per metre per second of RT60.
 constexpr double kReverberantDecay = 0.174;
 
-// How much of a whine a receiver minds, as a fraction of its power: each harmonic (1x, 2x and
+// How much of a whine a receiver minds, as a fraction of its power, for a table without a
+// measured whine harm curve (room's: its tones fill its band): each harmonic (1x, 2x and
 // 3x, at 0, -6 and -12 dB in amplitude) that falls within the band widened by 10 % each side
 // counts by its share of the power, and, for a profile with a few tones (`tones`, empty for one
 // whose tones fill its band), by how close it comes to a tone: fully within half a bit-rate
@@ -273,6 +274,8 @@ void AcousticModel::PreparePaths(const std::vector<Eigen::Vector2d>& listeners,
 
 double AcousticModel::EffectivePower(const Disturbance& d) const {
   if (d.kind != Interference::kWhine) return d.power * d.listened;
+  // Measured: how much more this whine harms the receiver than the table's own (whine_harm.h).
+  if (!table_.whine_harm_hz.empty()) return d.power * std::pow(10.0, table_.WhineHarmDb(d.frequency) / 10.0);
   const double reference = WhineHarm(table_.whine_hz, table_.band_low_hz, table_.band_high_hz, tones_);
   const double here = WhineHarm(d.frequency, table_.band_low_hz, table_.band_high_hz, tones_);
   // Out of band a whine still leaks a little through the receiver's filters (-20 dB).

@@ -192,9 +192,22 @@ DecodeOutcome DecodeTable::Lookup(Interference kind, double snr, double drr, dou
   return sum;
 }
 
+double DecodeTable::WhineHarmDb(double hz) const {
+  if (whine_harm_hz.empty() || whine_harm_hz.size() != whine_harm_db.size()) {
+    throw std::logic_error("decode table: no whine harm curve");
+  }
+  if (hz <= whine_harm_hz.front()) return whine_harm_db.front();
+  if (hz >= whine_harm_hz.back()) return whine_harm_db.back();
+  const auto high = static_cast<std::size_t>(std::upper_bound(whine_harm_hz.begin(), whine_harm_hz.end(), hz) -
+                                             whine_harm_hz.begin());
+  const double w = (hz - whine_harm_hz[high - 1]) / (whine_harm_hz[high] - whine_harm_hz[high - 1]);
+  return (1.0 - w) * whine_harm_db[high - 1] + w * whine_harm_db[high];
+}
+
 DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected_profile) {
   const grid::YamlFields root = grid::YamlFields::Load(path, "decode table");
-  root.ExpectOnlyKeys({"profile", "packets", "whine_hz", "band_hz", "command", "rooms", "lead_s", "snr_db", "drr_db", "rt60", "kinds"});
+  root.ExpectOnlyKeys({"profile", "packets", "whine_hz", "band_hz", "command", "rooms", "lead_s", "snr_db", "drr_db", "rt60",
+                       "whine_harm", "kinds"});
   DecodeTable t;
   t.profile = root.String("profile");
   if (!nava_modem::ParseProfile(t.profile)) {
@@ -227,6 +240,16 @@ DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected
   t.drr_db = ReadAxis(root, "drr_db");
   t.rt60 = ReadAxis(root, "rt60");
   if (!(t.rt60.front() > 0.0)) root.Fail("rt60", "expected reverberation times above 0 s");
+  if (root.Has("whine_harm")) {
+    const grid::YamlFields harm = root.Child("whine_harm");
+    harm.ExpectOnlyKeys({"hz", "db"});
+    t.whine_harm_hz = ReadAxis(harm, "hz");
+    t.whine_harm_db = harm.Numbers("db", t.whine_harm_hz.size(), "one harm in dB per frequency of hz");
+    if (!(t.whine_harm_hz.front() > 0.0)) harm.Fail("hz", "expected frequencies above 0 Hz");
+    for (double db : t.whine_harm_db) {
+      if (!(std::fabs(db) <= 60.0)) harm.Fail("db", "expected harms from -60 to 60 dB, got " + Number(db));
+    }
+  }
 
   if (!root.Has("kinds")) root.Fail("kinds", std::string("missing; expected every kind: ") + kKindList);
   const grid::YamlFields kinds = root.Child("kinds");
@@ -273,6 +296,16 @@ void SaveDecodeTable(const std::string& path, const DecodeTable& table) {
   numbers("snr_db", table.snr_db);
   numbers("drr_db", table.drr_db);
   numbers("rt60", table.rt60);
+  if (table.whine_harm_hz.size() != table.whine_harm_db.size()) {
+    throw std::invalid_argument(path + ": the whine harm curve has " + std::to_string(table.whine_harm_hz.size()) +
+                                " frequencies and " + std::to_string(table.whine_harm_db.size()) + " harms");
+  }
+  if (!table.whine_harm_hz.empty()) {
+    out << YAML::Key << "whine_harm" << YAML::Value << YAML::BeginMap;
+    numbers("hz", table.whine_harm_hz);
+    numbers("db", table.whine_harm_db);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "kinds" << YAML::Value << YAML::BeginMap;
   for (Interference kind : kAllKinds) {
     // Block lists over rt60 and DRR; a line per DRR: the flow list over SNR, with a comment saying

@@ -305,6 +305,18 @@ TEST(AcousticModel, AWhineCountsByItsHarmonicsInTheBandAndHowCloseTheyComeToNava
   EXPECT_NEAR(model.EffectivePower({Interference::kSpeech, 2.5, 0.0}), 2.5, 1e-12);  // others as they are
 }
 
+TEST(AcousticModel, AWhineCountsByTheTablesMeasuredHarmCurveWhereItHasOne) {
+  DecodeTable table = LinearTable();
+  table.whine_harm_hz = {1000.0, 1200.0, 3000.0};
+  table.whine_harm_db = {-7.0, 8.0, 0.0};
+  Strip strip;
+  const AcousticModel model(strip.model, Quiet(), table, {});
+  EXPECT_NEAR(model.EffectivePower({Interference::kWhine, 2.0, 1200.0}), 2.0 * std::pow(10.0, 0.8), 1e-9);
+  EXPECT_NEAR(model.EffectivePower({Interference::kWhine, 1.0, 1100.0}), std::pow(10.0, 0.05), 1e-9);
+  EXPECT_NEAR(model.EffectivePower({Interference::kWhine, 1.0, 3000.0}), 1.0, 1e-12);
+  EXPECT_NEAR(model.EffectivePower({Interference::kWhite, 2.5, 0.0}), 2.5, 1e-12);  // others as they are
+}
+
 TEST(AcousticModel, BelowTheTablesQuietestSnrWhatTheReceiverStillDecodesFadesOut) {
   DecodeTable table = LinearTable();
   for (DecodeOutcome& o : table.cells) o = {0.6, 0.2, 0.1, 0.0};  // flat: the table cannot tell

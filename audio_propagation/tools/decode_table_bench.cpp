@@ -21,6 +21,7 @@
 #include "nava_modem/room_phy.h"
 #include "model_calibration.h"
 #include "table_cells.h"
+#include "whine_harm.h"
 #include "tool_args/tool_args.h"
 
 namespace audio_propagation::tools {
@@ -73,10 +74,55 @@ void PrintSummary(const DecodeTable& t) {
   std::printf("delivery falls by 2 packets or more as the SNR rises: %d of %d steps\n", falls, steps);
 }
 
+// The whine harm curve's frequencies and SIRs: the full ones, or --quick's three of each.
+WhineHarmOptions HarmOptions(const DecodeTableRequest& request) {
+  WhineHarmOptions o;
+  o.threads = request.threads;
+  if (request.quick) {
+    o.low_hz = 1200.0, o.high_hz = 2300.0, o.step_hz = 1100.0;
+    o.low_sir_db = -12.0, o.high_sir_db = 12.0, o.sir_step_db = 12.0;
+  }
+  return o;
+}
+
+int SaveTable(const std::string& out, const DecodeTable& t) {
+  try {
+    audio_propagation::SaveDecodeTable(out, t);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "decode_table_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+// --whine-harm: the curve measured anew into a copy of a table, its cells kept.
+int AddWhineHarm(const DecodeTableRequest& request) {
+  DecodeTable table;
+  try {
+    table = LoadDecodeTable(request.table_file.empty() ? ShippedDecodeTable("nava") : request.table_file, "nava");
+  } catch (const std::exception& e) {
+    request.usage.Fail(e.what());
+  }
+  const std::filesystem::path folder = std::filesystem::path(request.out).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) request.usage.Fail("--out: no folder " + folder.string());
+  CellSetup s;
+  s.profile = Profile::kNava;
+  s.seed = request.seed;
+  s.model = table.rooms;
+  s.table = table;
+  s.table.packets = request.packets;
+  MeasureWhineHarm(s, HarmOptions(request), table);
+  table.command += "; whine harm: " + request.command;
+  if (const int failed = SaveTable(request.out, table)) return failed;
+  std::printf("table: %s; %.0f s CPU\n", request.out.c_str(), CpuNow());
+  return 0;
+}
+
 }  // namespace
 
 int DecodeTableBench(const DecodeTableRequest& request) {
   if (request.calibrate) return CalibrateModel(request);
+  if (request.whine_harm) return AddWhineHarm(request);
   const multirobot_audio::tools::ToolUsage& usage = request.usage;
   CellSetup s;
   s.profile = request.profile;
@@ -158,12 +204,10 @@ int DecodeTableBench(const DecodeTableRequest& request) {
     t.cells[c] = DecodeOutcome{n.heard[0] / all, n.heard[1] / all, n.heard[2] / all, n.heard[3] / all};
     false_packets += n.false_packets;
   }
-  try {
-    audio_propagation::SaveDecodeTable(out, t);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "decode_table_bench: %s\n", e.what());
-    return 1;
-  }
+  // nava's whine cells are at one frequency; the curve tells the model how others compare. A
+  // --quick table (for tests) goes without one: its few packets make no curve.
+  if (s.profile == Profile::kNava && !request.quick) MeasureWhineHarm(s, HarmOptions(request), t);
+  if (const int failed = SaveTable(out, t)) return failed;
   PrintSummary(t);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("false packets (CRC passed, data never sent): %d of %zu\n", false_packets,

@@ -8,7 +8,12 @@
 //                      [--seed 1] [--dir DIR] [--snr-db LIST] [--rt60 LIST]
 //                      [--response statistical|measured-like]
 //
+//   decode_table_bench --profile nava --whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick]
+//
 // (Tables made before the tool moved here name the same measurement `nava_bench --table PROFILE`.)
+//
+// A nava table (not --quick) also gets its whine harm curve (whine_harm.h); --whine-harm measures
+// that curve alone into a copy of --table (the shipped one by default), its cells kept.
 //
 // Axes: SNR -15, -12, -9, -6, -3, 0, 3, 6, 9, 12, 18, 30 dB (room from -27 dB: see the code),
 // DRR -30, -24, -18, -12, -6, 0, 6, 12, 24 dB, RT60 0.3, 0.6, 1.2 s, every kind; --quick: SNR

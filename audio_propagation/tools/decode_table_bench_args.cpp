@@ -12,8 +12,9 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   const ToolArgs args("decode_table_bench",
                       "decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] "
                       "[--dir DIR] [--snr-db LIST] [--rt60 LIST] [--response statistical|measured-like] | --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav] "
-                      "[--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR]",
-                      words, {"--quick", "--calibrate"});
+                      "[--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR] | --profile nava "
+                      "--whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick] [--threads 2] [--seed 1]",
+                      words, {"--quick", "--calibrate", "--whine-harm"});
   DecodeTableRequest r;
   r.usage = args.tool_usage();
   const std::string name = args.Required("--profile");
@@ -22,7 +23,9 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   r.profile = *profile;
   r.quick = args.Switch("--quick");
   r.calibrate = args.Switch("--calibrate");
-  r.packets = static_cast<int>(args.Int("--packets", r.quick ? 4 : r.calibrate ? 10 : 12, 1, 100000));
+  r.whine_harm = args.Switch("--whine-harm");
+  r.packets = static_cast<int>(
+      args.Int("--packets", r.quick ? 4 : r.calibrate ? 10 : r.whine_harm ? 16 : 12, 1, 100000));
   r.threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
   r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   r.out = args.String("--out", std::string("decode_table_") + nava_modem::ProfileName(r.profile) + ".yaml");
@@ -37,11 +40,18 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   r.noise_file = args.String("--noise-file", "");
   r.table_file = args.String("--table", "");
   args.CheckAllUsed();
-  if (r.calibrate) {
+  if (r.whine_harm) {
+    if (r.calibrate) args.Fail("--whine-harm and --calibrate: one at a time");
+    if (r.profile != nava_modem::Profile::kNava) args.Fail("--whine-harm: measured for nava's tones; expected --profile nava");
+    if (!r.rir_dir.empty() || !r.noise_file.empty() || !snr_list.empty() || !rt60_list.empty() ||
+        !args.String("--response", "").empty()) {
+      args.Fail("--whine-harm keeps the table's cells and axes: drop --rir-dir, --noise-file, --snr-db, --rt60 and --response");
+    }
+  } else if (r.calibrate) {
     if (r.rir_dir.empty()) args.Fail("--calibrate: expected --rir-dir DIR, the measured responses");
     if (r.quick || !args.String("--out", "").empty()) args.Fail("--calibrate measures no table: drop --quick and --out");
   } else if (!r.rir_dir.empty() || !r.noise_file.empty() || !r.table_file.empty()) {
-    args.Fail("--rir-dir, --noise-file and --table go with --calibrate");
+    args.Fail("--rir-dir, --noise-file and --table go with --calibrate (--table also with --whine-harm)");
   }
   if (!rt60_list.empty() && r.calibrate) args.Fail("--rt60 is a table's axis: it does not go with --calibrate");
   if (!args.String("--response", "").empty() && r.calibrate) {

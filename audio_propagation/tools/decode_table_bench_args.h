@@ -7,6 +7,8 @@
 //                      [--seed 1] [--dir DIR] [--snr-db LIST]
 //   decode_table_bench --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav]
 //                      [--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR]
+//   decode_table_bench --profile nava --whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick]
+//                      [--threads 2] [--seed 1]
 #include <string>
 #include <vector>
 
@@ -29,6 +31,9 @@ struct DecodeTableRequest {
   // --calibrate: the model held against the real receiver through measured rooms
   // (model_calibration.h) instead of a table measured.
   bool calibrate = false;
+  // --whine-harm: a table (--table, else the shipped one) written to --out with its whine harm
+  // curve measured anew (whine_harm.h); nava only.
+  bool whine_harm = false;
   std::string rir_dir, noise_file, table_file;
   std::string command;         // how the table was made: the whole command line
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running

@@ -146,10 +146,10 @@ class AcousticModel {
   LinkPrediction Predict(const SoundPath& path, const Eigen::Vector2d& listener,
                          const std::vector<Disturbance>& disturbances) const;
 
-  // The power a disturbance counts for with this profile: a whine counts by how much of its
-  // power falls in the profile's band and, for nava, how close its harmonics come to the two
-  // tones, relative to the table's whine (which nava's table measures between its tones); a
-  // recording by its `listened` weight.
+  // The power a disturbance counts for with this profile, relative to the table's whine for a
+  // whine: by the table's measured whine harm curve where it has one (nava's), else by how much
+  // of its power falls in the profile's band and how close its harmonics come to the tones (a
+  // rule of thumb); a recording by its `listened` weight.
   double EffectivePower(const Disturbance& d) const;
 
   const world_sim::Acoustics& acoustics() const { return acoustics_; }

@@ -81,6 +81,11 @@ struct DecodeTable {
   nava_modem::RoomOptions::Model rooms = nava_modem::RoomOptions::Model::kStatistical;
   double lead_s = kTableLeadSeconds;  // s of the disturbance before each packet
   std::vector<double> snr_db, drr_db, rt60;  // each ascending, at least one value
+  // How much more a whine of fundamental `whine_harm_hz[k]` harms the receiver than one at
+  // whine_hz of the same power, dB, measured with the renderer's motor whine (its harmonics)
+  // (whine_harm.h in the tools). Empty: no curve measured; the model then weighs a whine by a
+  // rule of thumb. whine_harm_hz ascending, the two the same length.
+  std::vector<double> whine_harm_hz, whine_harm_db;
   // Indexed [kind][rt60][drr][snr], every kind of Interference in its enum order.
   std::vector<DecodeOutcome> cells;
 
@@ -96,6 +101,9 @@ struct DecodeTable {
   // Linear interpolation in SNR, DRR and RT60, clamped at each axis' ends (beyond the loudest
   // SNR measured the receiver does no better; beyond the quietest, no worse).
   DecodeOutcome Lookup(Interference kind, double snr_db, double drr_db, double rt60) const;
+  // whine_harm_db at `hz`, linear between the measured frequencies, held beyond them. Throws
+  // std::logic_error without a curve.
+  double WhineHarmDb(double hz) const;
 };
 
 // Reads a table. Throws grid::InputError naming the file, the field and the value: a missing or
