@@ -278,26 +278,13 @@ std::optional<std::string> ResponseProblem(const ResponseMeasures& m) {
   return std::nullopt;
 }
 
-std::size_t ResponseFirstArrival(const std::vector<float>& response, double sample_rate, std::size_t peak) {
-  const std::vector<double> band = LeadBand(response, sample_rate);
-  const std::size_t lead = MeasureLeadSamples(sample_rate);
-  double loudest = 0.0;
-  for (double v : band) loudest = std::max(loudest, v * v);
-  const double near = loudest * std::pow(10.0, -kFirstArrivalWithinDb / 10.0);
-  for (std::size_t k = 0; k < band.size(); ++k) {
-    if (band[k] * band[k] >= near) return std::min(k >= lead ? k - lead : 0, peak);
-  }
-  return peak;
-}
-
 std::vector<float> DrierResponse(const std::vector<float>& response, double sample_rate, double drr_db) {
   const ResponseMeasures own = MeasureResponse(response, sample_rate);
   if (!std::isfinite(drr_db) || drr_db < own.drr_db) {
     throw std::invalid_argument("drier response: expected a DRR of at least the response's own " +
                                 std::to_string(own.drr_db) + " dB, got " + std::to_string(drr_db));
   }
-  const std::size_t from = ResponseFirstArrival(response, sample_rate, own.peak) +
-                           static_cast<std::size_t>(std::lround(kDirectHalfWidthS * sample_rate));
+  const std::size_t from = own.peak + static_cast<std::size_t>(std::lround(kDirectHalfWidthS * sample_rate));
   auto scaled = [&](double gain) {
     std::vector<float> out = response;
     for (std::size_t k = from; k < out.size(); ++k) out[k] = static_cast<float>(gain * out[k]);

@@ -81,29 +81,6 @@ TEST(MeasuredResponseTest, ADrierResponseReadsTheDrrAskedForAndKeepsItsDecayAndD
   EXPECT_THROW(DrierResponse(room, rate, 200.0), std::invalid_argument);
 }
 
-TEST(MeasuredResponseTest, ADrierResponseScalesFromTheFirstArrivalWhenTheLoudestPeakIsAReflection) {
-  // As at a concert hall's far seat: the direct sound 6 dB under a reflection 14.5 ms after it.
-  const double rate = 48000.0;
-  std::vector<float> room = KnownResponse(1.2, -10.0, rate, 1656, 9);  // the reflection at 1656
-  const std::size_t direct = 960;
-  room[direct] = 0.5f * room[1656];
-  // (The band's filters spread the pulse over a few samples either side.)
-  EXPECT_NEAR(static_cast<double>(ResponseFirstArrival(room, rate, MeasureResponse(room, rate).peak)),
-              static_cast<double>(direct), 0.0005 * rate);
-  const std::vector<float> drier = DrierResponse(room, rate, 8.0);
-  const ResponseMeasures m = MeasureResponse(drier, rate);
-  EXPECT_NEAR(m.drr_db, 8.0, 0.01);
-  EXPECT_EQ(drier[direct], room[direct]);  // the direct sound kept
-  // The reflection, 14.5 ms on, is reverberation now: scaled down with the rest, so the direct
-  // sound is the main peak of the drier room.
-  EXPECT_LT(std::abs(drier[1656]), 0.5f * std::abs(room[1656]));
-  EXPECT_NEAR(static_cast<double>(m.peak), static_cast<double>(direct), 0.0025 * rate);
-  // A response whose loudest peak is its first arrival is anchored there, as before.
-  const std::vector<float> plain = KnownResponse(0.8, -6.0, rate, 960, 7);
-  EXPECT_NEAR(static_cast<double>(ResponseFirstArrival(plain, rate, MeasureResponse(plain, rate).peak)),
-              static_cast<double>(MeasureResponse(plain, rate).peak), 0.0005 * rate);
-}
-
 TEST(MeasuredResponseTest, ARoomsResponseServesAndShortOrNoisyOnesAreToldWhy) {
   const double rate = 48000.0;
   const ResponseMeasures room = MeasureResponse(KnownResponse(0.5, 0.0, rate, 960, 4), rate);

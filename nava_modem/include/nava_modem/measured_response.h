@@ -53,20 +53,10 @@ struct ResponseMeasures {
 // 2 x kResponseBandHighHz.
 ResponseMeasures MeasureResponse(const std::vector<float>& response, double sample_rate);
 
-// The first in-band sample within kFirstArrivalWithinDb of the loudest (`peak`, MeasureResponse's
-// main peak, at the latest): the direct sound where the loudest peak is a reflection, as at a
-// concert hall's far seats (pori_s1_r3_b.wav's left ear: a first arrival 14.5 ms before its
-// loudest peak and, at 2300 Hz, as strong).
-constexpr double kFirstArrivalWithinDb = 10.0;
-std::size_t ResponseFirstArrival(const std::vector<float>& response, double sample_rate, std::size_t peak);
-
-// The same room with less reverberation: everything from kDirectHalfWidthS after the first
-// arrival (ResponseFirstArrival) on scaled by one gain, found so that MeasureResponse reads `drr_db`
-// (within kDrierToleranceDb). Homes and small furnished rooms, whose direct sound is 7 to 12 dB
-// above the rest, are stood in for so by measured responses, their colouring and early sound
-// kept. From the first arrival, not the loudest peak: a response whose loudest peak is a
-// reflection would otherwise keep that reflection and everything before it at full level, a
-// room no dry home is. Throws std::invalid_argument when
+// The same room with less reverberation: everything from kDirectHalfWidthS after the main peak
+// on scaled by one gain, found so that MeasureResponse reads `drr_db` (within kDrierToleranceDb). Homes and
+// small furnished rooms, whose direct sound is 7 to 12 dB above the rest, are stood in for so by
+// measured responses, their colouring and early sound kept. Throws std::invalid_argument when
 // drr_db is not finite, below the response's own DRR (it only makes a room drier) or out of reach
 // within kDrierToleranceDb (the direct sound alone reads less), or as MeasureResponse does.
 constexpr double kDrierToleranceDb = 0.01;
