@@ -196,6 +196,7 @@ double DecodeTable::WhineHarmDb(double hz) const {
   if (whine_harm_hz.empty() || whine_harm_hz.size() != whine_harm_db.size()) {
     throw std::logic_error("decode table: no whine harm curve");
   }
+  if (!std::isfinite(hz)) throw std::invalid_argument("decode table: a whine of " + Number(hz) + " Hz has no harm");
   if (hz <= whine_harm_hz.front()) return whine_harm_db.front();
   if (hz >= whine_harm_hz.back()) return whine_harm_db.back();
   const auto high = static_cast<std::size_t>(std::upper_bound(whine_harm_hz.begin(), whine_harm_hz.end(), hz) -
@@ -245,7 +246,9 @@ DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected
     harm.ExpectOnlyKeys({"hz", "db"});
     t.whine_harm_hz = ReadAxis(harm, "hz");
     t.whine_harm_db = harm.Numbers("db", t.whine_harm_hz.size(), "one harm in dB per frequency of hz");
-    if (!(t.whine_harm_hz.front() > 0.0)) harm.Fail("hz", "expected frequencies above 0 Hz");
+    if (!(t.whine_harm_hz.front() > 0.0)) {
+      harm.Fail("hz", "expected frequencies above 0 Hz, got " + Number(t.whine_harm_hz.front()));
+    }
     for (double db : t.whine_harm_db) {
       if (!(std::fabs(db) <= 60.0)) harm.Fail("db", "expected harms from -60 to 60 dB, got " + Number(db));
     }

@@ -163,6 +163,7 @@ TEST(DecodeTable, AWhineHarmCurveSavesLoadsAndInterpolates) {
   EXPECT_DOUBLE_EQ(back.WhineHarmDb(5000.0), 12.25);   // and above the last
   // A table without a curve has none to read, and a lopsided curve is not written.
   EXPECT_THROW(SmallTable().WhineHarmDb(1000.0), std::logic_error);
+  EXPECT_THROW(back.WhineHarmDb(std::nan("")), std::invalid_argument);
   t.whine_harm_db.pop_back();
   EXPECT_THROW(SaveDecodeTable(path, t), std::invalid_argument);
   std::remove(path.c_str());
@@ -252,6 +253,8 @@ TEST(DecodeTable, RefusesMalformedFilesNamingTheFileAndField) {
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nlead_s: -1\n"), "lead_s");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nlead_s: soon\n"), "lead_s");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nwhine_harm: {hz: [1000, 900], db: [1, 2]}\n"),
+                "whine_harm.hz");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nwhine_harm: {hz: [0, 1200], db: [1, 2]}\n"),
                 "whine_harm.hz");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nwhine_harm: {hz: [1000, 1200], db: [1]}\n"),
                 "whine_harm.db");

@@ -45,13 +45,15 @@ grep -q '^command: ".*--response measured-like' "$out/like.yaml" || fail "the me
 "$tool" --profile nava --whine-harm --quick --packets 8 --table "$out/t$t.yaml" --out "$out/harm.yaml" \
   >"$out/harm" 2>"$out/stderr" || { cat "$out/stderr"; fail "--whine-harm --quick failed"; }
 cat "$out/harm"
-grep -q '^  hz: \[1200, 2300\]$' "$out/harm.yaml" || fail "the quick curve's frequencies are not 1200 and 2300 Hz"
+grep -q '^  hz: \[1200, 2300, 3000\]$' "$out/harm.yaml" || fail "the quick curve's frequencies are not 1200, 2300 and the table's 3000 Hz"
+grep -q '^  db: \[.*, 0\]$' "$out/harm.yaml" || fail "the table's own whine is not at 0 dB in its curve"
 diff <(sed -n '/^kinds:/,$p' "$out/t$t.yaml") <(sed -n '/^kinds:/,$p' "$out/harm.yaml") >/dev/null \
   || fail "--whine-harm changed the table's cells"
 on_mark=$(sed -n 's/^ *2300 Hz *\([-+][0-9.]*\) dB.*/\1/p' "$out/harm")
 awk -v h="$on_mark" 'BEGIN { exit !(h > 3) }' || fail "a whine on the mark read as $on_mark dB against the table's"
 expect_error "--whine-harm: measured for nava's tones; expected --profile nava" --profile room --whine-harm
 expect_error "--whine-harm and --calibrate: one at a time" --profile nava --whine-harm --calibrate --rir-dir "$out/rooms"
+expect_error "--whine-harm keeps the table's cells" --profile nava --whine-harm --dir "$out"
 
 # Calibration: the room profile through a dry and a reverberant room, at -25 and +20 dB, in white
 # noise and in a recorded tone; a tone on nava's mark for nava.

@@ -204,10 +204,16 @@ int DecodeTableBench(const DecodeTableRequest& request) {
     t.cells[c] = DecodeOutcome{n.heard[0] / all, n.heard[1] / all, n.heard[2] / all, n.heard[3] / all};
     false_packets += n.false_packets;
   }
+  // Saved before the whine harm curve, so that a curve that cannot be read loses no cells.
+  if (const int failed = SaveTable(out, t)) return failed;
   // nava's whine cells are at one frequency; the curve tells the model how others compare. A
   // --quick table (for tests) goes without one: its few packets make no curve.
-  if (s.profile == Profile::kNava && !request.quick) MeasureWhineHarm(s, HarmOptions(request), t);
-  if (const int failed = SaveTable(out, t)) return failed;
+  if (s.profile == Profile::kNava && !request.quick) {
+    CellSetup harm = s;
+    harm.table.packets = kWhineHarmPackets;
+    MeasureWhineHarm(harm, HarmOptions(request), t);
+    if (const int failed = SaveTable(out, t)) return failed;
+  }
   PrintSummary(t);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("false packets (CRC passed, data never sent): %d of %zu\n", false_packets,

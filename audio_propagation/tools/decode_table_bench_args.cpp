@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "whine_harm.h"
+
 namespace audio_propagation::tools {
 
 using multirobot_audio::tools::ToolArgs;
@@ -25,7 +27,7 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   r.calibrate = args.Switch("--calibrate");
   r.whine_harm = args.Switch("--whine-harm");
   r.packets = static_cast<int>(
-      args.Int("--packets", r.quick ? 4 : r.calibrate ? 10 : r.whine_harm ? 16 : 12, 1, 100000));
+      args.Int("--packets", r.quick ? 4 : r.calibrate ? 10 : r.whine_harm ? kWhineHarmPackets : 12, 1, 100000));
   r.threads = static_cast<int>(args.Int("--threads", 2, 1, 256));
   r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   r.out = args.String("--out", std::string("decode_table_") + nava_modem::ProfileName(r.profile) + ".yaml");
@@ -44,8 +46,9 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
     if (r.calibrate) args.Fail("--whine-harm and --calibrate: one at a time");
     if (r.profile != nava_modem::Profile::kNava) args.Fail("--whine-harm: measured for nava's tones; expected --profile nava");
     if (!r.rir_dir.empty() || !r.noise_file.empty() || !snr_list.empty() || !rt60_list.empty() ||
-        !args.String("--response", "").empty()) {
-      args.Fail("--whine-harm keeps the table's cells and axes: drop --rir-dir, --noise-file, --snr-db, --rt60 and --response");
+        !args.String("--response", "").empty() || !r.dir.empty()) {
+      args.Fail("--whine-harm keeps the table's cells and axes and makes no speech: drop --rir-dir, --noise-file, "
+                "--snr-db, --rt60, --response and --dir");
     }
   } else if (r.calibrate) {
     if (r.rir_dir.empty()) args.Fail("--calibrate: expected --rir-dir DIR, the measured responses");

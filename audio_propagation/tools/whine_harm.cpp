@@ -67,17 +67,25 @@ void MeasureWhineHarm(CellSetup s, const WhineHarmOptions& o, DecodeTable& table
                              " of packets; expected at least half (the room is too hard for a curve)");
   }
   const double reference = area(delivered[0]);
-  table.whine_harm_hz.assign(freqs.begin() + 1, freqs.end());
-  table.whine_harm_db.clear();
+  std::vector<double> hz, db;
   std::printf("whine harm of nava against a whine at %.0f Hz (RT60 %.2f s, DRR %+.0f dB, %d packets a SIR; plateau %.2f)\n",
               table.whine_hz, o.rt60, o.drr_db, s.table.packets, plateau);
   for (std::size_t f = 1; f < freqs.size(); ++f) {
-    const double db = std::round(10.0 * (reference - area(delivered[f])) / plateau * o.sir_step_db) / 10.0;
-    table.whine_harm_db.push_back(std::clamp(db, -60.0, 60.0));
-    std::printf("  %6.0f Hz  %+5.1f dB  delivery by SIR:", freqs[f], table.whine_harm_db.back());
+    const double harm = std::round(10.0 * (reference - area(delivered[f])) / plateau * o.sir_step_db) / 10.0;
+    hz.push_back(freqs[f]);
+    db.push_back(std::clamp(harm, -60.0, 60.0));
+    std::printf("  %6.0f Hz  %+5.1f dB  delivery by SIR:", freqs[f], db.back());
     for (double v : delivered[f]) std::printf(" %.2f", v);
     std::printf("\n");
   }
+  // The table's own whine harms as the table says, whatever the grid: 0 dB at whine_hz.
+  if (std::find(hz.begin(), hz.end(), table.whine_hz) == hz.end()) {
+    const auto at = std::lower_bound(hz.begin(), hz.end(), table.whine_hz) - hz.begin();
+    hz.insert(hz.begin() + at, table.whine_hz);
+    db.insert(db.begin() + at, 0.0);
+  }
+  table.whine_harm_hz = hz;
+  table.whine_harm_db = db;
 }
 
 }  // namespace audio_propagation::tools

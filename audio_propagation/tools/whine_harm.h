@@ -11,10 +11,11 @@
 // where the receiver finds it 8.5 dB worse, and a 2600 Hz whine as 4 dB worse, where it is 6.5 dB
 // kinder (docs/audio_link.md).
 //
-// How: for every fundamental from kLowHz to kHighHz in kStepHz, and for whine_hz, packets under
-// the renderer's motor whine (nava_modem::MotorWhine: three harmonics) at SIRs from kLowSirDb
-// to kHighSirDb in kSirStepDb, through rooms like measured ones of RT60 kRt60 and DRR kDrrDb
-// (where the receiver decodes nearly every packet in quiet, so the whine alone decides). A
+// How: for every fundamental from WhineHarmOptions::low_hz to high_hz in step_hz, and for
+// whine_hz, packets under the renderer's motor whine (nava_modem::MotorWhine: three harmonics)
+// at SIRs from low_sir_db to high_sir_db in sir_step_db, through rooms like measured ones of
+// `rt60` and `drr_db` (where the receiver decodes nearly every packet in quiet, so the whine
+// alone decides); kWhineHarmPackets packets a SIR. whine_hz itself is in the curve at 0 dB. A
 // frequency's harm is how far its delivery curve lies to the right of whine_hz's: the difference
 // of the areas under the two curves over whine_hz's plateau (its best quarter of SIRs), times the
 // SIR step. Areas, not 50 %
@@ -23,6 +24,8 @@
 #include "table_cells.h"
 
 namespace audio_propagation::tools {
+
+constexpr int kWhineHarmPackets = 16;  // a SIR, for a table's curve (--whine-harm: --packets)
 
 struct WhineHarmOptions {
   double low_hz = 400.0, high_hz = 4400.0, step_hz = 25.0;

@@ -174,6 +174,13 @@ RecordingWeight::RecordingWeight(const std::vector<float>& samples, double sampl
   in_band_offset_db_ = WhiteEquivalentOffsetDb(noise, bands, white_rate);
   in_band_fraction_ = noise.Fraction(bands);
   if (profile != Profile::kRoom) return;
+  // Every sub-band must be there: a recording sampled slower cannot say what it puts in the top.
+  if (!(sample_rate >= 2.0 * room_phy::kHighestHz)) {
+    throw std::invalid_argument("recorded noise: sampled at " + std::to_string(sample_rate) +
+                                " Hz; the room profile's band reaches " + std::to_string(room_phy::kHighestHz) +
+                                " Hz, so expected a rate of at least " + std::to_string(2.0 * room_phy::kHighestHz) +
+                                " Hz");
+  }
   const std::vector<std::vector<double>> powers = CellPowers(samples, sample_rate, bands, kCellSeconds, kCellHz);
   for (std::size_t k = 0; k < kPacketWindows; ++k) packets_.push_back(PacketCells(powers, k * powers.size() / kPacketWindows));
   // White noise's cells scatter too (a cell holds few degrees of freedom), and the table holds
@@ -187,6 +194,8 @@ RecordingWeight::RecordingWeight(const std::vector<float>& samples, double sampl
 
 std::vector<double> RecordingWeight::TableSnrsDb(double white_snr_db, double share) const {
   if (packets_.empty()) return {white_snr_db};
+  // No signal (or no noise) at all: nothing for the cells to change.
+  if (!std::isfinite(white_snr_db)) return std::vector<double>(packets_.size(), white_snr_db);
   share = std::clamp(share, 0.0, 1.0);
   const double white = EffectiveSnrDb(white_cells_, white_snr_db, kRoomBetaDb);
   std::vector<double> out;

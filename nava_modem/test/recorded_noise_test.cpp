@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -154,6 +155,20 @@ TEST(RecordingWeight, ABurstCostsOnlyThePacketsItFallsOn) {
   }
   EXPECT_GT(clear, static_cast<int>(packets.size()) / 2);
   EXPECT_GT(hit, 0);
+}
+
+TEST(RecordingWeight, RoomRefusesARecordingTooSlowForItsBandAndTakesNoSignalAsIs) {
+  // At 8 kHz the top of room's 600-5400 Hz band is not in the recording.
+  try {
+    RecordingWeight(Floats(WhiteNoise(8000 * 4, 2)), 8000.0, Profile::kRoom, 48000.0);
+    ADD_FAILURE() << "an 8 kHz recording was weighed for room";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("10800"), std::string::npos) << e.what();
+  }
+  // nava listens at 2150-3850 Hz, which 8 kHz holds.
+  EXPECT_NO_THROW(RecordingWeight(Floats(WhiteNoise(8000 * 4, 2)), 8000.0, Profile::kNava, 48000.0));
+  const RecordingWeight room(Floats(WhiteNoise(48000 * 4, 2)), 48000.0, Profile::kRoom, 48000.0);
+  for (double t : room.TableSnrsDb(-std::numeric_limits<double>::infinity())) EXPECT_TRUE(std::isinf(t));
 }
 
 TEST(CellPowers, RefusesTooShortARecordingOrNoCell) {

@@ -87,7 +87,7 @@ struct Disturbance {
   // The share of its power in the profile's listening bands (carrier_share.h): what a robot's
   // carrier sense hears of it.
   double heard = 1.0;
-  // A recorded noise's weighing over the receiver's cells (RecordingWeight::TableSnrDb), owned by
+  // A recorded noise's weighing over the receiver's cells (RecordingWeight::TableSnrsDb), owned by
   // the model; null for every other disturbance.
   const nava_modem::RecordingWeight* recording = nullptr;
 };

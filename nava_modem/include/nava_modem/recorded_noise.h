@@ -75,7 +75,8 @@ double EffectiveSnrDb(const std::vector<double>& cells, double snr_db, double be
 //   (running water, dishes, speech) or piles into part of the band harms it less than white
 //   noise of its power, and a rare burst costs only the packets it falls on.
 // Held against the real receivers through measured rooms (decode_table_bench --calibrate
-// --noise-file; docs/audio_link.md). Throws what RecordedNoise and CellPowers throw.
+// --noise-file; docs/audio_link.md). Throws what RecordedNoise and CellPowers throw, and, for
+// room, std::invalid_argument for a recording sampled below 10800 Hz (its band reaches 5400 Hz).
 class RecordingWeight {
  public:
   RecordingWeight(const std::vector<float>& samples, double sample_rate, Profile profile, double white_rate);
