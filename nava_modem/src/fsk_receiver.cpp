@@ -43,9 +43,12 @@ constexpr double kPeriodGain = 0.002;
 // Phases searched either side of the detector's estimate of the break, in bits: a room's tail
 // of the SPACE half delays the step the detector sees by a bit or two.
 constexpr double kPhaseSpanBits = 2.5;
-// The break is also looked for this many bits before the detector's estimate (DecodeFrame), and
-// moved there when its clock explains the known bits by this factor better than any near one.
-constexpr double kWideEarlyBits = 12.0;
+// The break is also looked for this many bits before the detector's estimate and this many after
+// it (SettleBreak), and moved there when its clock explains the known bits by this factor better
+// than any near one. Late: a cluster of reflections in opposite phase can dip SPACE by 6 to 11 dB
+// some 30 to 60 ms after it began, and the detector takes the dip for the break, 9 or 10 bits
+// early (a concert hall's and a museum basement's measured responses, made drier).
+constexpr double kWideEarlyBits = 12.0, kWideLateBits = 12.0;
 constexpr double kFarBreakGain = 1.1;
 // The break's first MARK bits do not count in the clock fit (FitMetric): they lie under SPACE's
 // reverberant tail while MARK's own sound builds up, and in a room they pull the fit a bit or
@@ -208,7 +211,7 @@ void FskReceiver::Process(const float* samples, std::size_t count, std::vector<R
 }
 
 void FskReceiver::Flush(std::vector<RxEvent>& events) {
-  const std::size_t tail = filters_.step() * (static_cast<std::size_t>(std::ceil((kEndBit + 4) * per_bit_ * (1.0 + options_.max_rate_error))) +
+  const std::size_t tail = filters_.step() * (static_cast<std::size_t>(std::ceil((kWideLateBits + kEndBit + 4) * per_bit_ * (1.0 + options_.max_rate_error))) +
                                                static_cast<std::size_t>(2 * w_));
   const std::vector<float> silence(tail, 0.0f);
   Process(silence.data(), silence.size(), events);
@@ -271,7 +274,8 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         // The windows' boundary sits on the filters' zero crossing, which lags the step by
         // half a window.
         break_step_ = peak_at_ - w_ - filters_.window() / 2.0 + 1.5;
-        decode_at_ = static_cast<std::int64_t>(std::ceil(break_step_ + (kEndBit + 1) * per_bit_ * (1.0 + options_.max_rate_error) + per_bit_));
+        decode_at_ = DecodeAt(break_step_);
+        break_settled_ = false;
         state_ = State::kCollecting;
       }
       break;
@@ -283,6 +287,14 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         peak_at_ = n;
         peak_power_ = after_power_ + before_power_;
       } else if (n >= decode_at_) {
+        if (!break_settled_) {
+          // Once a break's packet is in, the break may move; a later one's packet is waited for
+          // (only then: every other packet is reported as soon as it is in).
+          break_settled_ = true;
+          break_step_ = SettleBreak(break_step_);
+          decode_at_ = DecodeAt(break_step_);
+          if (n < decode_at_) break;
+        }
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
         if (options_.time_arrivals && arrival_timer_ && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
@@ -401,6 +413,11 @@ void FskReceiver::Normalize(double earliest_break, double latest_break) {
   normalized_.resize(static_cast<std::size_t>(std::max<std::int64_t>(0, normalized_end - normalized_start_)));
   for (std::size_t k = 0; k < normalized_.size(); ++k) {
     const std::int64_t n = normalized_start_ + static_cast<std::int64_t>(k);
+    // Not heard yet (a late break's packet): no evidence either way.
+    if (n >= n_) {
+      normalized_[k] = 0.0f;
+      continue;
+    }
     normalized_[k] = static_cast<float>((M(n) - model_.floor[0]) / model_.level[0] - (S(n) - model_.floor[1]) / model_.level[1]);
   }
 }
@@ -447,23 +464,29 @@ std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_
   return best;
 }
 
+std::int64_t FskReceiver::DecodeAt(double break_step) const {
+  return static_cast<std::int64_t>(std::ceil(break_step + (kEndBit + 1) * per_bit_ * (1.0 + options_.max_rate_error) + per_bit_));
+}
+
+double FskReceiver::SettleBreak(double break_step) {
+  // In a reverberant room or deep noise the detector's peak can lie up to a window late (a
+  // faint MARK's rise, or SPACE's tail falling, is as clear whether or not the windows
+  // straddle the break), or a dip in SPACE's sound can pass for the break, beyond the clock
+  // search's reach. The clock that best explains the packet's known bits at the nominal rate,
+  // from kWideEarlyBits early to kWideLateBits late, moves the break there when it explains them
+  // clearly better than any within reach; else the detector's estimate stands (the tone model is
+  // read best there). A late clock's last bits are not heard yet and count for nothing, so a
+  // late break must win on fewer bits.
+  model_ = FitToneModel(break_step);
+  Normalize(break_step - kWideEarlyBits * per_bit_, break_step + kWideLateBits * per_bit_);
+  const double span = (kWideEarlyBits + kWideLateBits) / 2.0 * per_bit_;
+  const ClockFit wide = BestFit(break_step + kWideLateBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
+  const ClockFit near = BestFit(break_step, per_bit_, kPhaseSpanBits * per_bit_, per_bit_ / 4.0, 0.0, 1.0);
+  return std::abs(wide.start - break_step) > kPhaseSpanBits * per_bit_ && wide.metric > kFarBreakGain * near.metric ? wide.start
+                                                                                                                   : break_step;
+}
+
 RxEvent FskReceiver::DecodeFrame(double break_step) {
-  {
-    // In a reverberant room or deep noise the detector's peak can lie up to a window late (a
-    // faint MARK's rise, or SPACE's tail falling, is as clear whether or not the windows
-    // straddle the break), beyond the clock search's reach. The clock that best explains the
-    // packet's known bits at the nominal rate, from kWideEarlyBits early to kPhaseSpanBits
-    // late, moves the break there when it explains them clearly better than any within reach;
-    // else the detector's estimate stands (the tone model is read best there).
-    model_ = FitToneModel(break_step);
-    Normalize(break_step - kWideEarlyBits * per_bit_, break_step);
-    const double span = (kWideEarlyBits + kPhaseSpanBits) / 2.0 * per_bit_;
-    const ClockFit wide = BestFit(break_step + kPhaseSpanBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
-    const ClockFit near = BestFit(break_step, per_bit_, kPhaseSpanBits * per_bit_, per_bit_ / 4.0, 0.0, 1.0);
-    if (std::abs(wide.start - break_step) > kPhaseSpanBits * per_bit_ && wide.metric > kFarBreakGain * near.metric) {
-      break_step = wide.start;
-    }
-  }
   RxEvent first;
   std::int64_t first_at[kPacketBits];
   std::uint8_t first_hard[kFrameBits];

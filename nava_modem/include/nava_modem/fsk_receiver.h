@@ -87,6 +87,10 @@ class FskReceiver : public PacketReceiver {
   // The best of a grid of clocks around (start0, period0): phases +-phase_span, rates +-rate_span.
   ClockFit BestFit(double start0, double period0, double phase_span, double phase_step, double rate_span,
                    double rate_step) const;
+  // Where the frame after a break at break_step is in, with the sender's clock as slow as allowed.
+  std::int64_t DecodeAt(double break_step) const;
+  // The break the packet's known bits place best, from the detector's estimate break_step.
+  double SettleBreak(double break_step);
   RxEvent DecodeFrame(double break_step);
   // The tone filters' normalised difference (Normalized) over a packet whose break lies from
   // earliest_break to latest_break.
@@ -129,6 +133,7 @@ class FskReceiver : public PacketReceiver {
   double peak_ = 0.0, peak_power_ = 0.0;  // the clearest step so far, and its windows' power
   std::int64_t peak_at_ = 0, decode_at_ = 0, blank_until_ = 0;
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
+  bool break_settled_ = false;  // break_step_ is SettleBreak's, not the detector's
   ToneModel model_;          // of the packet being decoded
   std::vector<float> normalized_;
   // The last ReadFrame's step for each bit of the packet, and its first decisions on the frame.
