@@ -134,6 +134,7 @@ class FskReceiver : public PacketReceiver {
   std::int64_t peak_at_ = 0, decode_at_ = 0, blank_until_ = 0;
   double break_step_ = 0.0;  // estimated sample where the break turns from SPACE to MARK
   bool break_settled_ = false;  // break_step_ is SettleBreak's, not the detector's
+  bool break_moved_late_ = false;  // and SettleBreak moved it later
   ToneModel model_;          // of the packet being decoded
   std::vector<float> normalized_;
   // The last ReadFrame's step for each bit of the packet, and its first decisions on the frame.
