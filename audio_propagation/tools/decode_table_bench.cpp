@@ -1,16 +1,13 @@
 #include "decode_table_bench.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <mutex>
 #include <random>
-#include <thread>
 
 #include "audio_propagation/decode_table.h"
 #include "bench_support/child_process.h"
@@ -20,6 +17,7 @@
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_phy.h"
 #include "model_calibration.h"
+#include "parallel_cells.h"
 #include "table_cells.h"
 #include "whine_harm.h"
 #include "tool_args/tool_args.h"
@@ -174,28 +172,21 @@ int DecodeTableBench(const DecodeTableRequest& request) {
   std::fprintf(stderr, "decode_table_bench --profile %s: %zu cells of %d packets on %d threads\n", t.profile.c_str(), cells,
                t.packets, threads);
   std::vector<CellCounts> counts(cells);
-  std::atomic<std::size_t> next{0};
-  std::mutex progress;
-  std::size_t done = 0;
   const auto started = std::chrono::steady_clock::now();
-  auto work = [&] {
-    const auto mine = MakeProfile(s.profile, s.modem);  // a profile per thread: nothing shared
-    for (std::size_t c = next++; c < cells; c = next++) {
-      const std::size_t kind = c / per_kind, r = c / (t.drr_db.size() * t.snr_db.size()) % t.rt60.size();
-      const std::size_t d = c / t.snr_db.size() % t.drr_db.size(), snr = c % t.snr_db.size();
-      counts[c] = MeasureCell(s, *mine, c, kKinds[kind], t.rt60[r], t.drr_db[d], t.snr_db[snr]);
-      const std::lock_guard<std::mutex> lock(progress);
-      ++done;
-      if (done % std::max<std::size_t>(1, cells / 50) == 0 || done == cells) {
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        std::fprintf(stderr, "  %zu/%zu cells, %.0f s, about %.0f s to go\n", done, cells, elapsed,
-                     elapsed * static_cast<double>(cells - done) / static_cast<double>(done));
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < threads; ++k) pool.emplace_back(work);
-  for (std::thread& th : pool) th.join();
+  ParallelCells(
+      cells, threads, [&] { return MakeProfile(s.profile, s.modem); },
+      [&](const std::unique_ptr<ModemProfile>& mine, std::size_t c) {
+        const std::size_t kind = c / per_kind, r = c / (t.drr_db.size() * t.snr_db.size()) % t.rt60.size();
+        const std::size_t d = c / t.snr_db.size() % t.drr_db.size(), snr = c % t.snr_db.size();
+        counts[c] = MeasureCell(s, *mine, c, kKinds[kind], t.rt60[r], t.drr_db[d], t.snr_db[snr]);
+      },
+      [&](std::size_t done) {
+        if (done % std::max<std::size_t>(1, cells / 50) == 0 || done == cells) {
+          const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+          std::fprintf(stderr, "  %zu/%zu cells, %.0f s, about %.0f s to go\n", done, cells, elapsed,
+                       elapsed * static_cast<double>(cells - done) / static_cast<double>(done));
+        }
+      });
 
   int false_packets = 0;
   for (std::size_t c = 0; c < cells; ++c) {

@@ -1,13 +1,11 @@
 #include "model_calibration.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
+#include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "audio_propagation/acoustic_model.h"
@@ -17,6 +15,7 @@
 #include "nava_modem/recorded_noise.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
+#include "parallel_cells.h"
 #include "table_cells.h"
 
 namespace audio_propagation::tools {
@@ -93,26 +92,23 @@ int CalibrateModel(const DecodeTableRequest& request) {
   }
   std::fprintf(stderr, "decode_table_bench --calibrate: %zu rooms, %zu cases of %d packets on %d threads\n",
                rooms.size(), cases.size(), request.packets, request.threads);
-  std::atomic<std::size_t> next{0};
-  std::mutex progress;
-  std::size_t done = 0;
-  auto work = [&] {
-    const auto mine = nava_modem::MakeProfile(setup.profile, setup.modem);  // a profile per thread
-    CellSetup s = setup;  // once per thread (the noise recording is long); only the room changes
-    for (std::size_t k = next++; k < cases.size(); k = next++) {
-      s.response = responses[cases[k].room];
-      const Interference kind = cases[k].recorded ? Interference::kSpeech : Interference::kWhite;
-      const CellCounts n = MeasureCell(s, *mine, k, kind, 0.0, 0.0, cases[k].snr_db);
-      cases[k].decoded = static_cast<double>(n.heard[static_cast<int>(Heard::kPacket)]) / request.packets;
-      const std::lock_guard<std::mutex> lock(progress);
-      if (++done % std::max<std::size_t>(1, cases.size() / 20) == 0) {
-        std::fprintf(stderr, "  %zu/%zu cases\n", done, cases.size());
-      }
-    }
+  // A profile per thread, and the setup copied once per thread (the noise recording is long):
+  // only the room changes from case to case.
+  struct Worker {
+    std::unique_ptr<nava_modem::ModemProfile> receiver;
+    CellSetup setup;
   };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < request.threads; ++t) pool.emplace_back(work);
-  for (std::thread& th : pool) th.join();
+  ParallelCells(
+      cases.size(), request.threads, [&] { return Worker{nava_modem::MakeProfile(setup.profile, setup.modem), setup}; },
+      [&](Worker& w, std::size_t k) {
+        w.setup.response = responses[cases[k].room];
+        const Interference kind = cases[k].recorded ? Interference::kSpeech : Interference::kWhite;
+        const CellCounts n = MeasureCell(w.setup, *w.receiver, k, kind, 0.0, 0.0, cases[k].snr_db);
+        cases[k].decoded = static_cast<double>(n.heard[static_cast<int>(Heard::kPacket)]) / request.packets;
+      },
+      [&](std::size_t done) {
+        if (done % std::max<std::size_t>(1, cases.size() / 20) == 0) std::fprintf(stderr, "  %zu/%zu cases\n", done, cases.size());
+      });
 
   std::printf("calibration of the %s model on %s: %d packets a case; noise white%s\n", profile_name.c_str(),
               request.rir_dir.c_str(), request.packets,

@@ -1,15 +1,14 @@
 #include "whine_harm.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
+#include <memory>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "nava_modem/modem_profile.h"
+#include "parallel_cells.h"
 
 namespace audio_propagation::tools {
 
@@ -30,25 +29,22 @@ void MeasureWhineHarm(CellSetup s, const WhineHarmOptions& o, DecodeTable& table
 
   std::vector<std::vector<double>> delivered(freqs.size(), std::vector<double>(sirs.size()));
   const std::size_t cells = freqs.size() * sirs.size();
-  std::atomic<std::size_t> next{0};
-  std::mutex progress;
-  std::size_t done = 0;
-  auto work = [&] {
-    const auto receiver = nava_modem::MakeProfile(s.profile, s.modem);
-    CellSetup mine = s;
-    for (std::size_t c = next++; c < cells; c = next++) {
-      const std::size_t f = c / sirs.size(), k = c % sirs.size();
-      mine.table.whine_hz = freqs[f];
-      // The same seeds for every frequency at one SIR: the curves differ by the whine alone.
-      const CellCounts n = MeasureCell(mine, *receiver, 7000 + k, Interference::kWhine, o.rt60, o.drr_db, sirs[k]);
-      delivered[f][k] = static_cast<double>(n.heard[static_cast<int>(Heard::kPacket)]) / s.table.packets;
-      const std::lock_guard<std::mutex> lock(progress);
-      if (++done % std::max<std::size_t>(1, cells / 20) == 0) std::fprintf(stderr, "  %zu/%zu whine cells\n", done, cells);
-    }
+  struct Worker {
+    std::unique_ptr<nava_modem::ModemProfile> receiver;
+    CellSetup setup;
   };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < std::max(1, o.threads); ++t) pool.emplace_back(work);
-  for (std::thread& th : pool) th.join();
+  ParallelCells(
+      cells, o.threads, [&] { return Worker{nava_modem::MakeProfile(s.profile, s.modem), s}; },
+      [&](Worker& w, std::size_t c) {
+        const std::size_t f = c / sirs.size(), k = c % sirs.size();
+        w.setup.table.whine_hz = freqs[f];
+        // The same seeds for every frequency at one SIR: the curves differ by the whine alone.
+        const CellCounts n = MeasureCell(w.setup, *w.receiver, 7000 + k, Interference::kWhine, o.rt60, o.drr_db, sirs[k]);
+        delivered[f][k] = static_cast<double>(n.heard[static_cast<int>(Heard::kPacket)]) / s.table.packets;
+      },
+      [&](std::size_t done) {
+        if (done % std::max<std::size_t>(1, cells / 20) == 0) std::fprintf(stderr, "  %zu/%zu whine cells\n", done, cells);
+      });
 
   auto area = [](const std::vector<double>& curve) {
     double a = 0.0;
