@@ -85,7 +85,7 @@ constexpr int kMaxMisframedRepaired = 2;
 // (earlier further: a room's echoes and tail make the break look late, by up to 5 bits through
 // a clap's spread direct sound measured on a dummy head, and by 6 where a first arrival comes
 // 3 bits before the loudest one, as in a measured seminar room made drier; 9 stays within the
-// 12 bits the wide break search covers); then on the best clock itself when
+// 12 bits the wide break search covers early); then on the best clock itself when
 // its rate is more than kEqualizerOwnClockRate off the nominal one (the equaliser searches the
 // sender's offset 0.3 % either side of the rate it is given; a clock that put a -0.5 % sender at
 // -0.25 % once read packets the nominal rate could not). Half-bit steps read a few more packets
@@ -295,7 +295,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
           break_step_ = SettleBreak(break_step_);
           break_moved_late_ = break_step_ > detected;
           decode_at_ = DecodeAt(break_step_);
-          if (n < decode_at_) break;
+          if (n < decode_at_) return;  // its packet is not in yet
         }
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
@@ -305,8 +305,8 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         // followed by silence could pass for a step. Not after a faint step that decoded to
         // nothing: that was noise, and a packet's break may be arriving just now. Nor after a
         // step the known bits moved later that decoded to nothing: the move took it towards
-        // whatever follows, often a packet after speech (measured rooms made drier, with speech
-        // at SIR 0 dB: 7 rows of 240 lost a packet or two to this blanking).
+        // whatever follows, often a packet after speech (six measured rooms made drier, with
+        // speech at SIR 0 dB: 8 rows got a packet or two back without this blanking).
         const bool packet = events.back().kind == RxEvent::Kind::kPacket;
         if (packet || (peak_ >= options_.detect_threshold + kSupersede && !break_moved_late_)) {
           blank_until_ = static_cast<std::int64_t>(events.back().end / seconds_per_step_) + 2 * w_;
@@ -481,8 +481,8 @@ double FskReceiver::SettleBreak(double break_step) {
   // search's reach. The clock that best explains the packet's known bits at the nominal rate,
   // from kWideEarlyBits early to kWideLateBits late, moves the break there when it explains them
   // clearly better than any within reach; else the detector's estimate stands (the tone model is
-  // read best there). A late clock's last bits are not heard yet and count for nothing, so a
-  // late break must win on fewer bits.
+  // read best there). A late clock's last bits are not heard yet and count for nothing here
+  // (Normalize), so a late break must win on fewer bits.
   model_ = FitToneModel(break_step);
   Normalize(break_step - kWideEarlyBits * per_bit_, break_step + kWideLateBits * per_bit_);
   const double span = (kWideEarlyBits + kWideLateBits) / 2.0 * per_bit_;
@@ -497,7 +497,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   std::int64_t first_at[kPacketBits];
   std::uint8_t first_hard[kFrameBits];
   bool any_clock = false;
-  // The tone model is read at the detector's break; where the best clock puts the break a
+  // The tone model is read at the settled break (SettleBreak); where the best clock puts the break a
   // quarter bit or more from it (a room's tail can move the detector's peak by a bit), the model
   // is read again there and the clocks searched again, once.
   for (int round = 0; round < 2; ++round) {

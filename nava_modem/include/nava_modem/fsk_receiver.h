@@ -23,7 +23,8 @@ namespace nava_modem {
 // room can leave one tone 10 dB or more below the other, and the strong tone's tail then hides
 // the step in the sum), and moved to where the clock that best explains the packet's known bits
 // puts it when that lies beyond the clock search's reach (a faint tone or a room's tail can make
-// the detector's estimate up to a window late). Each tone's level and floor (and a room's tail)
+// the detector's estimate up to a window late, and a dip in SPACE's sound 10 bits early; a packet
+// whose break moves later is reported once it is in). Each tone's level and floor (and a room's tail)
 // are read from the break, so that a tone weaker than the other counts as much; the bit clock
 // is fitted to the break, the start and stop bits and the header (bit rate and phase, by
 // maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
