@@ -197,12 +197,8 @@ double DecodeTable::WhineHarmDb(double hz) const {
     throw std::logic_error("decode table: no whine harm curve");
   }
   if (!std::isfinite(hz)) throw std::invalid_argument("decode table: a whine of " + Number(hz) + " Hz has no harm");
-  if (hz <= whine_harm_hz.front()) return whine_harm_db.front();
-  if (hz >= whine_harm_hz.back()) return whine_harm_db.back();
-  const auto high = static_cast<std::size_t>(std::upper_bound(whine_harm_hz.begin(), whine_harm_hz.end(), hz) -
-                                             whine_harm_hz.begin());
-  const double w = (hz - whine_harm_hz[high - 1]) / (whine_harm_hz[high] - whine_harm_hz[high - 1]);
-  return (1.0 - w) * whine_harm_db[high - 1] + w * whine_harm_db[high];
+  const AxisPoint at = Locate(whine_harm_hz, hz);
+  return (1.0 - at.weight) * whine_harm_db[at.low] + at.weight * whine_harm_db[at.high];
 }
 
 DecodeTable LoadDecodeTable(const std::string& path, const std::string& expected_profile) {

@@ -8,8 +8,8 @@
 // the tones and the receiver's filters, not by its power in the band. The rule of thumb it
 // replaces (power weighed by closeness to a tone) was off by up to 10 dB: it took a 1200 Hz fan,
 // whose 2nd and 3rd harmonics lie 100 Hz from the tones, as 4.9 dB worse than the table's whine,
-// where the receiver finds it 8.5 dB worse, and a 2600 Hz whine as 4 dB worse, where it is 6.5 dB
-// kinder (docs/audio_link.md).
+// where the receiver finds it 8-9 dB worse, and a 2600 Hz whine as 4 dB worse, where it is 7-8 dB
+// kinder (the shipped curve; docs/audio_link.md).
 //
 // How: for every fundamental from WhineHarmOptions::low_hz to high_hz in step_hz, and for
 // whine_hz, packets under the renderer's motor whine (nava_modem::MotorWhine: three harmonics)
