@@ -84,70 +84,93 @@ void ValidateOptions(const FateCheckOptions& o) {
   grid::RequireAtLeast("fate check max_draws", o.max_draws, o.pairs);
 }
 
+namespace {
+
+// The world's noise with every duty-cycled source sounding all the time.
+world_sim::Acoustics HeldOn(world_sim::Acoustics acoustics) {
+  for (world_sim::NoiseSourceSpec& source : acoustics.noise_sources) source.duty = 1.0;
+  return acoustics;
+}
+
+// What one kind of pair (static or moving) gave.
+struct PairRuns {
+  int pairs = 0;
+  int decided = 0;                 // static: delivering under 10 % or over 90 % of their packets
+  double delivered_sum = 0.0;      // moving: the pairs' shares of packets decoded
+  double probability_sum = 0.0;   // moving: the pairs' mean model probabilities
+};
+
+// Draws pairs of places at model probability min..max_probability and runs each through its own
+// channel: `moving` steps the listener twice the fate distance before every packet but the first.
+PairRuns RunPairs(const PropagationModel& propagation, const world_sim::Acoustics& acoustics, const DecodeTable& table,
+                  const std::vector<std::string>& names, const std::vector<Eigen::Vector2d>& resting,
+                  const FreePoints& points, const FateCheckOptions& o, bool moving, std::mt19937& rng, int& draws) {
+  const AcousticModel model(propagation, acoustics, table, names);
+  const nava_modem::MacOptions calibration;
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+  PairRuns runs;
+  while (runs.pairs < o.pairs && draws < o.max_draws) {
+    ++draws;
+    const Eigen::Vector2d a = points.Draw(rng), b = points.Draw(rng);
+    if ((a - b).norm() < o.min_separation || !propagation.Path(a, b).reachable) continue;
+    // Judged as the pair's packets will be, after the MACs' calibration; only then is a
+    // channel run for the pair.
+    const double p = Probability(propagation, model, resting, a, b, calibration.calibration_time);
+    if (p < o.min_probability || p > o.max_probability) continue;
+    PairChannel pair(propagation, model, resting, o, o.seed * 7919u + static_cast<std::uint32_t>(draws));
+    pair.Place(pair.sender(), a);
+    pair.Place(pair.listener(), b);
+    pair.Calibrate(calibration.calibration_time);
+    ++runs.pairs;
+    int delivered = 0;
+    double probability = 0.0;
+    Eigen::Vector2d at = b;
+    for (int k = 0; k < o.packets; ++k) {
+      if (moving && k > 0) {
+        // A step of twice the fate distance, to a free place from which the sender is heard.
+        for (int attempt = 0; attempt < 16; ++attempt) {
+          const double t = angle(rng);
+          const Eigen::Vector2d next = at + 2.0 * o.fate_distance * Eigen::Vector2d(std::cos(t), std::sin(t));
+          if (propagation.map().IsFreeAt(next) && propagation.Path(a, next).reachable) {
+            at = next;
+            break;
+          }
+        }
+        pair.Place(pair.listener(), at);
+      }
+      probability += Probability(propagation, model, resting, a, at, pair.time());
+      delivered += pair.Packet(k);
+    }
+    runs.decided += delivered < 0.1 * o.packets || delivered > 0.9 * o.packets;
+    runs.delivered_sum += static_cast<double>(delivered) / o.packets;
+    runs.probability_sum += probability / o.packets;
+  }
+  return runs;
+}
+
+}  // namespace
+
 FateCheckResult CheckLinkFate(const PropagationModel& propagation, const world_sim::Acoustics& acoustics,
                               const DecodeTable& table, const std::vector<std::string>& world_robots,
                               const std::vector<Eigen::Vector2d>& resting, const FateCheckOptions& o) {
   ValidateOptions(o);
   const FreePoints points(propagation.map(), o.clearance, resting.empty() ? nullptr : &resting.front());
   std::mt19937 rng(o.seed);
-  std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
   std::vector<std::string> names = world_robots;
   names.push_back(kValidationSender);
   names.push_back(kValidationListener);
-  const AcousticModel model(propagation, acoustics, table, names);
   FateCheckResult result;
-  const nava_modem::MacOptions calibration;
-  for (int kind = 0; kind < 2; ++kind) {
-    const bool moving = kind == 1;
-    int found = 0;
-    double delivered_sum = 0.0, probability_sum = 0.0;
-    while (found < o.pairs && result.draws < o.max_draws) {
-      ++result.draws;
-      const Eigen::Vector2d a = points.Draw(rng), b = points.Draw(rng);
-      if ((a - b).norm() < o.min_separation || !propagation.Path(a, b).reachable) continue;
-      // Judged as the pair's packets will be, after the MACs' calibration; only then is a
-      // channel run for the pair.
-      const double p = Probability(propagation, model, resting, a, b, calibration.calibration_time);
-      if (p < o.min_probability || p > o.max_probability) continue;
-      PairChannel pair(propagation, model, resting, o, o.seed * 7919u + static_cast<std::uint32_t>(result.draws));
-      pair.Place(pair.sender(), a);
-      pair.Place(pair.listener(), b);
-      pair.Calibrate(calibration.calibration_time);
-      ++found;
-      int delivered = 0;
-      double probability = 0.0;
-      Eigen::Vector2d at = b;
-      for (int k = 0; k < o.packets; ++k) {
-        if (moving && k > 0) {
-          // A step of twice the fate distance, to a free place from which the sender is heard.
-          for (int attempt = 0; attempt < 16; ++attempt) {
-            const double t = angle(rng);
-            const Eigen::Vector2d next = at + 2.0 * o.fate_distance * Eigen::Vector2d(std::cos(t), std::sin(t));
-            if (propagation.map().IsFreeAt(next) && propagation.Path(a, next).reachable) {
-              at = next;
-              break;
-            }
-          }
-          pair.Place(pair.listener(), at);
-        }
-        probability += Probability(propagation, model, resting, a, at, pair.time());
-        delivered += pair.Packet(k);
-      }
-      if (moving) {
-        delivered_sum += static_cast<double>(delivered) / o.packets;
-        probability_sum += probability / o.packets;
-      } else {
-        result.static_decided += delivered < 0.1 * o.packets || delivered > 0.9 * o.packets;
-      }
-    }
-    if (moving) {
-      result.moving_pairs = found;
-      result.moving_delivered = found ? delivered_sum / found : 0.0;
-      result.moving_probability = found ? probability_sum / found : 0.0;
-    } else {
-      result.static_pairs = found;
-    }
-  }
+  const PairRuns steady =
+      RunPairs(propagation, HeldOn(acoustics), table, names, resting, points, o, false, rng, result.draws);
+  result.static_pairs = steady.pairs;
+  result.static_decided = steady.decided;
+  const PairRuns cycling = RunPairs(propagation, acoustics, table, names, resting, points, o, false, rng, result.draws);
+  result.cycling_pairs = cycling.pairs;
+  result.cycling_decided = cycling.decided;
+  const PairRuns moving = RunPairs(propagation, acoustics, table, names, resting, points, o, true, rng, result.draws);
+  result.moving_pairs = moving.pairs;
+  result.moving_delivered = moving.pairs ? moving.delivered_sum / moving.pairs : 0.0;
+  result.moving_probability = moving.pairs ? moving.probability_sum / moving.pairs : 0.0;
   return result;
 }
 

@@ -22,7 +22,8 @@
 // With --static-pairs: N static and N moving pairs of places whose model probability is 20-80 %,
 // each sending --pair-packets packets through the simulated acoustic channel (fate_check.h), with
 // the links' fate held and, for comparison, drawn anew for every packet:
-//   static: K of N pairs deliver under 10 % or over 90 % of their packets
+//   static: K of N pairs deliver under 10 % or over 90 % of their packets in steady noise
+//   static, the sources on their duty cycles: K of N pairs deliver under 10 % or over 90 %
 //   moving: N pairs, mean delivery X % against the model's Y %
 // With --predict: one JSON line for a packet from (X1, Y1) to (X2, Y2) at time --time (the world's
 // robots where the world puts them), no rendering: path_length, corners, direct_db,
@@ -129,11 +130,13 @@ int StaticPairs(const tools::ValidateArgs& args, const tools::AcousticWorld& wor
     o.link_fate = fate;
     const FateCheckResult r = CheckLinkFate(*world.propagation, world.acoustics, table, world.robots, world.resting, o);
     const char* how = fate ? "" : " (every packet drawn anew)";
-    std::printf("static: %d of %d pairs deliver under 10 %% or over 90 %% of their packets%s\n", r.static_decided,
-                r.static_pairs, how);
+    std::printf("static: %d of %d pairs deliver under 10 %% or over 90 %% of their packets in steady noise%s\n",
+                r.static_decided, r.static_pairs, how);
+    std::printf("static, the sources on their duty cycles: %d of %d pairs deliver under 10 %% or over 90 %%%s\n",
+                r.cycling_decided, r.cycling_pairs, how);
     std::printf("moving: %d pairs, mean delivery %.1f %% against the model's %.1f %%%s\n", r.moving_pairs,
                 100.0 * r.moving_delivered, 100.0 * r.moving_probability, how);
-    if (r.static_pairs < o.pairs || r.moving_pairs < o.pairs) {
+    if (r.static_pairs < o.pairs || r.cycling_pairs < o.pairs || r.moving_pairs < o.pairs) {
       std::printf("  (only these pairs found at 20-80 %% in %d draws of places)\n", r.draws);
     }
     std::fflush(stdout);

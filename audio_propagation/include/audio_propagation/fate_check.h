@@ -5,6 +5,12 @@
 // 20-80 %, each sending a run of packets through the acoustic channel. Standing still, a real
 // link delivers nearly all of them or nearly none; moving (the listener a step farther than the
 // fate distance before each packet), delivery follows the model's probability. No ROS.
+//
+// Static pairs are run twice. In steady noise (every duty-cycled source of the world held on) they
+// are what the measured rooms' cases are, a link under one condition, and should be all or
+// nothing. With the sources on their duty cycles a link near its margin delivers while a radio
+// is off and fails while it plays, as a real one would: the held draw decides each packet
+// against that packet's own probability. Such pairs deliver in between, and count as undecided.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,8 +43,10 @@ struct FateCheckOptions {
 void ValidateOptions(const FateCheckOptions& options);
 
 struct FateCheckResult {
-  int static_pairs = 0;
+  int static_pairs = 0;           // in steady noise (the world's sources held on)
   int static_decided = 0;         // of them, delivering under 10 % or over 90 % of their packets
+  int cycling_pairs = 0;          // static, the world's sources on their duty cycles
+  int cycling_decided = 0;        // of them, delivering under 10 % or over 90 % of their packets
   int moving_pairs = 0;
   double moving_delivered = 0.0;  // mean share of packets decoded
   double moving_probability = 0.0;  // mean model probability over the same packets
