@@ -12,6 +12,7 @@
 #include "grid/option_checks.h"
 #include "grid/yaml_fields.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/measured_like_response.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/room_channel.h"
@@ -420,10 +421,18 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       nava_modem::RoomOptions room;
       room.rt60 = levels.rt60;
       room.drr_db = std::clamp(levels.drr_db, -40.0, 40.0);
-      // The rooms the table was measured over; a measured-like room knows the link's length
-      // where the sound goes straight (around a corner its reflections are not a box room's).
-      room.model = model_.table().rooms;
-      if (room.model == nava_modem::RoomOptions::Model::kMeasuredLike && path.bends == 0 && room.rt60 > 0.0) {
+      // Between two robots where the sound goes straight, the rooms the table was measured over
+      // (a measured-like room at the link's length). Round a corner the statistical room: a
+      // measured-like room is a sender and a listener in one box room, and without the two in
+      // one room it draws the distance from the DRR, so a diffracted sound 30 dB under the
+      // reverberation became a listener 60 m down a hall whose reverberation builds up over up
+      // to 80 ms, its strongest part 40-90 ms after the direct sound (beyond where a receiver
+      // looks back for it) and the direct sound at the noise: ranging round corners came out
+      // 30 % long. A robot hearing itself, the statistical room too: a measured-like room draws
+      // the loudspeaker's and microphone's colouring anew for every packet, which would move the
+      // leading edge of a path that is the same for every packet (its ~ranging_offset).
+      room.model = path.bends == 0 && !own ? model_.table().rooms : nava_modem::RoomOptions::Model::kStatistical;
+      if (room.model == nava_modem::RoomOptions::Model::kMeasuredLike && room.rt60 > 0.0) {
         room.geometry.distance_m = path.length;
       }
       room.seed = SeedOf(options_.seed, kRoomSeeds, static_cast<std::uint32_t>(p * robot_names_.size() + listener));
@@ -441,12 +450,18 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
         ++count;
       }
       hearing.signal_power = count ? sum / static_cast<double>(count) : 0.0;
+      // A measured-like response has its direct sound kMeasuredLikeDelay samples in (room for
+      // its reflections' pulses): taken back, so that every kind of room's direct sound arrives
+      // after the travel time. Left in, a measured-like link arrived 0.33 ms (11 cm) later than
+      // a statistical one, which a two-way range between the two kinds did not cancel.
+      const bool like = room.model == nava_modem::RoomOptions::Model::kMeasuredLike && room.rt60 > 0.0;
+      const double lead = like ? static_cast<double>(nava_modem::kMeasuredLikeDelay) : 0.0;
       const double first = std::round(hearing.arrival_clock * rate);
       hearing.in_scene = first >= 0.0 && first < static_cast<double>(n);
       hearing.first_sample = static_cast<std::size_t>(std::max(first, 0.0));
       std::vector<double>& stem = packet_stems[h];
       for (std::size_t i = 0; i < rendered.size(); ++i) {
-        const double at = first + static_cast<double>(i);
+        const double at = first - lead + static_cast<double>(i);
         if (at >= 0.0 && at < static_cast<double>(n)) stem[static_cast<std::size_t>(at)] += gain * rendered[i];
       }
       const std::size_t end = std::min(n, hearing.first_sample + burst.size());

@@ -9,7 +9,10 @@
 //    (nava_modem/room_channel.h) with the RT60 of the listener's room and the link's DRR from
 //    AcousticModel::Levels on the shortest path at send time (clamped to RenderRoom's +-40 dB),
 //    in a room of the kind the model's table was measured over (DecodeTable::rooms; a
-//    measured-like room at the path's length when the path has no corner),
+//    measured-like room at the path's length, its direct sound moved to the travel time) where
+//    the path has no corner, and round a corner and from a robot to itself in the statistical
+//    room (a measured-like room is a sender and a listener in one room, and draws the
+//    transducers' colouring anew for each packet),
 //    scaled so that its signal power (room_channel.h's definition: the mean square over the
 //    samples where the clean packet sounds) is the link's total (direct plus reverberant) level,
 //    and delayed by the path's travel time. A robot does not hear its own packets (it is sending).
