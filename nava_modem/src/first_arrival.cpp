@@ -26,6 +26,15 @@ constexpr double kRegularisation = 1e-3;
 // sidelobe the reference itself makes (nava's tones repeat their patterns bit by bit, and a
 // reverberant room lifts those sidelobes); kDirectWithinDb where the reference has none.
 constexpr double kSidelobeMargin = 1.5;
+// Near a stronger peak an earlier one must stand this far above the sidelobe the reference's
+// pulse has at that distance before it (amplitude ratio, 9.5 dB), whatever the largest peak:
+// a measured direct sound's pulse, widened by the loudspeaker and the microphone, has its
+// first sidelobe up to 4 dB over the band's own (-31.5 dB, 0.5 ms before it), and noise moves
+// it by a few dB more; with only kSidelobeMargin over the band's, that sidelobe passed for an
+// arrival in some packets and not in others, 0.4 ms early (a theatre, a church, a stone
+// chamber, a sports hall). No direct sound is 20 dB under a reflection half a millisecond
+// after it.
+constexpr double kNearSidelobeMargin = 3.0;
 // A peak of the envelope counts as one where its power falls by this share before rising again.
 constexpr double kPeakDip = 0.5;
 // The direct sound must also stand this far above the envelope's floor: the kFloorQuantile of
@@ -50,12 +59,23 @@ double BandWeight(double f) {
   return 0.5 - 0.5 * std::cos(2.0 * M_PI * (f - kResponseBandLowHz) / (kResponseBandHighHz - kResponseBandLowHz));
 }
 
+// Whether the peak at p is under near[d] times the power d samples after it, for some d: what a
+// later, stronger arrival's pulse has there on its own.
+bool SidelobeOfALaterPeak(const std::vector<double>& power, std::size_t p, const std::vector<double>& near) {
+  const std::size_t reach = std::min(near.size(), power.size() - p);
+  for (std::size_t d = 1; d < reach; ++d) {
+    if (power[p] < near[d] * power[p + d]) return true;
+  }
+  return false;
+}
+
 // `power` is an envelope squared (no square roots for every lag). The first peak of the envelope
 // within kDirectWithinDb (or `within`, an amplitude ratio) of its largest and above `floor` (a
-// power), then the point (in units of env's samples, interpolated) where the envelope rising to
-// it first reaches half of it. NaN for an envelope that is zero everywhere.
+// power), and not under `near`[d] times a peak d samples after it (a power ratio: a sidelobe of
+// that peak), then the point (in units of env's samples, interpolated) where the envelope rising
+// to it first reaches half of it. NaN for an envelope that is zero everywhere.
 double HalfPeakEdge(const std::vector<double>& power, double within = std::pow(10.0, -kDirectWithinDb / 20.0),
-                    double floor = 0.0) {
+                    double floor = 0.0, const std::vector<double>& near = {}) {
   const double largest = power.empty() ? 0.0 : *std::max_element(power.begin(), power.end());
   if (!(largest > 0.0) || !std::isfinite(largest)) return std::numeric_limits<double>::quiet_NaN();
   const double threshold = std::min(largest, std::max(floor, largest * within * within));
@@ -67,8 +87,15 @@ double HalfPeakEdge(const std::vector<double>& power, double within = std::pow(1
     while (p + 1 < power.size() && power[p + 1] >= power[p]) ++p;
     std::size_t k = p + 1;
     while (k < power.size() && power[k] <= power[p] && power[k] > kPeakDip * power[p]) ++k;
-    if (k >= power.size() || power[k] <= power[p]) break;
-    p = k;
+    if (k < power.size() && power[k] > power[p]) {
+      p = k;
+      continue;
+    }
+    if (!SidelobeOfALaterPeak(power, p, near)) break;
+    // Past it, to where the envelope is above the threshold again (the later peak at the latest).
+    ++p;
+    while (p < power.size() && power[p] < threshold) ++p;
+    if (p >= power.size()) return std::numeric_limits<double>::quiet_NaN();
   }
   const double quarter = 0.25 * power[p];  // half the amplitude
   std::size_t j = p;
@@ -93,11 +120,14 @@ void Smooth(std::vector<double>& power, std::size_t width) {
 
 // A pulse centred on lag 0 (a circular response of size n), its power smoothed over `width`:
 // where its half-peak edge lies, in samples from lag 0 (negative: before it); its largest
-// sidelobe over its peak (beyond the main lobe's first minima either side); and how far from
-// the peak the nearest other peak lies (a ringing's period; 0 if none).
+// sidelobe over its peak (beyond the main lobe's first minima either side); by distance d from
+// the peak, the largest sidelobe power at d or further, over the peak's (d up to where it falls
+// under kDirectWithinDb); and how far from the peak the nearest other peak lies (a ringing's
+// period; 0 if none).
 struct Pulse {
   double rise = 0.0;
   double sidelobe = 0.0;
+  std::vector<double> side_beyond;
   std::size_t ring = 0;
 };
 Pulse ReadPulse(const std::complex<double>* pulse, std::size_t n, std::size_t width) {
@@ -114,6 +144,20 @@ Pulse ReadPulse(const std::complex<double>* pulse, std::size_t n, std::size_t wi
     if (i < lo || i > hi) side = std::max(side, env[i]);
   }
   Pulse p;
+  if (env[peak] > 0.0) {
+    // Outwards from the far end: the largest sidelobe at each distance or beyond, either side.
+    std::vector<double> beyond(half + 1, 0.0);
+    for (std::size_t d = half; d-- > 0;) {
+      double here = 0.0;
+      if (peak >= d && (peak - d < lo)) here = std::max(here, env[peak - d]);
+      if (peak + d < n && peak + d > hi) here = std::max(here, env[peak + d]);
+      beyond[d] = std::max(beyond[d + 1], here / env[peak]);
+    }
+    const double least = std::pow(10.0, -kDirectWithinDb / 10.0);
+    std::size_t reach = 1;
+    while (reach < half && beyond[reach] >= least) ++reach;
+    p.side_beyond.assign(beyond.begin(), beyond.begin() + static_cast<std::ptrdiff_t>(reach));
+  }
   std::size_t next = hi;  // the next peak after the main lobe
   while (next + 1 < n && env[next + 1] >= env[next]) ++next;
   p.ring = next > hi ? next - peak : 0;
@@ -189,6 +233,8 @@ ArrivalTimer::ArrivalTimer(const std::vector<float>& reference, std::size_t coun
   }
   rise_correction_ = ReadPulse(band.complex_output(), n, 1).rise - own.rise;
   within_ = std::max(std::pow(10.0, -kDirectWithinDb / 20.0), std::min(0.9, kSidelobeMargin * own.sidelobe));
+  near_ = own.side_beyond;
+  for (double& v : near_) v = std::min(0.81, kNearSidelobeMargin * kNearSidelobeMargin * v);
 }
 
 ArrivalTimer::~ArrivalTimer() = default;
@@ -221,7 +267,7 @@ double ArrivalTimer::Time(const float* received, double* clarity) {
   const auto low = sorted_.begin() + static_cast<std::ptrdiff_t>(kFloorQuantile * static_cast<double>(sorted_.size() - 1));
   std::nth_element(sorted_.begin(), low, mid + 1);
   const double floor = *low;
-  return (HalfPeakEdge(power_, within_, floor * std::pow(10.0, kAboveFloorDb / 10.0)) + rise_correction_) / rate_;
+  return (HalfPeakEdge(power_, within_, floor * std::pow(10.0, kAboveFloorDb / 10.0), near_) + rise_correction_) / rate_;
 }
 
 double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,

@@ -1,6 +1,7 @@
 // First arrivals: the leading edge of a response's direct sound, and the arrival of a known sound
 // heard through a room, on responses of our own with what measured rooms have (a reflection
 // stronger than the direct sound, early reflections within a few ms, a reverberant tail, noise).
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -127,6 +128,30 @@ TEST(FirstArrivalTest, EarlyReflectionsATailAndNoiseLeaveTheEdgeWithinTensOfMicr
       EXPECT_NEAR(ArrivalError(h, snr, seed), 0.0, 1.5e-5) << "seed " << seed << " snr " << snr;
     }
   }
+}
+
+// A direct sound with a faint copy of itself half a millisecond before it, 32 dB down (a
+// loudspeaker's pre-ringing; a measured direct sound, widened by the transducers, has its pulse's
+// first sidelobe there, up to 4 dB over the band's own -31.5 dB). With the band's sidelobe on
+// top it stood right at the rule's 28 dB under the largest: in white noise at 10 dB, 9 packets
+// of 10 were timed 0.4 ms early and one on time, as a theatre's, a church's and a sports hall's
+// were. It is a sidelobe of the sound after it, whatever the noise: every packet is timed on
+// the direct sound.
+TEST(FirstArrivalTest, ASidelobeBeforeTheDirectSoundIsNotTakenForItPacketToPacket) {
+  std::vector<float> h(static_cast<std::size_t>(0.3 * kRate), 0.0f);
+  AddImpulse(h, 1000.0, 1.0);
+  AddImpulse(h, 1000.0 - 0.0005 * kRate, 0.025);
+  const double direct = LeadingEdge(Impulse(1000.0), kRate);
+  EXPECT_NEAR(LeadingEdge(h, kRate), direct, 1e-5);
+  double earliest = INFINITY, latest = -INFINITY;
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    // Against the direct sound's own edge, not the response's (which the same rule reads).
+    const double error = ArrivalError(h, 10.0, seed) + LeadingEdge(h, kRate) - direct;
+    EXPECT_NEAR(error, 0.0, 3e-5) << "seed " << seed;
+    earliest = std::min(earliest, error);
+    latest = std::max(latest, error);
+  }
+  EXPECT_LT(latest - earliest, 5e-5);
 }
 
 // What the room receiver makes of `clean` heard through `h` with white noise at `snr_db`.

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "measured_rooms.h"
@@ -17,6 +18,9 @@ namespace nava_modem::tools {
 namespace {
 
 constexpr double kTargetMedianS = 0.0001, kTargetP90S = 0.0003;
+// Packet to packet, every room: the 90th percentile of how far its packets lie from the room's
+// own median (precision, which ranging differences need, apart from the accuracy above).
+constexpr double kTargetJitterP90S = 0.0001;
 
 // The q-quantile of |errors| (nearest rank); NaN for none.
 double AbsQuantile(std::vector<double> errors, double q) {
@@ -25,6 +29,18 @@ double AbsQuantile(std::vector<double> errors, double q) {
   std::sort(errors.begin(), errors.end());
   const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(errors.size())));
   return errors[std::min(errors.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+// The signed errors less their median: how far each packet lies from the room's own typical
+// arrival. Empty for none.
+std::vector<double> AgainstMedian(std::vector<double> errors) {
+  if (errors.empty()) return errors;
+  std::vector<double> sorted = errors;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  for (double& e : errors) e -= median;
+  return errors;
 }
 
 // The table the simulation's ranging draws timing errors from: the signed errors at 101 evenly
@@ -72,8 +88,13 @@ int ArrivalTable(const ArrivalRequest& request, const multirobot_audio::tools::T
   std::printf("first arrivals (%s): %d %s packets per room at %.0f Hz, white noise at SNR %.0f dB; "
               "error = arrival - (sent + the response's leading edge)\n",
               request.rir_dir.c_str(), request.packets, ProfileName(request.profile), fs, request.snr_db);
-  std::printf("%-44s %7s %6s %7s %10s %10s %10s\n", "room", "drr_dB", "rt60_s", "timed", "median_us", "p90_us", "worst_us");
+  std::printf("%-44s %7s %6s %7s %10s %10s %10s %10s\n", "room", "drr_dB", "rt60_s", "timed", "median_us", "p90_us",
+              "worst_us", "jitter_us");
   std::vector<double> counted;
+  // Each room's jitter p90 (every room, whatever its DRR), and the worst room's.
+  std::vector<double> jitters;
+  std::string worst_jitter_room;
+  double worst_jitter = -1.0;
   int counted_rooms = 0, counted_sent = 0;
   for (const MeasuredRoom& room : rooms) {
     const std::vector<float> response = LoadImpulseResponse(room.path, room.channel, fs);
@@ -104,15 +125,31 @@ int ArrivalTable(const ArrivalRequest& request, const multirobot_audio::tools::T
       ++counted_rooms;
       counted_sent += request.packets;
     }
-    std::printf("%-44s %+7.1f %6.2f %4zu/%-2d %10.1f %10.1f %10.1f%s\n", room.name.c_str(), room.figures.drr_db,
+    const double jitter = AbsQuantile(AgainstMedian(errors), 0.9);
+    if (std::isfinite(jitter)) {
+      jitters.push_back(jitter);
+      if (jitter > worst_jitter) {
+        worst_jitter = jitter;
+        worst_jitter_room = room.name;
+      }
+    }
+    std::printf("%-44s %+7.1f %6.2f %4zu/%-2d %10.1f %10.1f %10.1f %10.1f%s\n", room.name.c_str(), room.figures.drr_db,
                 room.figures.rt60_s, errors.size(), request.packets, AbsQuantile(errors, 0.5) * 1e6,
-                AbsQuantile(errors, 0.9) * 1e6, AbsQuantile(errors, 1.0) * 1e6, counts ? "" : "  (below --min-drr)");
+                AbsQuantile(errors, 0.9) * 1e6, AbsQuantile(errors, 1.0) * 1e6, jitter * 1e6,
+                counts ? "" : "  (below --min-drr)");
   }
   const double median = AbsQuantile(counted, 0.5), p90 = AbsQuantile(counted, 0.9);
   std::printf("rooms with DRR >= %+.1f dB: %d, packets timed %zu/%d, median %.1f us, p90 %.1f us\n", request.min_drr_db,
               counted_rooms, counted.size(), counted_sent, median * 1e6, p90 * 1e6);
   std::printf("target: median <= %.0f us and p90 <= %.0f us: %s\n", kTargetMedianS * 1e6, kTargetP90S * 1e6,
               median <= kTargetMedianS && p90 <= kTargetP90S ? "yes" : "NO");
+  const auto over = std::count_if(jitters.begin(), jitters.end(), [](double j) { return j > kTargetJitterP90S; });
+  std::printf("jitter against each room's own median (p90, every room timed): median over rooms %.1f us, worst %.1f us "
+              "(%s); rooms over %.0f us: %td of %zu\n",
+              AbsQuantile(jitters, 0.5) * 1e6, worst_jitter * 1e6, worst_jitter_room.empty() ? "none" : worst_jitter_room.c_str(),
+              kTargetJitterP90S * 1e6, over, jitters.size());
+  std::printf("target: jitter p90 <= %.0f us in every room: %s\n", kTargetJitterP90S * 1e6,
+              !jitters.empty() && over == 0 ? "yes" : "NO");
   if (!request.errors_out.empty()) {
     if (counted.size() < 2) {
       std::fprintf(stderr, "nava_bench: --errors-out %s: only %zu packets timed, expected at least 2\n",

@@ -9,8 +9,10 @@ namespace nava_modem::tools {
 // (the response's own delay kept) with white noise at request.snr_db, decoded by the room
 // receiver; each packet's "arrival" against the instant it was sent plus the response's leading
 // edge (first_arrival.h). A line per room (packets timed, median, 90th percentile and largest
-// error), then the totals over the rooms at or above request.min_drr_db and the targets (median
-// within 0.1 ms, 90th percentile within 0.3 ms). Returns the exit code.
+// error, and the jitter: the 90th percentile of each packet's distance from the room's own
+// median), then the totals over the rooms at or above request.min_drr_db and the targets (median
+// within 0.1 ms, 90th percentile within 0.3 ms), and the jitter over every room (target: within
+// 0.1 ms in each). Returns the exit code.
 int ArrivalTable(const ArrivalRequest& request, const multirobot_audio::tools::ToolUsage& usage);
 
 }  // namespace nava_modem::tools

@@ -8,8 +8,9 @@
 // impulse response is read in the modems' band (600-5400 Hz, as MeasureResponse reads it,
 // weighted by a Hann window across it so that a pulse has no sidelobes to speak of beyond 1 ms),
 // its envelope is the magnitude of its analytic signal, the direct sound is the earliest peak of
-// that envelope within kDirectWithinDb of its largest and well above the floor before it (noise,
-// and what of the room the reference does not explain), and the arrival is where the envelope,
+// that envelope within kDirectWithinDb of its largest, well above the floor before it (noise,
+// and what of the room the reference does not explain) and well above the sidelobe a later peak
+// has where it lies (the reference's pulse's, with a margin), and the arrival is where the envelope,
 // rising to that peak, first reaches half of it. A peak is one the envelope falls from by 3 dB
 // before rising again: a shoulder on the way up is not. (For a bare delay the edge is about
 // 0.2 ms before the delay itself: the band's pulse rises over that. Ranging takes differences,
@@ -56,6 +57,9 @@ class ArrivalTimer {
   std::unique_ptr<Plans> plans_;
   std::vector<std::complex<double>> inverse_;  // per bin: the band over the reference, regularised
   double rise_correction_ = 0.0, within_ = 0.0;
+  // By distance in samples: under this share of a later peak's power an earlier peak is taken
+  // for that peak's sidelobe (the reference's pulse's sidelobes, with a margin).
+  std::vector<double> near_;
   std::size_t smooth_ = 1;  // samples the power envelope is averaged over (a ringing pulse's period)
   std::vector<double> power_, sorted_;  // scratch
 };
