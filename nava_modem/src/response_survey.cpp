@@ -23,6 +23,16 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kQuietLagsS = 1.0;
 // How long after a packet heard but not decoded its sound is left out of the fit, s.
 constexpr double kUndecodedTailS = 0.3;
+// The most rounds of placing the packets and timing their clocks (see ClockByResponse), and the
+// change of a packet's length, samples, under which a clock already taken from the recording is
+// left as it is.
+constexpr int kTimingRounds = 3;
+constexpr double kSettledSamples = 0.1;
+// A packet's clock is taken from the recording instead of the receiver's rate_error only where
+// the two disagree by this much over the packet's length, samples: a misjudged clock was seen
+// 6.5 samples off, while in the long rooms (RT60 2-2.7 s) the halves' lags wander by less, and
+// following them there read the RT60 10-15 % long (two warehouses, a car park).
+constexpr double kClockMismatchSamples = 3.0;
 
 std::unique_ptr<ModemProfile> RoomProfile(double sample_rate) {
   ModemOptions modem;
@@ -83,11 +93,10 @@ double PeakLag(const std::vector<double>& c, std::size_t reach) {
   return static_cast<double>(best) + ParabolaOffset(at(best - 1), at(best), at(best + 1));
 }
 
-// The packet as sent, at our clock: the sender's clock ran 1 + rate_error times ours.
-std::vector<float> SentAtOurClock(const ModemProfile& profile, const SurveyPacket& p) {
-  std::vector<float> sent = profile.ModulatePacket(p.data);
-  if (std::abs(p.rate_error) > 1e-9) sent = Resample(sent, 1.0 / (1.0 + p.rate_error));
-  return sent;
+// The packet as sent (`modulated`, at the sender's clock), at our clock: the sender's clock ran
+// 1 + rate_error times ours.
+std::vector<float> AtOurClock(const std::vector<float>& modulated, double rate_error) {
+  return std::abs(rate_error) > 1e-9 ? Resample(modulated, 1.0 / (1.0 + rate_error)) : modulated;
 }
 
 // The n-point spectrum of `sent` starting `place` samples into a period of n (a fraction of a
@@ -126,7 +135,10 @@ class Transforms {
 // The sent packets and where each one's first sample lies in the recording (less the lead, so
 // that the response's strongest path comes out `lead` samples in).
 struct Train {
-  std::vector<std::vector<float>> sent;
+  std::vector<std::vector<float>> modulated;  // each packet at the sender's clock
+  std::vector<double> rate_error;             // each packet's sender's clock over ours, minus 1
+  std::vector<bool> timed;                    // whether its clock was taken from the recording
+  std::vector<std::vector<float>> sent;       // each packet at our clock
   std::vector<double> place;
   Spectrum Total(std::size_t n) const {
     Spectrum x(n / 2 + 1);
@@ -182,6 +194,45 @@ void PlaceByResponse(Train& train, const Spectrum& y, const Spectrum& h, std::si
     for (std::size_t k = 0; k < s.size(); ++k) c[k] = y[k] * std::conj(s[k] * h[k]);
     train.place[i] += PeakLag(InverseFft(c, n), reach);
   }
+}
+
+// Times each packet's clock by the recording: the packet's first and second halves, each through
+// the response `h`, are matched with the recording apart; a clock misjudged by e stretches the
+// packet by e x its length, so the halves' best lags differ by that over half of it. The
+// receiver's rate_error can be tens of ppm off for a packet (seen: 7e-5 where the sender's
+// clock was exact, a drift of 6 samples over the packet); that packet then fits the recording
+// nowhere well, and its misfit spreads the direct sound over the lags around it (a skirt 25 dB
+// under the direct sound, 10 ms either side), which in a dry room outweighs the reverberation.
+// Only a clock off by more than kClockMismatchSamples over the packet is corrected, and then
+// refined in later rounds. Returns the largest correction of a packet's length, samples (0: none
+// made).
+double ClockByResponse(Train& train, const Spectrum& y, const Spectrum& h, std::size_t n, std::size_t reach) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < train.sent.size(); ++i) {
+    const std::vector<float>& sent = train.sent[i];
+    const std::size_t half = sent.size() / 2;
+    const auto lag_of = [&](std::size_t from, std::size_t to) {
+      std::vector<float> part(sent.size(), 0.0f);
+      std::copy(sent.begin() + static_cast<std::ptrdiff_t>(from), sent.begin() + static_cast<std::ptrdiff_t>(to),
+                part.begin() + static_cast<std::ptrdiff_t>(from));
+      const Spectrum s = Placed(part, train.place[i], n);
+      Spectrum c(s.size());
+      for (std::size_t k = 0; k < s.size(); ++k) c[k] = y[k] * std::conj(s[k] * h[k]);
+      return PeakLag(InverseFft(c, n), reach);
+    };
+    if (half < 2) continue;
+    const double drift = lag_of(half, sent.size()) - lag_of(0, half);  // samples over `half`
+    // The receiver's clock holds unless the recording disagrees clearly; once overridden, the
+    // packet's clock follows the recording to a tenth of a sample.
+    if (!(std::abs(drift) * 2.0 > (train.timed[i] ? kSettledSamples : kClockMismatchSamples))) continue;
+    const double stretch = 1.0 + drift / static_cast<double>(half);
+    if (!(stretch > 0.5 && stretch < 2.0)) continue;  // no clock runs so far off: a mismatch
+    train.rate_error[i] = (1.0 + train.rate_error[i]) / stretch - 1.0;
+    train.timed[i] = true;
+    train.sent[i] = AtOurClock(train.modulated[i], train.rate_error[i]);
+    largest = std::max(largest, std::abs(drift) * 2.0);
+  }
+  return largest;
 }
 
 // Per frequency, the regularised quotient of the recording by the sent train, in the band.
@@ -336,7 +387,12 @@ SurveyResult SurveyResponse(const std::vector<float>& recording, double sample_r
   Transforms fft(n);
 
   Train train;
-  for (const SurveyPacket& p : packets) train.sent.push_back(SentAtOurClock(*profile, p));
+  for (const SurveyPacket& p : packets) {
+    train.modulated.push_back(profile->ModulatePacket(p.data));
+    train.rate_error.push_back(p.rate_error);
+    train.timed.push_back(false);
+    train.sent.push_back(AtOurClock(train.modulated.back(), p.rate_error));
+  }
   PlaceByDecode(train, packets, recording, sample_rate, lead, reach);
   const auto weight = [&](const Spectrum& x) {  // lambda: `regularisation` x the band's mean |X|^2
     double sum = 0.0, bins = 0.0;
@@ -345,9 +401,18 @@ SurveyResult SurveyResponse(const std::vector<float>& recording, double sample_r
     }
     return options.regularisation * sum / std::max(1.0, bins);
   };
+  // Each packet placed and its clock timed through a first estimate of the response, then again
+  // through one from the packets so placed (a packet whose clock was misjudged smears the first
+  // estimate, though the others hold it up), until no packet's clock is corrected.
   Spectrum x = train.Total(n);
-  PlaceByResponse(train, y, Quotient(y, x, band, weight(x)), n, reach);
-  x = train.Total(n);
+  for (int round = 0; round < kTimingRounds; ++round) {
+    const Spectrum first = Quotient(y, x, band, weight(x));
+    PlaceByResponse(train, y, first, n, reach);
+    const double moved = ClockByResponse(train, y, first, n, reach);
+    if (moved > 0.0) PlaceByResponse(train, y, first, n, reach);
+    x = train.Total(n);
+    if (moved == 0.0) break;
+  }
   const double lambda = weight(x);
 
   // The unknowns: the response's `window` lags, and `quiet` lags before the packets were sent
@@ -366,6 +431,7 @@ SurveyResult SurveyResponse(const std::vector<float>& recording, double sample_r
 
   SurveyResult result;
   result.packets = packets;
+  for (std::size_t i = 0; i < packets.size(); ++i) result.packets[i].rate_error = train.rate_error[i];
   result.undecoded = heard.undecoded_s.size();
   result.response.assign(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(window));
   result.response_noise_power =

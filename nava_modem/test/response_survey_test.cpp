@@ -57,6 +57,52 @@ TEST(ResponseSurveyTest, PacketsThroughAKnownRoomGiveItsFiguresBack) {
   }
 }
 
+// A small dry room: a loudspeaker's direct sound (a 2 kHz ring dying in 1 ms, as a driver rings)
+// 10 ms in, and a diffuse tail from 1 ms after it, `drr_db` under the direct sound's energy and
+// dying by 60 dB in `rt60` s.
+std::vector<float> DryRoom(double rt60, double drr_db, unsigned seed) {
+  const std::size_t delay = static_cast<std::size_t>(0.010 * kRate);
+  std::vector<double> h(delay + static_cast<std::size_t>(1.5 * rt60 * kRate), 0.0);
+  double direct = 0.0;
+  for (std::size_t k = delay; k < delay + static_cast<std::size_t>(0.010 * kRate); ++k) {
+    const double t = static_cast<double>(k - delay) / kRate;
+    h[k] = std::exp(-t / 0.001) * std::sin(2.0 * 3.14159265358979 * 2000.0 * t + 1.0);
+    direct += h[k] * h[k];
+  }
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::vector<double> tail(h.size(), 0.0);
+  double energy = 0.0;
+  for (std::size_t k = delay + static_cast<std::size_t>(0.001 * kRate); k < h.size(); ++k) {
+    tail[k] = gauss(rng) * std::exp(-6.907755 * static_cast<double>(k - delay) / kRate / rt60);
+    energy += tail[k] * tail[k];
+  }
+  const double scale = std::sqrt(direct * std::pow(10.0, -drr_db / 10.0) / energy);
+  std::vector<float> out(h.size());
+  for (std::size_t k = 0; k < h.size(); ++k) out[k] = static_cast<float>(h[k] + scale * tail[k]);
+  return out;
+}
+
+TEST(ResponseSurveyTest, ADryRoomIsReadRightThoughAPacketsClockWasMisjudged) {
+  // Issue 51: in a dry room the receiver misjudged one packet's clock by 71 ppm (the sender's was
+  // exact); the packet so stretched fit the recording nowhere, its misfit spread the direct sound
+  // over the lags around it, and that read as reverberation: DRR 4.6 dB low, RT60 30 s. The
+  // survey times every packet's clock itself.
+  const std::vector<float> clean = PacketTrain(4, 0.3, 5);
+  const std::vector<float> response = DryRoom(0.3, 15.0, 9);
+  const ResponseMeasures truth = MeasureResponse(response, kRate);
+  ASSERT_GT(truth.drr_db, 12.0);
+  const std::vector<float> recording = Recorded(clean, response, 20.0);
+  SurveyHeard heard = FindSurveyPackets(recording, kRate);
+  ASSERT_EQ(heard.packets.size(), 4u);
+  heard.packets[2].rate_error += 7.1e-5;
+  const SurveyResult r = SurveyResponse(recording, kRate, heard);
+  EXPECT_NEAR(r.figures.drr_db, truth.drr_db, 2.0);
+  EXPECT_NEAR(r.figures.rt60_s, truth.rt60_s, 0.1 * truth.rt60_s);
+  // The clock it timed the packet by is the sender's (exact), to within 5 ppm.
+  EXPECT_NEAR(r.packets[2].rate_error, 0.0, 5e-6);
+}
+
 TEST(ResponseSurveyTest, APacketHeardButNotDecodedIsLeftOutOfTheFit) {
   std::vector<float> clean = PacketTrain(5, 0.3, 2);
   // Packet 3's data silenced: its chirps are heard, its CRC fails. Its sound, the packets'

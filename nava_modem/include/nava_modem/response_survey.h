@@ -6,8 +6,10 @@
 // measured_response.h), and from what the packets do not explain, the room's noise. No ROS.
 //
 // The estimate: each decoded packet is modulated again, stretched to the sender's clock (the
-// receiver's rate_error) and lined up with the recording by cross-correlation, to a fraction of
-// a sample; all of them together are the signal that was sent. The response is the regularised
+// receiver's rate_error, then timed again: its two halves through a first estimate of the
+// response, matched with the recording apart) and lined up with the recording by
+// cross-correlation, to a fraction of a sample; all of them together are the signal that was
+// sent. The response is the regularised
 // least-squares deconvolution of the recording by that signal, in one transform over the whole
 // recording (so one packet's reverberation running into the next is explained, not noise),
 // in the modems' band (600-5400 Hz). Packets that were not decoded stay in the recording as
@@ -61,7 +63,9 @@ struct SurveyHeard {
 constexpr int kSurveyBands = 12;
 
 struct SurveyResult {
-  std::vector<SurveyPacket> packets;  // the packets used
+  // The packets used, each with the clock the survey timed it by (its rate_error measured on
+  // the recording through the response, not the receiver's).
+  std::vector<SurveyPacket> packets;
   std::size_t undecoded = 0;          // packets heard but not decoded, left out of the fit
   std::vector<float> response;        // the estimated impulse response, direct sound near lead_s
   // The estimate's own noise: mean square per sample (from the recording's noise and how little
