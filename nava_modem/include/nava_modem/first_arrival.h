@@ -12,7 +12,9 @@
 // and what of the room the reference does not explain) and well above the sidelobe a later peak
 // has where it lies (the reference's pulse's, with a margin), and the arrival is where the envelope,
 // rising to that peak, first reaches half of it. A peak is one the envelope falls from by 3 dB
-// before rising again: a shoulder on the way up is not. (For a bare delay the edge is about
+// before rising again: a shoulder on the way up is not; one that falls by 2 to 3 dB counts in
+// part, the edge a blend of its and the later peak's, so that noise moving the dip across 3 dB
+// does not make the edge jump from one arrival to the next. (For a bare delay the edge is about
 // 0.2 ms before the delay itself: the band's pulse rises over that. Ranging takes differences,
 // and both sides of a check use the same definition, so the offset cancels.)
 #include <complex>
