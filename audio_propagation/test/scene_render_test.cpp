@@ -195,10 +195,11 @@ TEST(SceneRender, OwnPacketsAndSoundCardsPlaceEveryArrivalOnTheListenersClock) {
 }
 
 // Round a corner, with the room table measured over measured-like rooms: the diffracted sound
-// 25-35 dB under the reverberation is still timed where it arrives. A measured-like room has no
-// corner: without one the renderer took the DRR for distance, a listener up to 60 m down a hall
-// whose reverberation built up over 80 ms, and the receiver timed that reverberation 1-60 ms
-// late (ranging round corners 30 % long).
+// 25-35 dB under the reverberation is still timed where it arrives. The renderer once gave a
+// measured-like room no distance round a corner: it took the DRR for distance, a listener up to
+// 60 m down a hall whose reverberation built up over 80 ms, and the receiver timed that
+// reverberation 1-60 ms late (ranging round corners 30 % long); and it left the response's
+// 16-sample lead in (0.33 ms).
 TEST(SceneRender, ASoundRoundACornerIsTimedWhereItArrivesWithAMeasuredLikeTable) {
   // 20 x 12 m, a wall across x = 10 from y = 0 to 9 m: a round b and c, its corner at (10, 9).
   grid::OccupancyMap map(200, 120, 0.1);
@@ -241,9 +242,14 @@ TEST(SceneRender, ASoundRoundACornerIsTimedWhereItArrivesWithAMeasuredLikeTable)
       std::vector<nava_modem::RxEvent> events;
       receiver->Process(mix.data(), mix.size(), events);
       receiver->Flush(events);
-      ASSERT_EQ(events.size(), 1u) << h.listener << " seed " << seed;
-      // Within 0.1 ms: 3.4 cm of a path of 17 m.
-      EXPECT_NEAR(events[0].arrival, h.arrival_clock + rise, 1e-4)
+      std::vector<nava_modem::RxEvent> packets;
+      for (const nava_modem::RxEvent& e : events) {
+        if (e.kind == nava_modem::RxEvent::Kind::kPacket) packets.push_back(e);
+      }
+      ASSERT_EQ(packets.size(), 1u) << h.listener << " seed " << seed << ", " << events.size() << " events";
+      // Within 0.25 ms: 8.6 cm of a path of 17 m (the transducers spread a measured-like room's
+      // direct sound over 0.2-1 ms; the fault was 0.4 to 60 ms).
+      EXPECT_NEAR(packets[0].arrival, h.arrival_clock + rise, 2.5e-4)
           << h.listener << " seed " << seed << ", DRR " << h.prediction.signal.drr_db << " dB";
     }
   }
