@@ -19,4 +19,20 @@ std::string CanonicalPath(const std::string& path) {
   return canonical.string();
 }
 
+bool IsRegularFile(const std::string& path, std::string* why) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  std::string problem;
+  if (status.type() == fs::file_type::not_found) {
+    problem = "no such file";
+  } else if (error) {
+    problem = error.message();
+  } else if (status.type() != fs::file_type::regular) {
+    problem = "not a regular file";
+  }
+  if (why) *why = problem;
+  return problem.empty();
+}
+
 }  // namespace grid

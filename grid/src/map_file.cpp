@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include "grid/file_path.h"
 #include "grid/input_error.h"
 #include "grid/yaml_fields.h"
 
@@ -23,7 +24,7 @@ struct MapFileFields {
 
 MapFileFields ParseFields(const std::string& file) {
   // The thesis's map is not shipped: say how to get it rather than only that it is missing.
-  if (file.find("maps/thesis/") != std::string::npos && !std::filesystem::exists(file)) {
+  if (file.find("maps/thesis/") != std::string::npos && !IsRegularFile(file)) {
     throw InputError(file, "", "map file not found; the thesis's map is not shipped: run scripts/get_thesis_map.sh");
   }
   const YamlFields root = YamlFields::Load(file, "map file");
@@ -86,8 +87,9 @@ OccupancyMap LoadMapFile(const std::string& yaml_path) {
 
   fs::path image_path(f.image);
   if (image_path.is_relative()) image_path = fs::path(yaml_path).parent_path() / image_path;
-  if (!fs::is_regular_file(image_path)) {
-    throw InputError(yaml_path, "image", "file not found: " + image_path.string());
+  std::string why;
+  if (!IsRegularFile(image_path.string(), &why)) {
+    throw InputError(yaml_path, "image", "file not found (" + why + "): " + image_path.string());
   }
   cv::Mat image;
   if (cv::haveImageReader(image_path.string())) {

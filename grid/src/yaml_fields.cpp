@@ -1,13 +1,13 @@
 #include "grid/yaml_fields.h"
 
-#include <filesystem>
-
+#include "grid/file_path.h"
 #include "grid/input_error.h"
 
 namespace grid {
 
 YamlFields YamlFields::Load(const std::string& file, const std::string& what) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file, "", what + " not found");
+  std::string why;
+  if (!IsRegularFile(file, &why)) throw InputError(file, "", what + " not found (" + why + ")");
   YAML::Node root;
   try {
     root = YAML::LoadFile(file);

@@ -151,8 +151,9 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
     if (n.Has("file")) {
       std::filesystem::path file(n.String("file"));
       if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
-      if (!std::filesystem::is_regular_file(file)) n.Fail("file", "no such file: " + file.string());
-      s.file = std::filesystem::absolute(file).lexically_normal().string();
+      std::string why;
+      if (!grid::IsRegularFile(file.string(), &why)) n.Fail("file", why + ": " + file.string());
+      s.file = grid::CanonicalPath(file.string());
     }
     s.duty = Bounded(n, "duty", s.duty, 0.0, 1.0, true, "a duty cycle in (0, 1]");
     s.period = Bounded(n, "period", s.period, 0.0, kBig, true, "a period above 0 s");

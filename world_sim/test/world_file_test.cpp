@@ -247,6 +247,19 @@ TEST_F(WorldFileTest, MissingFile) {
   }
 }
 
+// A name the file system refuses (longer than a file name may be) is a bad field, not a crash:
+// the loader once let std::filesystem's error escape (found by the world_file fuzz target).
+TEST_F(WorldFileTest, NamesTooLongForTheFileSystemAreRefusedByField) {
+  const std::string name(300, 'a');
+  const std::string robot = "robots: [{name: a, pose: [1.0, 1.0, 0]}]\nacoustics:\n  rt60: 0.5\n  volume: 60\n";
+  ExpectError(robot + "  noise_sources: [{position: [1.0, 3.0], kind: recording, file: " + name + ".wav}]\n",
+              "acoustics.noise_sources[0].file: File name too long: ");
+  ExpectError("map: " + name + ".yaml\nrobots: [{name: a, pose: [1.0, 1.0, 0]}]\n",
+              "map: cannot load the map: ", /*with_map=*/false);
+  ExpectError("map: " + name + ".yaml\nrobots: [{name: a, pose: [1.0, 1.0, 0]}]\n",
+              "map file not found (File name too long)", /*with_map=*/false);
+}
+
 TEST_F(WorldFileTest, MalformedYaml) { ExpectError("robots: [\n", "malformed YAML"); }
 
 TEST_F(WorldFileTest, UnknownKeys) {
