@@ -55,8 +55,8 @@ constexpr double kRingingSidelobe = 0.3;
 // (The envelope is read on the sample grid: a 4.8 kHz band sampled at 11 kHz or more is smooth
 // between samples, and the half-peak crossing interpolated linearly moves with a fractional
 // delay to within a microsecond, as first_arrival_test checks.)
-// A measured response is judged around its largest sample, this far either side: the direct
-// sound and the early reflections, and enough margin that the band-pass has no edge effects.
+// A measured response is judged from kDirectBeforeStrongestS and the floor's lead before its
+// largest sample to this far after it: enough margin that the band-pass has no edge effects.
 constexpr double kResponseWindowS = 0.05;
 
 double BandWeight(double f) {
@@ -272,35 +272,92 @@ ArrivalTimer::ArrivalTimer(const std::vector<float>& reference, std::size_t coun
 
 ArrivalTimer::~ArrivalTimer() = default;
 
-double ArrivalTimer::Time(const float* received, double* clarity) {
-  if (clarity) *clarity = 0.0;
-  if (inverse_.empty()) return std::numeric_limits<double>::quiet_NaN();
+void ArrivalTimer::Response(const ArrivalWindow& window, std::vector<std::complex<double>>& z) {
   Plans& p = *plans_;
   const std::size_t n = p.rx.size();
   std::fill(p.rx.real_input() + count_, p.rx.real_input() + n, 0.0);
-  std::copy(received, received + count_, p.rx.real_input());
+  std::copy(window.samples, window.samples + count_, p.rx.real_input());
   p.rx.Execute();
-  // The analytic response: positive frequencies only.
-  std::complex<double>* z = p.analytic.complex_input();
-  std::fill(z, z + n, std::complex<double>(0.0, 0.0));
-  for (std::size_t k = 0; k < inverse_.size(); ++k) z[k] = p.rx.complex_output()[k] * inverse_[k];
+  // Analytic: positive frequencies only. A sound `shift` samples later is moved back by a phase
+  // ramp (a fraction of a sample as well as whole ones).
+  z.assign(n, std::complex<double>(0.0, 0.0));
+  const double turn = 2.0 * M_PI * window.shift / static_cast<double>(n);
+  for (std::size_t k = 0; k < inverse_.size(); ++k) {
+    z[k] = p.rx.complex_output()[k] * inverse_[k];
+    if (window.shift != 0.0) z[k] *= std::polar(1.0, turn * static_cast<double>(k));
+  }
+}
+
+void ArrivalTimer::Envelope(const std::vector<std::complex<double>>& z) {
+  Plans& p = *plans_;
+  std::copy(z.begin(), z.end(), p.analytic.complex_input());
   p.analytic.Execute();
   const std::size_t lags = count_ - reference_length_ + 1;
   power_.resize(lags);
   for (std::size_t i = 0; i < lags; ++i) power_[i] = std::norm(p.analytic.complex_output()[i]);
   Smooth(power_, smooth_);
-  // One partial sort gives both the median (clarity) and, below it, the floor's quantile.
-  sorted_ = power_;
-  const auto mid = sorted_.begin() + static_cast<std::ptrdiff_t>(sorted_.size() / 2);
-  std::nth_element(sorted_.begin(), mid, sorted_.end());
+}
+
+double ArrivalTimer::Floor(std::size_t lead) {
+  // Over the lead the caller knows to precede the sound, else over the whole search. Over the
+  // whole search it was the room's own early response wherever fewer than a fifth of the delays
+  // came before the direct sound: a hall whose reverberation peaks 40 ms after a direct sound
+  // 25 dB under it (round a corner) had its direct sound under that floor, and its arrival read
+  // at a reflection 1 to 37 ms late.
+  const std::size_t span = lead > 0 && lead < power_.size() ? lead : power_.size();
+  sorted_.assign(power_.begin(), power_.begin() + static_cast<std::ptrdiff_t>(span));
+  const auto low = sorted_.begin() + static_cast<std::ptrdiff_t>(kFloorQuantile * static_cast<double>(span - 1));
+  std::nth_element(sorted_.begin(), low, sorted_.end());
+  return *low;
+}
+
+double ArrivalTimer::Arrival(std::size_t lead, double* clarity) {
   if (clarity) {
+    sorted_ = power_;
+    const auto mid = sorted_.begin() + static_cast<std::ptrdiff_t>(sorted_.size() / 2);
+    std::nth_element(sorted_.begin(), mid, sorted_.end());
     const double largest = *std::max_element(power_.begin(), power_.end());
     *clarity = *mid > 0.0 ? std::sqrt(largest / *mid) : (largest > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   }
-  const auto low = sorted_.begin() + static_cast<std::ptrdiff_t>(kFloorQuantile * static_cast<double>(sorted_.size() - 1));
-  std::nth_element(sorted_.begin(), low, mid + 1);
-  const double floor = *low;
+  const double floor = Floor(lead);
   return (HalfPeakEdge(power_, within_, floor * std::pow(10.0, kAboveFloorDb / 10.0), near_) + rise_correction_) / rate_;
+}
+
+double ArrivalTimer::Time(const float* received, double* clarity, std::size_t lead) {
+  return Together({{received, 0.0, lead}}, clarity);
+}
+
+double ArrivalTimer::Together(const std::vector<ArrivalWindow>& windows, double* clarity) {
+  if (windows.empty()) throw std::invalid_argument("first arrival: expected at least one window, got none");
+  for (const ArrivalWindow& w : windows) {
+    if (!w.samples) throw std::invalid_argument("first arrival: a window without samples");
+  }
+  if (clarity) *clarity = 0.0;
+  if (inverse_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (windows.size() == 1) {
+    Response(windows[0], z_);
+  } else {
+    // Each response weighted by the inverse of its floor: the least noisy counts most. A window
+    // of digital silence (floor 0) says nothing of the noise and is left out.
+    sum_.assign(plans_->rx.size(), std::complex<double>(0.0, 0.0));
+    double total = 0.0;
+    for (const ArrivalWindow& w : windows) {
+      Response(w, z_);
+      Envelope(z_);
+      const double floor = Floor(w.lead);
+      if (!(floor > 0.0) || !std::isfinite(floor)) continue;
+      for (std::size_t k = 0; k < sum_.size(); ++k) sum_[k] += z_[k] / floor;
+      total += 1.0 / floor;
+    }
+    if (total > 0.0) {
+      for (std::complex<double>& v : sum_) v /= total;
+      z_.swap(sum_);
+    } else {
+      Response(windows[0], z_);
+    }
+  }
+  Envelope(z_);
+  return Arrival(windows[0].lead, clarity);
 }
 
 double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
@@ -317,13 +374,16 @@ double LeadingEdge(const std::vector<float>& response, double sample_rate) {
   }
   // The window, with the silence before the response's first sample where it reaches back
   // further (nothing arrives before a response begins, and the floor is read before the sound).
-  const std::size_t half = static_cast<std::size_t>(std::lround(kResponseWindowS * sample_rate));
-  const std::size_t to = std::min(response.size(), peak + half + 1);
-  std::vector<float> window(half > peak ? half - peak : 0, 0.0f);
-  const double first = static_cast<double>(peak) - static_cast<double>(half);
-  window.insert(window.end(), response.begin() + static_cast<std::ptrdiff_t>(peak > half ? peak - half : 0),
+  const std::size_t lead = static_cast<std::size_t>(std::lround(kFloorLeadS * sample_rate));
+  const std::size_t before = static_cast<std::size_t>(std::lround(kDirectBeforeStrongestS * sample_rate)) + lead;
+  const std::size_t after = static_cast<std::size_t>(std::lround(kResponseWindowS * sample_rate));
+  const std::size_t to = std::min(response.size(), peak + after + 1);
+  std::vector<float> window(before > peak ? before - peak : 0, 0.0f);
+  const double first = static_cast<double>(peak) - static_cast<double>(before);
+  window.insert(window.end(), response.begin() + static_cast<std::ptrdiff_t>(peak > before ? peak - before : 0),
                 response.begin() + static_cast<std::ptrdiff_t>(to));
-  return first / sample_rate + FirstArrival(window.data(), window.size(), {1.0f}, sample_rate);
+  ArrivalTimer timer({1.0f}, window.size(), sample_rate);
+  return first / sample_rate + timer.Time(window.data(), nullptr, lead);
 }
 
 }  // namespace nava_modem

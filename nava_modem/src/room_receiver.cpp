@@ -30,9 +30,10 @@ constexpr double kAlignBefore = 0.010, kAlignAfter = 0.050, kAlignReach = 0.045;
 // detector's own threshold: the window is narrow, and the CRC judges what is decoded.
 constexpr double kSearchRatio = 4.0;
 constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
-// A decoded packet's first arrival is looked for from this long before its first chirp's
-// strongest peak (the direct sound may precede a stronger reflection) to this long after it.
-constexpr double kArrivalBefore = 0.05, kArrivalAfter = 0.010;
+// A decoded packet's first arrival is looked for from kDirectBeforeStrongestS before its first
+// chirp's strongest peak (the direct sound may precede a stronger reflection) to this long after
+// it, with kFloorLeadS before that for the floor.
+constexpr double kArrivalBefore = kDirectBeforeStrongestS + kFloorLeadS, kArrivalAfter = 0.010;
 
 double Median(std::vector<double>& v) {
   if (v.empty()) return 0.0;
@@ -370,7 +371,7 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   if (CrcMatches(frame, modem_.crc)) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(frame.begin() + 1, frame.begin() + 1 + kDataBytes);
-    if (options_.time_arrivals) ev.arrival = Arrival(pre);
+    if (options_.time_arrivals) ev.arrival = Arrival(pre.sample, aligned_post);
   } else {
     ev.kind = RxEvent::Kind::kNoise;
     ev.noise = RxEvent::Noise::kBadCrc;
@@ -378,13 +379,33 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   return ev;
 }
 
-double RoomReceiver::Arrival(const ChirpPeak& pre) {
+double RoomReceiver::Arrival(double pre, double post) {
   const double fs = modem_.sample_rate;
-  const std::int64_t from = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(pre.sample - kArrivalBefore * fs)));
   const std::size_t count = arrival_timer_.count();
-  std::vector<float> heard(count);
-  for (std::size_t k = 0; k < count; ++k) heard[k] = Sample(from + static_cast<std::int64_t>(k));
-  return static_cast<double>(from) / fs + arrival_timer_.Time(heard.data());
+  // Each chirp's window, from kArrivalBefore before it; the second chirp's sound lies where the
+  // decode put it (to a fraction of a sample), so the two responses add up in phase.
+  std::vector<std::vector<float>> heard;
+  std::vector<ArrivalWindow> windows;
+  double first = 0.0;
+  for (const double chirp : {pre, post}) {
+    const double start = std::floor(chirp - kArrivalBefore * fs);
+    const std::int64_t from = std::max<std::int64_t>(0, static_cast<std::int64_t>(start));
+    std::vector<float> samples(count);
+    // (Nothing past what has been heard: a packet decoded at the stream's end.)
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::int64_t at = from + static_cast<std::int64_t>(k);
+      samples[k] = at < n_ ? Sample(at) : 0.0f;
+    }
+    heard.push_back(std::move(samples));
+    // Near the stream's start a window begins later: its lead is what is left, and with less
+    // than a quarter of it left its floor is read over the whole search.
+    const double lead = std::round(kFloorLeadS * fs - (static_cast<double>(from) - start));
+    const double at = chirp - static_cast<double>(from);  // where its chirp lies in it
+    if (windows.empty()) first = static_cast<double>(from);
+    windows.push_back({heard.back().data(), windows.empty() ? 0.0 : at - (pre - first),
+                       lead >= 0.25 * kFloorLeadS * fs ? static_cast<std::size_t>(lead) : 0});
+  }
+  return first / fs + arrival_timer_.Together(windows);
 }
 
 }  // namespace nava_modem

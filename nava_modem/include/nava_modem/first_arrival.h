@@ -28,6 +28,13 @@ namespace nava_modem {
 // reverberant hall the diffracted sound can be 30 dB under the reflections that follow it.
 constexpr double kDirectWithinDb = 40.0;
 
+// How far before its strongest arrival a sound's direct sound is looked for, and the stretch
+// before that read as the floor (noise, and what of the room the reference does not explain).
+// 0.1 s: in a hall whose reverberation builds up over its mixing time (about sqrt(V) ms), the
+// strongest arrival comes up to 90 ms after the direct sound.
+constexpr double kDirectBeforeStrongestS = 0.1;
+constexpr double kFloorLeadS = 0.02;
+
 // Seconds from received[0] at which `reference`'s first sample reached the microphone: the
 // leading edge of the impulse response found by dividing received's spectrum by reference's in
 // the band (regularised where the reference is weak), looked for at delays 0 to
@@ -39,6 +46,16 @@ constexpr double kDirectWithinDb = 40.0;
 double FirstArrival(const float* received, std::size_t count, const std::vector<float>& reference, double sample_rate,
                     double* clarity = nullptr);
 
+// One of several windows of a recording that hold the same reference through the same room (a
+// packet's two chirps): its samples (the timer's count() of them), how many samples later the
+// sound lies in it than in the first window, counted from each window's start (a fraction of a
+// sample, as the receiver measured it), and its lead (see ArrivalTimer::Time).
+struct ArrivalWindow {
+  const float* samples = nullptr;
+  double shift = 0.0;
+  std::size_t lead = 0;
+};
+
 // FirstArrival of one reference in windows of one length, again and again (a receiver timing
 // its packets): the reference's spectrum, its pulse and the transforms are made once. Throws as
 // FirstArrival does. Not thread-safe (one per receiver).
@@ -48,12 +65,28 @@ class ArrivalTimer {
   ~ArrivalTimer();
   ArrivalTimer(const ArrivalTimer&) = delete;
   ArrivalTimer& operator=(const ArrivalTimer&) = delete;
-  // As FirstArrival, on `count()` samples from `received`.
-  double Time(const float* received, double* clarity = nullptr);
+  // As FirstArrival, on `count()` samples from `received`. With `lead` above 0, the window's
+  // first `lead` samples are known to come before the sound (the receiver put them there): the
+  // floor is read over those delays alone (see the .cpp: read over the whole search, a big
+  // room's early response can outnumber the noise before it and pass for the floor).
+  double Time(const float* received, double* clarity = nullptr, std::size_t lead = 0);
+  // The arrival in windows[0] from the responses of every window together, each moved by its
+  // shift and weighted by the inverse of its own floor (over its lead): two chirps through the
+  // same room give the direct sound 3 dB further over the noise than one. The floor is then read
+  // over windows[0]'s lead. Throws std::invalid_argument for no window or a null one.
+  double Together(const std::vector<ArrivalWindow>& windows, double* clarity = nullptr);
   std::size_t count() const { return count_; }
 
  private:
   struct Plans;
+  // The response in `window` as an analytic spectrum (moved by its shift) into `z`.
+  void Response(const ArrivalWindow& window, std::vector<std::complex<double>>& z);
+  // power_: the envelope of the response whose analytic spectrum is `z`, squared and smoothed.
+  void Envelope(const std::vector<std::complex<double>>& z);
+  // The kFloorQuantile of power_ over its first `lead` delays (all of them for 0).
+  double Floor(std::size_t lead);
+  // The arrival (s) and the clarity from power_, its floor over `lead`.
+  double Arrival(std::size_t lead, double* clarity);
   double rate_;
   std::size_t count_, reference_length_;
   std::unique_ptr<Plans> plans_;
@@ -64,11 +97,13 @@ class ArrivalTimer {
   std::vector<double> near_;
   std::size_t smooth_ = 1;  // samples the power envelope is averaged over (a ringing pulse's period)
   std::vector<double> power_, sorted_;  // scratch
+  std::vector<std::complex<double>> z_, sum_;  // scratch
 };
 
 // The leading edge of a response's direct sound, seconds from its first sample: the truth a
-// FirstArrival through that response is judged against. Throws as FirstArrival does, and for an
-// empty response.
+// FirstArrival through that response is judged against. Read from kLeadingEdgeBeforeS before the
+// response's largest sample, the floor over the first kLeadingEdgeLeadS of that (as a receiver
+// reads a packet's). Throws as FirstArrival does, and for an empty response.
 double LeadingEdge(const std::vector<float>& response, double sample_rate);
 
 }  // namespace nava_modem

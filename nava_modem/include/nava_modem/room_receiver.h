@@ -66,8 +66,9 @@ class RoomReceiver : public PacketReceiver {
   // The matched filter's strongest output between two sample positions, as a chirp, if it
   // stands out from the output before them (see kSearchRatio).
   std::optional<ChirpPeak> StrongestIn(double from, double to) const;
-  // When the packet whose first chirp peaked at `pre` first arrived (RxEvent::arrival).
-  double Arrival(const ChirpPeak& pre);
+  // When the packet whose chirps begin at `pre` and `post` (samples, as the decode put them)
+  // first arrived (RxEvent::arrival): both chirps' responses together.
+  double Arrival(double pre, double post);
   // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
   void SymbolEnergies(std::int64_t first, int length, double* energies);
   // The largest clock error a decode accepts: the pairing's, and the alignment's reach.
