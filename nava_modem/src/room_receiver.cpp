@@ -1,6 +1,7 @@
 #include "nava_modem/room_receiver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -382,30 +383,30 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
 double RoomReceiver::Arrival(double pre, double post) {
   const double fs = modem_.sample_rate;
   const std::size_t count = arrival_timer_.count();
-  // Each chirp's window, from kArrivalBefore before it; the second chirp's sound lies where the
-  // decode put it (to a fraction of a sample), so the two responses add up in phase.
-  std::vector<std::vector<float>> heard;
-  std::vector<ArrivalWindow> windows;
-  double first = 0.0;
-  for (const double chirp : {pre, post}) {
-    const double start = std::floor(chirp - kArrivalBefore * fs);
-    const std::int64_t from = std::max<std::int64_t>(0, static_cast<std::int64_t>(start));
-    std::vector<float> samples(count);
+  // Each chirp's window, from kArrivalBefore before it (its samples, and where its chirp lies in
+  // it); the second chirp lies where the decode put it, to a fraction of a sample, so the two
+  // responses add up in phase.
+  std::array<std::vector<float>, 2> heard;
+  std::array<double, 2> from{}, at{};
+  std::array<std::size_t, 2> lead{};
+  const std::array<double, 2> chirps = {pre, post};
+  for (std::size_t w = 0; w < 2; ++w) {
+    const double start = std::floor(chirps[w] - kArrivalBefore * fs);
+    const std::int64_t first = std::max<std::int64_t>(0, static_cast<std::int64_t>(start));
+    heard[w].resize(count);
     // (Nothing past what has been heard: a packet decoded at the stream's end.)
     for (std::size_t k = 0; k < count; ++k) {
-      const std::int64_t at = from + static_cast<std::int64_t>(k);
-      samples[k] = at < n_ ? Sample(at) : 0.0f;
+      const std::int64_t n = first + static_cast<std::int64_t>(k);
+      heard[w][k] = n < n_ ? Sample(n) : 0.0f;
     }
-    heard.push_back(std::move(samples));
+    from[w] = static_cast<double>(first);
+    at[w] = chirps[w] - from[w];
     // Near the stream's start a window begins later: its lead is what is left, and with less
     // than a quarter of it left its floor is read over the whole search.
-    const double lead = std::round(kFloorLeadS * fs - (static_cast<double>(from) - start));
-    const double at = chirp - static_cast<double>(from);  // where its chirp lies in it
-    if (windows.empty()) first = static_cast<double>(from);
-    windows.push_back({heard.back().data(), windows.empty() ? 0.0 : at - (pre - first),
-                       lead >= 0.25 * kFloorLeadS * fs ? static_cast<std::size_t>(lead) : 0});
+    const double left = std::round(kFloorLeadS * fs - (from[w] - start));
+    lead[w] = left >= 0.25 * kFloorLeadS * fs ? static_cast<std::size_t>(left) : 0;
   }
-  return first / fs + arrival_timer_.Together(windows);
+  return from[0] / fs + arrival_timer_.Together({{heard[0].data(), 0.0, lead[0]}, {heard[1].data(), at[1] - at[0], lead[1]}});
 }
 
 }  // namespace nava_modem
