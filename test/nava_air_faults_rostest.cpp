@@ -5,6 +5,7 @@
 #include <signal.h>
 #include <sys/types.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -35,7 +36,8 @@ const std::vector<std::string> kListeners = {"robot_1", "robot_2"};
 constexpr int kPackets = 14;
 constexpr double kServerDownSeconds = 2.0;
 
-std::vector<std::uint8_t> Numbered(int k) { return {0x60, static_cast<std::uint8_t>(k), 0x5A, 0xA5}; }
+// Packet k of round r of the restart test.
+std::vector<std::uint8_t> Numbered(int k, int r) { return {0x60, static_cast<std::uint8_t>(k), static_cast<std::uint8_t>(r), 0xA5}; }
 
 // What the test hears of the three links: receptions, carrier, diagnostics and error lines.
 class Links {
@@ -74,11 +76,11 @@ class Links {
     heard_.clear();
     errors_seen_.clear();
   }
-  // How often `link` heard each of the numbered packets, by number.
-  std::map<int, int> Numbers(const std::string& link) {
+  // How often `link` heard each of round `round`'s numbered packets, by number.
+  std::map<int, int> Numbers(const std::string& link, int round) {
     std::map<int, int> out;
     for (const AudioReception& r : heard_[link]) {
-      if (r.kind == AudioReception::PACKET && r.data.size() == 4 && r.data[0] == 0x60) ++out[r.data[1]];
+      if (r.kind == AudioReception::PACKET && r.data.size() == 4 && r.data[0] == 0x60 && r.data[2] == round) ++out[r.data[1]];
     }
     return out;
   }
@@ -222,59 +224,80 @@ TEST(NavaAirFaults, AStalledLinkCountsItsXrunsAndCatchesUp) {
 // its start) and started again kServerDownSeconds later. Every link reports the failure (an
 // error line, diagnostics at ERROR while down) and reopens, robot_0 sends the cut packet again,
 // and each listener hears every packet exactly once.
+//
+// The shared server is everyone's air and everyone's sound card at once, which real robots'
+// are not: killing it also loses what the listeners had not yet read of sound robot_0 had
+// already played whole. On a starved machine the carrier's message, the test's wake-up and the
+// kill lag by more than the rest of a packet (CI once killed the server 0.4 s into a 0.37 s
+// packet: robot_0 had played it whole and rightly re-queued nothing, and the listeners lost its
+// end). A round whose kill missed robot_0's packet (nothing re-queued) tests only that nothing
+// is heard twice, and the test kills again, up to three rounds.
 TEST(NavaAirFaults, NoPacketIsLostOrDuplicatedWhenTheSoundServerRestarts) {
   ASSERT_TRUE(std::getenv("NAVA_AIR_CONTROL")) << "run by test/nava_air.sh, which sets NAVA_AIR_CONTROL";
-  links->Forget();
-  for (int k = 1; k <= kPackets; ++k) links->Send(Numbered(k));
-  ASSERT_TRUE(WaitFor([&] { return links->Numbers("robot_1").size() >= 4; }, 20.0)) << links->Describe("robot_1");
-  const int rises = links->rises("robot_1");
-  ASSERT_TRUE(WaitFor([&] { return links->rises("robot_1") > rises; }, 5.0)) << "the next packet did not start";
-  ros::WallDuration(0.15).sleep();
-  ASSERT_TRUE(Air("kill")) << "could not kill the sound server";
-  const ros::WallTime killed = ros::WallTime::now();
-  const bool errors = WaitFor([&] {
-    for (const std::string& link : kLinks) {
-      if (!links->ErrorSeen(link)) return false;
-    }
-    return true;
-  }, kServerDownSeconds - 0.1);
-  WaitFor([] { return false; }, kServerDownSeconds - (ros::WallTime::now() - killed).toSec());
-  ASSERT_TRUE(Air("start")) << "could not start the sound server again";
-  EXPECT_TRUE(errors) << "not every link's diagnostics said ERROR while the server was down";
+  constexpr int kRounds = 3;
+  int round = 1;
+  for (;; ++round) {
+    links->Forget();
+    const double requeued = std::max(0.0, links->Number("robot_0", "packets re-queued after device faults"));
+    for (int k = 1; k <= kPackets; ++k) links->Send(Numbered(k, round));
+    ASSERT_TRUE(WaitFor([&] { return links->Numbers("robot_1", round).size() >= 4; }, 20.0)) << links->Describe("robot_1");
+    const int rises = links->rises("robot_1");
+    ASSERT_TRUE(WaitFor([&] { return links->rises("robot_1") > rises; }, 5.0)) << "the next packet did not start";
+    ros::WallDuration(0.15).sleep();
+    ASSERT_TRUE(Air("kill")) << "could not kill the sound server";
+    const ros::WallTime killed = ros::WallTime::now();
+    const bool errors = WaitFor([&] {
+      for (const std::string& link : kLinks) {
+        if (!links->ErrorSeen(link)) return false;
+      }
+      return true;
+    }, kServerDownSeconds - 0.1);
+    WaitFor([] { return false; }, kServerDownSeconds - (ros::WallTime::now() - killed).toSec());
+    ASSERT_TRUE(Air("start")) << "could not start the sound server again";
+    EXPECT_TRUE(errors) << "not every link's diagnostics said ERROR while the server was down";
 
-  const bool all = WaitFor([&] {
+    const bool all = WaitFor([&] {
+      for (const std::string& listener : kListeners) {
+        if (static_cast<int>(links->Numbers(listener, round).size()) < kPackets) return false;
+      }
+      return true;
+    }, 60.0);
+    // Time for a packet sent twice to arrive twice, and for the diagnostics (once a second).
+    WaitFor([] { return false; }, 3.0);
     for (const std::string& listener : kListeners) {
-      if (static_cast<int>(links->Numbers(listener).size()) < kPackets) return false;
+      for (const auto& [k, times] : links->Numbers(listener, round)) {
+        EXPECT_EQ(times, 1) << listener << " heard packet " << k << " of round " << round << " that often:" << links->Describe(listener);
+      }
     }
-    return true;
-  }, 60.0);
-  // Time for a packet sent twice to arrive twice.
-  WaitFor([] { return false; }, 3.0);
-  EXPECT_TRUE(all) << "not every packet was heard";
-  for (const std::string& listener : kListeners) {
-    const std::map<int, int> numbers = links->Numbers(listener);
-    for (int k = 1; k <= kPackets; ++k) {
-      EXPECT_EQ(numbers.count(k) ? numbers.at(k) : 0, 1) << listener << " heard packet " << k << " that often:"
-                                                         << links->Describe(listener);
+    EXPECT_EQ(links->Numbers("robot_0", round).size(), 0u) << "robot_0 heard its own packets";
+    const double cut = links->Number("robot_0", "packets re-queued after device faults") - requeued;
+    if (cut >= 1.0) {
+      EXPECT_TRUE(all) << "not every packet was heard";
+      for (const std::string& listener : kListeners) {
+        const std::map<int, int> numbers = links->Numbers(listener, round);
+        for (int k = 1; k <= kPackets; ++k) EXPECT_EQ(numbers.count(k), 1u) << listener << " never heard packet " << k << links->Describe(listener);
+      }
+      break;
     }
+    std::fprintf(stderr, "nava_air_faults_rostest: round %d's kill missed robot_0's packet (nothing re-queued; %s)\n", round,
+                 all ? "every packet heard" : "a packet played whole was lost with the listeners' unread capture");
+    ASSERT_LT(round, kRounds) << "in " << kRounds << " rounds the kill never fell inside one of robot_0's packets";
   }
-  EXPECT_EQ(links->Numbers("robot_0").size(), 0u) << "robot_0 heard its own packets";
 
-  // Every link counted one failure and one reopen (diagnostics come once a second), and
+  // Every link counted one failure and one reopen a round (diagnostics come once a second), and
   // robot_0 put back the packet the failure cut (and any still in its buffer).
   EXPECT_TRUE(WaitFor([&] {
     for (const std::string& link : kLinks) {
-      if (links->Number(link, "device reopens") < 1.0) return false;
+      if (links->Number(link, "device reopens") < round) return false;
     }
     return true;
   }, 5.0));
   for (const std::string& link : kLinks) {
     EXPECT_EQ(links->Value(link, "device"), "open") << link;
-    EXPECT_EQ(links->Number(link, "device faults"), 1.0) << link;
-    EXPECT_EQ(links->Number(link, "device reopens"), 1.0) << link;
+    EXPECT_EQ(links->Number(link, "device faults"), round) << link;
+    EXPECT_EQ(links->Number(link, "device reopens"), round) << link;
     EXPECT_TRUE(links->LoggedError("/" + link + "/nava_modem", "failed")) << link << " logged no error line";
   }
-  EXPECT_GE(links->Number("robot_0", "packets re-queued after device faults"), 1.0);
   EXPECT_EQ(links->Number("robot_1", "packets re-queued after device faults"), 0.0);
 }
 

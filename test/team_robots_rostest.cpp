@@ -89,14 +89,18 @@ TEST(TeamRobots, EachRobotsLinkAndControllerRunInItsNamespace) {
   }
 }
 
-// In the topic graph, robot_k's nodes publish to and subscribe from robot_k's nodes only: on
-// real robots, where each robot's nodes share its machine, their messages need no network but
-// /rosout's (log lines to the master's machine) and what others subscribe to. (/diagnostics has
-// every robot's link as publisher and, here, no subscriber.)
-TEST(TeamRobots, NoMessageGoesFromOneRobotToAnother) {
+// One edge of the topic graph: a topic, a node publishing it and a node subscribing to it.
+struct Edge {
+  std::string topic, publisher, subscriber;
+};
+
+// The master's topic graph now, less the log and the team's packet timings for two-way
+// ranging (a side channel by design).
+std::vector<Edge> TopicEdges() {
   XmlRpc::XmlRpcValue args, result, state;
   args[0] = ros::this_node::getName();
-  ASSERT_TRUE(ros::master::execute("getSystemState", args, result, state, true));
+  std::vector<Edge> edges;
+  if (!ros::master::execute("getSystemState", args, result, state, true)) return edges;
   // state: [publishers, subscribers, services], each a list of [topic, [node, ...]]
   std::map<std::string, std::set<std::string>> ends[2];  // [publishers, subscribers]: topic -> nodes
   for (int side = 0; side < 2; ++side) {
@@ -106,20 +110,41 @@ TEST(TeamRobots, NoMessageGoesFromOneRobotToAnother) {
       }
     }
   }
-  // "/robot_1" for "/robot_1/nava_modem"; a node outside the robots stands for itself.
-  auto owner = [](const std::string& node) { return node.rfind("/robot_", 0) == 0 ? node.substr(0, node.find('/', 1)) : node; };
-  int linked = 0;
   for (const auto& [topic, subscribers] : ends[1]) {
-    // The log, and the team's packet timings for two-way ranging: a side channel by design.
     if (topic == "/rosout" || topic == "/audio/timings") continue;
     for (const std::string& sub : subscribers) {
-      for (const std::string& pub : ends[0][topic]) {
-        EXPECT_EQ(owner(pub), owner(sub)) << topic << ": " << pub << " publishes to " << sub;
-        linked += owner(pub) == owner(sub);
-      }
+      for (const std::string& pub : ends[0][topic]) edges.push_back({topic, pub, sub});
     }
   }
-  EXPECT_GE(linked, static_cast<int>(ids.size())) << "each robot's controller talks to its link";
+  return edges;
+}
+
+// "/robot_1" for "/robot_1/nava_modem"; a node outside the robots stands for itself.
+std::string Owner(const std::string& node) {
+  return node.rfind("/robot_", 0) == 0 ? node.substr(0, node.find('/', 1)) : node;
+}
+
+// In the topic graph, robot_k's nodes publish to and subscribe from robot_k's nodes only: on
+// real robots, where each robot's nodes share its machine, their messages need no network but
+// /rosout's (log lines to the master's machine) and what others subscribe to. (/diagnostics has
+// every robot's link as publisher and, here, no subscriber.) A node registers its publishers and
+// subscribers one by one after it appears, so the graph is read once every controller has
+// connected to its own link (CI once read it with one controller still registering).
+TEST(TeamRobots, NoMessageGoesFromOneRobotToAnother) {
+  std::vector<Edge> edges;
+  auto each_controller_linked = [&] {
+    edges = TopicEdges();
+    std::set<std::string> linked;  // robots whose controller and link share a topic
+    for (const Edge& e : edges) {
+      if (Owner(e.publisher) == Owner(e.subscriber) && e.publisher != e.subscriber) linked.insert(Owner(e.publisher));
+    }
+    return linked.size() >= ids.size();
+  };
+  EXPECT_TRUE(WaitFor(each_controller_linked, 30.0)) << "each robot's controller talks to its link";
+  ASSERT_FALSE(edges.empty()) << "the master's system state is empty";
+  for (const Edge& e : edges) {
+    EXPECT_EQ(Owner(e.publisher), Owner(e.subscriber)) << e.topic << ": " << e.publisher << " publishes to " << e.subscriber;
+  }
 }
 
 // The wanderers announce 'W' and their seed's low three bytes: robot_k's announcement is
