@@ -247,8 +247,13 @@ Spectrum Quotient(const Spectrum& y, const Spectrum& x, const std::vector<bool>&
 // Least squares for the response on the lags where `on_support` holds, from `h` on, over the
 // samples of the recording where `heeded` holds (a packet heard but not decoded is sound the
 // sent train cannot explain, so its samples are left out): conjugate gradients on the normal
-// equations (CGLS) with Tikhonov weight `lambda` (as in Quotient), in the band. Returns the
-// residual: the heeded samples' part of the recording, in the band, that the fit leaves.
+// equations with Tikhonov weight `lambda` (as in Quotient), in the band, preconditioned by the
+// quotient's own division (each bin of a step divided by |x|^2 + lambda, on the support). The
+// normal equations are that division but for the support and the samples left out, so the
+// preconditioned steps converge in a few iterations where the plain ones crawl along the
+// train's spectral dips: plain, 20 iterations left a warehouse's late tail (RT60 2.65 s) too
+// strong, its RT60 read 12-17 % long, 100 iterations 2-4 %. Returns the residual: the heeded
+// samples' part of the recording, in the band, that the fit leaves.
 std::vector<double> LeastSquares(std::vector<double>& h, const Spectrum& y, const Spectrum& x,
                                  const std::vector<bool>& band, const std::vector<bool>& heeded, double lambda,
                                  const std::function<bool(std::size_t)>& on_support, int iterations,
@@ -270,6 +275,13 @@ std::vector<double> LeastSquares(std::vector<double>& h, const Spectrum& y, cons
     for (std::size_t k = 0; k < n; ++k) v[k] = on_support(k) ? v[k] - mu * h[k] : 0.0;
     return v;
   };
+  const auto precondition = [&](const std::vector<double>& g) {  // g divided bin by bin, on the support
+    Spectrum f = fft.Forward(g);
+    for (std::size_t k = 0; k < f.size(); ++k) f[k] /= (band[k] ? std::norm(x[k]) : 0.0) + mu;
+    std::vector<double> v = fft.Backward(f);
+    for (std::size_t k = 0; k < n; ++k) v[k] = on_support(k) ? v[k] : 0.0;
+    return v;
+  };
   const auto dot = [](const std::vector<double>& a, const std::vector<double>& b) {
     double sum = 0.0;
     for (std::size_t k = 0; k < a.size(); ++k) sum += a[k] * b[k];
@@ -281,8 +293,8 @@ std::vector<double> LeastSquares(std::vector<double>& h, const Spectrum& y, cons
   const std::vector<double> fitted = convolve(h);
   for (std::size_t k = 0; k < n; ++k) residual[k] = heeded[k] ? residual[k] - fitted[k] : 0.0;
   std::vector<double> grad = gradient(residual);
-  std::vector<double> dir = grad;
-  double gamma = dot(grad, grad);
+  std::vector<double> dir = precondition(grad);
+  double gamma = dot(grad, dir);
   for (int it = 0; it < iterations && gamma > 0.0; ++it) {
     const std::vector<double> q = convolve(dir);
     const double curvature = dot(q, q) + mu * dot(dir, dir);  // ||x * dir||^2 + mu ||dir||^2
@@ -291,8 +303,9 @@ std::vector<double> LeastSquares(std::vector<double>& h, const Spectrum& y, cons
     for (std::size_t k = 0; k < n; ++k) h[k] += alpha * dir[k];
     for (std::size_t k = 0; k < n; ++k) residual[k] -= alpha * q[k];
     grad = gradient(residual);
-    const double next = dot(grad, grad);
-    for (std::size_t k = 0; k < n; ++k) dir[k] = grad[k] + (next / gamma) * dir[k];
+    const std::vector<double> z = precondition(grad);
+    const double next = dot(grad, z);
+    for (std::size_t k = 0; k < n; ++k) dir[k] = z[k] + (next / gamma) * dir[k];
     gamma = next;
   }
   return residual;

