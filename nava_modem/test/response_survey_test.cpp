@@ -130,14 +130,15 @@ std::vector<float> SlowingHall(unsigned seed) {
 TEST(ResponseSurveyTest, AHallWhoseDecaySlowsIsReadByItsT30) {
   // Issue 51: a warehouse (RT60 2.65 s, its decay slowing to 3 s past -35 dB) read 12-17 % long
   // from 10 packets: the least squares, unpreconditioned, stopped at 20 steps with the tail still
-  // too strong. Preconditioned by the quotient's division it converges in 10.
-  const std::vector<float> clean = PacketTrain(10, 0.5, 6);
+  // too strong. Preconditioned by the quotient's division it converges in 10. Here, from 6
+  // packets: 3.24 s read for 2.60 s before, 2.75 s now.
+  const std::vector<float> clean = PacketTrain(6, 0.5, 6);
   const std::vector<float> response = SlowingHall(11);
   const ResponseMeasures truth = MeasureResponse(response, kRate);
   ASSERT_GT(truth.rt60_s, 2.3);
   const std::vector<float> recording = Recorded(clean, response, 20.0);
   const SurveyHeard heard = FindSurveyPackets(recording, kRate);
-  ASSERT_EQ(heard.packets.size(), 10u);
+  ASSERT_EQ(heard.packets.size(), 6u);
   const SurveyResult r = SurveyResponse(recording, kRate, heard);
   EXPECT_NEAR(r.figures.rt60_s, truth.rt60_s, 0.1 * truth.rt60_s);
   EXPECT_NEAR(r.figures.drr_db, truth.drr_db, 2.0);
