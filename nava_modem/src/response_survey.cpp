@@ -275,9 +275,11 @@ std::vector<double> LeastSquares(std::vector<double>& h, const Spectrum& y, cons
     for (std::size_t k = 0; k < n; ++k) v[k] = on_support(k) ? v[k] - mu * h[k] : 0.0;
     return v;
   };
+  std::vector<double> divisor(x.size());  // the quotient's, bin by bin
+  for (std::size_t k = 0; k < x.size(); ++k) divisor[k] = (band[k] ? std::norm(x[k]) : 0.0) + mu;
   const auto precondition = [&](const std::vector<double>& g) {  // g divided bin by bin, on the support
     Spectrum f = fft.Forward(g);
-    for (std::size_t k = 0; k < f.size(); ++k) f[k] /= (band[k] ? std::norm(x[k]) : 0.0) + mu;
+    for (std::size_t k = 0; k < f.size(); ++k) f[k] /= divisor[k];
     std::vector<double> v = fft.Backward(f);
     for (std::size_t k = 0; k < n; ++k) v[k] = on_support(k) ? v[k] : 0.0;
     return v;
