@@ -98,6 +98,13 @@ ResponseFeatures MeasureFeatures(const std::vector<float>& response, double samp
   for (std::size_t k = direct_end; k < early_end; ++k) early += band[k] * band[k];
   f.direct_spread_ms = direct > 0.0 ? 1e3 * std::sqrt(moment / direct) : 0.0;
   f.early_db = Db(early / direct);
+  const std::size_t onset_end = std::min(n, peak + samples(kOnsetEndS) + 1);
+  double onset = 0.0, reverberant = 0.0;
+  for (std::size_t k = direct_end; k < n; ++k) {
+    reverberant += band[k] * band[k];
+    if (k < onset_end) onset += band[k] * band[k];
+  }
+  f.onset_db = Db(onset / reverberant);
 
   // The energy envelope over kEnvelopeS about each sample (a running sum).
   const std::size_t reach = std::max<std::size_t>(1, samples(kEnvelopeS / 2.0));

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "known_response.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/real_fft.h"
 #include "nava_modem/response_features.h"
@@ -128,6 +129,19 @@ struct Range {
   double low = 1e300, high = -1e300;
   void Add(double v) { low = std::min(low, v), high = std::max(high, v); }
 };
+
+// onset_db: the share of the reverberation within kOnsetEndS of the direct sound. A tail that
+// starts 5 ms after it and decays by 60 dB in T holds 1 - exp(-13.8 x 5 ms / T) of its energy in
+// 5-10 ms: -5.4 dB for T = 0.2 s, -14.7 dB for 2 s, whatever the DRR.
+TEST(ResponseFeaturesTest, OnsetIsTheReverberationsShareInItsFirstMilliseconds) {
+  const auto expected = [](double rt60) { return 10.0 * std::log10(1.0 - std::exp(-13.8155 * 0.005 / rt60)); };
+  for (const double rt60 : {0.2, 2.0}) {
+    for (const double drr : {-10.0, 6.0}) {
+      const ResponseFeatures f = MeasureFeatures(KnownResponse(rt60, drr, kRate, 480, 3), kRate, 2300.0, 3700.0);
+      EXPECT_NEAR(f.onset_db, expected(rt60), 1.0) << "RT60 " << rt60 << " s, DRR " << drr << " dB";
+    }
+  }
+}
 
 // What measured rooms hold and the statistical response lacks (measured_like_response.h): the
 // medians of the new responses' features lie within what the measured rooms show; the statistical

@@ -4,7 +4,8 @@
 # profile through a room where the reverberation is louder than the direct sound; a render
 # through a measured response (--rir); then the tools' answers to bad input.
 #   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH NAVA_BENCH
-# (nava_bench for its --arrival mode: room packets timed through measured responses)
+# (nava_bench for its --arrival and --likeness modes: room packets timed through measured
+# responses; measured responses beside the renderer's)
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
 tool=$1
@@ -90,8 +91,15 @@ grep -q "target: median <= 100 us and p90 <= 300 us: yes" "$out/bench" || { cat 
   >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --rooms --drier failed"; }
 grep -q "^response.wav:1 drier +30 dB  *+30.0 .* white 20 dB" "$out/bench" || { cat "$out/bench"; fail "no row made drier to +30 dB"; }
 grep -q "^response.wav:1   .* white 20 dB" "$out/bench" || { cat "$out/bench"; fail "no row as measured"; }
+# nava_bench --likeness over the same folder: a line for each ear, measured beside measured-like,
+# and the differences over the rooms.
+"$bench" --likeness --rir-dir "$out/rooms" --like-rooms 2 >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --likeness failed"; }
+grep -Eq "^response.wav:1 +[0-9.]+ +[-+][0-9.]+( +-?[0-9.]+){10}$" "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no line for response.wav:1"; }
+grep -Eq "^all +2 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no summary over both ears"; }
 tool_was=$tool
 tool=$bench
+expect_error "--likeness: expected --rir-dir DIR" --likeness
+expect_error "--like-rooms: expected a whole number from 1 to 1000, got 0" --likeness --rir-dir "$out/rooms" --like-rooms 0
 expect_error "--drier: expected ascending DRRs" --rooms --rir-dir "$out/rooms" --drier 8,4
 expect_error "--drier: there are no measured rooms" --rooms --drier 8
 expect_error "--arrival: expected --rir-dir DIR" --arrival

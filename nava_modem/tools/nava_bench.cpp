@@ -9,6 +9,7 @@
 //
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //   nava_bench --arrival --rir-dir DIR [--packets 10] [--snr 10] [--min-drr -8] [--seed 1] [--rate 48000]
+//   nava_bench --likeness --rir-dir DIR [--like-rooms 5] [--seed 1] [--rate 48000]
 //   nava_bench --link-cost [--seconds 120] [--period 6] [--runs 3] [--profile room|nava]
 //
 // The decode tables of the simulated `acoustic` channel are measured with the same receivers by
@@ -32,7 +33,9 @@
 // does it (DecodeArray): the share of right front/back bits or the median and 90th-percentile
 // bearing error, the estimator's CPU time against the decoding's, the targets, and a polar PNG.
 // With --arrival: how well room packets are timed (their first arrival) through each measured
-// room (arrival_table.h). With --link-cost: what that timing adds to a link's CPU (link_cost.h).
+// room (arrival_table.h). With --likeness: each measured room's features beside the renderer's
+// measured-like rooms at its RT60 and DRR (likeness_table.h). With --link-cost: what that timing
+// adds to a link's CPU (link_cost.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -55,6 +58,7 @@
 #include "nava_bench_support.h"
 #include "measured_rooms.h"
 #include "arrival_table.h"
+#include "likeness_table.h"
 #include "link_cost.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/measured_response.h"
@@ -685,6 +689,8 @@ int main(int argc, char** argv) {
         return DoaTable(o.doa, o.usage);
       case NavaBenchOptions::Mode::kArrival:
         return ArrivalTable(o.arrival, o.usage);
+      case NavaBenchOptions::Mode::kLikeness:
+        return LikenessTable(o.likeness, o.usage);
       case NavaBenchOptions::Mode::kLinkCost:
         return LinkCostTable(o.link_cost);
       case NavaBenchOptions::Mode::kRooms:

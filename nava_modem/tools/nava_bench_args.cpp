@@ -89,6 +89,19 @@ ArrivalRequest ParseArrival(const ToolArgs& args) {
   return r;
 }
 
+LikenessRequest ParseLikeness(const ToolArgs& args) {
+  LikenessRequest r;
+  r.rir_dir = args.String("--rir-dir", "");
+  r.rooms = static_cast<int>(args.Int("--like-rooms", r.rooms, 1, 1000));
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  // (The renderer's rooms need the band, up to 5400 Hz, under Nyquist: 11025 Hz is the lowest
+  // card rate that holds it.)
+  r.sample_rate = args.Double("--rate", r.sample_rate, 11025.0, 384000.0);
+  args.CheckAllUsed();
+  if (r.rir_dir.empty()) args.Fail("--likeness: expected --rir-dir DIR, a folder of measured impulse responses");
+  return r;
+}
+
 LinkCostRequest ParseLinkCost(const ToolArgs& args) {
   LinkCostRequest r;
   r.seconds = args.Double("--seconds", 120.0, 10.0, 3600.0);
@@ -105,14 +118,17 @@ LinkCostRequest ParseLinkCost(const ToolArgs& args) {
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--link-cost", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--link-cost", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
   if (args.Switch("--link-cost")) {
     o.mode = NavaBenchOptions::Mode::kLinkCost;
     o.link_cost = ParseLinkCost(args);
+  } else if (args.Switch("--likeness")) {
+    o.mode = NavaBenchOptions::Mode::kLikeness;
+    o.likeness = ParseLikeness(args);
   } else if (args.Switch("--arrival")) {
     o.mode = NavaBenchOptions::Mode::kArrival;
     o.arrival = ParseArrival(args);

@@ -56,6 +56,15 @@ struct ArrivalRequest {
   ModemOptions options;
 };
 
+// nava_bench --likeness --rir-dir DIR: measured rooms' features beside the renderer's
+// measured-like rooms at the same RT60 and DRR.
+struct LikenessRequest {
+  std::string rir_dir;
+  int rooms = 5;  // measured-like rooms drawn per measured one (seeds seed, seed + 1, ...)
+  unsigned seed = 1;
+  double sample_rate = 48000.0;
+};
+
 // nava_bench --link-cost: what timing packets for ranging adds to a link's CPU.
 struct LinkCostRequest {
   double seconds = 120.0;  // of audio
@@ -66,12 +75,13 @@ struct LinkCostRequest {
 };
 
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLinkCost };
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kLinkCost };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
   DoaRequest doa;
   ArrivalRequest arrival;
+  LikenessRequest likeness;
   LinkCostRequest link_cost;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };

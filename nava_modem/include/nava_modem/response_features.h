@@ -13,6 +13,9 @@ namespace nava_modem {
 // The end of the early part after the direct sound: the floor's, walls' and ceiling's first
 // reflections in a room of a few metres.
 constexpr double kEarlyEndS = 0.050;
+// The end of the reverberation's onset: what of it arrives within two or three of nava's 3.3 ms
+// bits of the direct sound, where its equaliser can still use it.
+constexpr double kOnsetEndS = 0.010;
 // Third-octave bands whose centres lie in the modems' band (630 Hz to 5 kHz): where the colouring
 // is read.
 constexpr int kColourBands = 10;
@@ -24,6 +27,11 @@ struct ResponseFeatures {
   double direct_spread_ms = 0.0;
   // Energy from kDirectHalfWidthS to kEarlyEndS after the peak over the direct sound's, dB.
   double early_db = 0.0;
+  // Energy from kDirectHalfWidthS to kOnsetEndS after the peak over all the energy after
+  // kDirectHalfWidthS, dB (at most 0): how soon the reverberation comes, whatever the DRR. A room
+  // whose reverberation builds up slowly (a hall, or a renderer's room built up over its mixing
+  // time) has little there; a small, hard room a good part.
+  double onset_db = 0.0;
   // The strongest reflection within the early part: its delay after the peak (ms) and its level
   // over the direct sound's peak level (dB), both from the 0.5 ms energy envelope.
   double strongest_early_ms = 0.0;
