@@ -48,6 +48,10 @@ struct Row {
 
 void PrintSpread(const char* label, const std::vector<const Row*>& rows) {
   std::printf("%-22s %5zu", label, rows.size());
+  if (rows.empty()) {
+    std::printf("   (no room)\n");
+    return;
+  }
   for (std::size_t k = 0; k < kFeatures.size(); ++k) {
     std::vector<double> d;
     for (const Row* r : rows) d.push_back(r->like[k] - r->measured[k]);
