@@ -49,20 +49,33 @@ double ColourOf(const std::vector<std::complex<double>>& spectrum, std::size_t n
   return std::sqrt(spread);
 }
 
+// Schroeder's backward integral of `band` from `from` on, in dB under its start; empty when
+// nothing is there.
+std::vector<double> SchroederDb(const std::vector<double>& band, std::size_t from) {
+  std::vector<double> curve(band.size() - std::min(from, band.size()));
+  double sum = 0.0;
+  for (std::size_t k = band.size(); k-- > from;) {
+    sum += band[k] * band[k];
+    curve[k - from] = sum;
+  }
+  if (!(sum > 0.0)) return {};
+  for (double& v : curve) v = Db(std::max(v / sum, 1e-300));
+  return curve;
+}
+
 // The RT60 of `response` in [lo, hi] Hz from its Schroeder curve after `peak` (T30, else T20).
 double OctaveRt60(const std::vector<float>& response, double sample_rate, std::size_t peak, double lo, double hi) {
-  const std::vector<double> band = ResponseBand(response, sample_rate, lo, hi);
-  std::vector<double> curve(band.size() - std::min(peak, band.size()));
-  double sum = 0.0;
-  for (std::size_t k = band.size(); k-- > peak;) {
-    sum += band[k] * band[k];
-    curve[k - peak] = sum;
-  }
-  if (curve.empty() || !(curve[0] > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-  const double total = curve[0];
-  for (double& v : curve) v = Db(std::max(v / total, 1e-300));
+  const std::vector<double> curve = SchroederDb(ResponseBand(response, sample_rate, lo, hi), peak);
+  if (curve.empty()) return std::numeric_limits<double>::quiet_NaN();
   const double t30 = DecayTime(curve, sample_rate, 5.0, 35.0);
   return std::isfinite(t30) ? t30 : DecayTime(curve, sample_rate, 5.0, 25.0);
+}
+
+// The early decay time (0 to -10 dB of Schroeder's curve, extended to 60 dB) of `band` from
+// `from` on; NaN when nothing is there.
+double ReverbEarlyDecay(const std::vector<double>& band, std::size_t from, double sample_rate) {
+  const std::vector<double> curve = SchroederDb(band, from);
+  return curve.empty() ? std::numeric_limits<double>::quiet_NaN() : DecayTime(curve, sample_rate, 0.0, 10.0);
 }
 
 }  // namespace
@@ -105,6 +118,7 @@ ResponseFeatures MeasureFeatures(const std::vector<float>& response, double samp
     if (k < onset_end) onset += band[k] * band[k];
   }
   f.onset_db = Db(onset / reverberant);
+  f.reverb_edt_ratio = ReverbEarlyDecay(band, direct_end, sample_rate) / f.measures.rt60_s;
 
   // The energy envelope over kEnvelopeS about each sample (a running sum).
   const std::size_t reach = std::max<std::size_t>(1, samples(kEnvelopeS / 2.0));

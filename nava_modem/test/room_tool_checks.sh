@@ -94,7 +94,7 @@ grep -q "^response.wav:1   .* white 20 dB" "$out/bench" || { cat "$out/bench"; f
 # nava_bench --likeness over the same folder: a line for each ear, measured beside measured-like,
 # and the differences over the rooms.
 "$bench" --likeness --rir-dir "$out/rooms" --like-rooms 2 >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --likeness failed"; }
-grep -Eq "^response.wav:1 +[0-9.]+ +[-+][0-9.]+( +-?[0-9.]+){10}$" "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no line for response.wav:1"; }
+grep -Eq "^response.wav:1 +[0-9.]+ +[-+][0-9.]+( +-?[0-9.]+){12}$" "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no line for response.wav:1"; }
 grep -Eq "^all +2 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no summary over both ears"; }
 tool_was=$tool
 tool=$bench

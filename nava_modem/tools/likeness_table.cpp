@@ -22,13 +22,15 @@ constexpr double kLikeDrrDb = 40.0, kLikeRt60S = 10.0;
 struct Feature {
   const char* name;
   double (*read)(const ResponseFeatures&);
+  int decimals;
 };
-const std::array<Feature, 5> kFeatures = {{
-    {"onset_db", [](const ResponseFeatures& f) { return f.onset_db; }},
-    {"early_db", [](const ResponseFeatures& f) { return f.early_db; }},
-    {"colour_db", [](const ResponseFeatures& f) { return f.colour_db; }},
-    {"|tone_ratio_db|", [](const ResponseFeatures& f) { return std::fabs(f.tone_ratio_db); }},
-    {"direct_spread_ms", [](const ResponseFeatures& f) { return f.direct_spread_ms; }},
+const std::array<Feature, 6> kFeatures = {{
+    {"onset_db", [](const ResponseFeatures& f) { return f.onset_db; }, 1},
+    {"edt_ratio", [](const ResponseFeatures& f) { return f.reverb_edt_ratio; }, 2},
+    {"early_db", [](const ResponseFeatures& f) { return f.early_db; }, 1},
+    {"colour_db", [](const ResponseFeatures& f) { return f.colour_db; }, 1},
+    {"|tone_ratio_db|", [](const ResponseFeatures& f) { return std::fabs(f.tone_ratio_db); }, 1},
+    {"direct_spread_ms", [](const ResponseFeatures& f) { return f.direct_spread_ms; }, 1},
 }};
 
 // The q-quantile of `v` (linear between order statistics); NaN for none.
@@ -55,7 +57,8 @@ void PrintSpread(const char* label, const std::vector<const Row*>& rows) {
   for (std::size_t k = 0; k < kFeatures.size(); ++k) {
     std::vector<double> d;
     for (const Row* r : rows) d.push_back(r->like[k] - r->measured[k]);
-    std::printf("   %+6.1f (%+6.1f..%+6.1f)", Quantile(d, 0.5), Quantile(d, 0.1), Quantile(d, 0.9));
+    const int p = kFeatures[k].decimals;
+    std::printf("   %+6.*f (%+6.*f..%+6.*f)", p, Quantile(d, 0.5), p, Quantile(d, 0.1), p, Quantile(d, 0.9));
   }
   std::printf("\n");
 }
@@ -66,7 +69,8 @@ int LikenessTable(const LikenessRequest& request, const multirobot_audio::tools:
   const double fs = request.sample_rate;
   const std::vector<MeasuredRoom> rooms = MeasuredRooms(request.rir_dir, usage);
   std::printf("likeness (%s): each room's features beside the median of %d measured-like rooms at its RT60 and DRR "
-              "(response_features.h; onset_db: the reverberation's share within %.0f ms of the direct sound)\n",
+              "(response_features.h; onset_db: the reverberation's share within %.0f ms of the direct sound; edt_ratio: "
+              "its early decay over the RT60)\n",
               request.rir_dir.c_str(), request.rooms, kOnsetEndS * 1e3);
   std::printf("%-44s %6s %6s", "room", "rt60_s", "drr_dB");
   for (const Feature& f : kFeatures) std::printf(" %17s", f.name);
@@ -90,7 +94,7 @@ int LikenessTable(const LikenessRequest& request, const multirobot_audio::tools:
     for (std::size_t k = 0; k < kFeatures.size(); ++k) {
       row.measured[k] = kFeatures[k].read(measured);
       row.like[k] = Quantile(drawn[k], 0.5);
-      std::printf(" %8.1f %8.1f", row.measured[k], row.like[k]);
+      std::printf(" %8.*f %8.*f", kFeatures[k].decimals, row.measured[k], kFeatures[k].decimals, row.like[k]);
     }
     std::printf("\n");
     rows.push_back(row);

@@ -32,6 +32,14 @@ struct ResponseFeatures {
   // whose reverberation builds up slowly (a hall, or a renderer's room built up over its mixing
   // time) has little there; a small, hard room a good part.
   double onset_db = 0.0;
+  // The reverberation's early decay over the RT60: the decay time read from the reverberation's
+  // own Schroeder curve (everything after kDirectHalfWidthS) between 0 and -10 dB, extended to
+  // 60 dB, over measures.rt60_s (T30). About 1 where the tail decays as one exponential (the
+  // renderers' rooms: 0.9-1.1); below 1 where it falls fast at first and slowly later, as in many
+  // measured rooms (0.6-0.7 in a lime kiln, a small TV room, a car park). It tells such rooms
+  // from the renderer's, though it predicts little of what nava decodes in them
+  // (docs/audio_link.md, calibration on measured rooms). NaN without an RT60.
+  double reverb_edt_ratio = 0.0;
   // The strongest reflection within the early part: its delay after the peak (ms) and its level
   // over the direct sound's peak level (dB), both from the 0.5 ms energy envelope.
   double strongest_early_ms = 0.0;
