@@ -96,10 +96,23 @@ grep -q "^response.wav:1   .* white 20 dB" "$out/bench" || { cat "$out/bench"; f
 "$bench" --likeness --rir-dir "$out/rooms" --like-rooms 2 >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --likeness failed"; }
 grep -Eq "^response.wav:1 +[0-9.]+ +[-+][0-9.]+( +-?[0-9.]+){12}$" "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no line for response.wav:1"; }
 grep -Eq "^all +2 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --likeness: no summary over both ears"; }
+# nava_bench --splice: the two ears are the same response, so each splice at A's energies is A
+# again (the same RT60 and DRR as a.wav), and every file is written.
+"$bench" --splice --early "$out/response.wav:1" --late "$out/response.wav:0" --at-ms 2.5,10 --out "$out/spliced" \
+  >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --splice failed"; }
+for f in a2.5_b a10_b b2.5_a b10_a; do
+  [ -s "$out/spliced/$f.wav" ] || { cat "$out/bench"; fail "nava_bench --splice wrote no $f.wav"; }
+done
+same=$(awk '$1 == "a.wav" { a = $2 " " $3 } $1 == "a10_b.wav" { b = $2 " " $3 } END { print (a == b && a != "") }' "$out/bench")
+[ "$same" = 1 ] || { cat "$out/bench"; fail "nava_bench --splice: a response spliced with itself changed its RT60 or DRR"; }
 tool_was=$tool
 tool=$bench
 expect_error "--likeness: expected --rir-dir DIR" --likeness
 expect_error "--like-rooms: expected a whole number from 1 to 1000, got 0" --likeness --rir-dir "$out/rooms" --like-rooms 0
+expect_error "--splice: expected --at-ms T" --splice --early "$out/response.wav:1" --late "$out/response.wav:0" --out "$out/spliced"
+expect_error "--at-ms: expected ascending times after the direct sound, ms separated by commas, got 10,2" --splice --early "$out/response.wav:1" --late "$out/response.wav:0" --at-ms 10,2 --out "$out/spliced"
+expect_error "--late $out/response.wav:" --splice --early "$out/response.wav:1" --late "$out/response.wav" --at-ms 10 --out "$out/spliced"
+expect_error "--early $out/missing.wav: " --splice --early "$out/missing.wav" --late "$out/response.wav:0" --at-ms 10 --out "$out/spliced"
 expect_error "--drier: expected ascending DRRs" --rooms --rir-dir "$out/rooms" --drier 8,4
 expect_error "--drier: there are no measured rooms" --rooms --drier 8
 expect_error "--arrival: expected --rir-dir DIR" --arrival

@@ -10,6 +10,7 @@
 //   nava_bench --doa [--packets 100] [--plot FILE.png] [--seed 1] [--rate 48000]
 //   nava_bench --arrival --rir-dir DIR [--packets 10] [--snr 10] [--min-drr -8] [--seed 1] [--rate 48000]
 //   nava_bench --likeness --rir-dir DIR [--like-rooms 5] [--seed 1] [--rate 48000]
+//   nava_bench --splice --early A.wav[:K] --late B.wav[:K] --at-ms T[,T...] --out DIR [--rate 48000]
 //   nava_bench --link-cost [--seconds 120] [--period 6] [--runs 3] [--profile room|nava]
 //
 // The decode tables of the simulated `acoustic` channel are measured with the same receivers by
@@ -34,8 +35,9 @@
 // bearing error, the estimator's CPU time against the decoding's, the targets, and a polar PNG.
 // With --arrival: how well room packets are timed (their first arrival) through each measured
 // room (arrival_table.h). With --likeness: each measured room's features beside the renderer's
-// measured-like rooms at its RT60 and DRR (likeness_table.h). With --link-cost: what that timing
-// adds to a link's CPU (link_cost.h).
+// measured-like rooms at its RT60 and DRR (likeness_table.h). With --splice: two responses
+// spliced at given times after their direct sounds, to decode through (response_splice.h). With
+// --link-cost: what that timing adds to a link's CPU (link_cost.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -59,6 +61,7 @@
 #include "measured_rooms.h"
 #include "arrival_table.h"
 #include "likeness_table.h"
+#include "response_splice.h"
 #include "link_cost.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/measured_response.h"
@@ -691,6 +694,8 @@ int main(int argc, char** argv) {
         return ArrivalTable(o.arrival, o.usage);
       case NavaBenchOptions::Mode::kLikeness:
         return LikenessTable(o.likeness, o.usage);
+      case NavaBenchOptions::Mode::kSplice:
+        return SpliceTable(o.splice, o.usage);
       case NavaBenchOptions::Mode::kLinkCost:
         return LinkCostTable(o.link_cost);
       case NavaBenchOptions::Mode::kRooms:

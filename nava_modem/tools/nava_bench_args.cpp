@@ -102,6 +102,20 @@ LikenessRequest ParseLikeness(const ToolArgs& args) {
   return r;
 }
 
+SpliceRequest ParseSplice(const ToolArgs& args) {
+  SpliceRequest r;
+  r.early = args.String("--early", "");
+  r.late = args.String("--late", "");
+  r.out_dir = args.String("--out", "");
+  r.sample_rate = args.Double("--rate", r.sample_rate, 11025.0, 384000.0);
+  r.at_ms = args.AscendingList("--at-ms", 0.1, 1000.0, "times after the direct sound, ms");
+  args.CheckAllUsed();
+  if (r.early.empty() || r.late.empty()) args.Fail("--splice: expected --early A.wav[:K] and --late B.wav[:K], two impulse responses");
+  if (r.at_ms.empty()) args.Fail("--splice: expected --at-ms T[,T...], where to splice (ms after the direct sound)");
+  if (r.out_dir.empty()) args.Fail("--splice: expected --out DIR for the spliced responses");
+  return r;
+}
+
 LinkCostRequest ParseLinkCost(const ToolArgs& args) {
   LinkCostRequest r;
   r.seconds = args.Double("--seconds", 120.0, 10.0, 3600.0);
@@ -118,9 +132,9 @@ LinkCostRequest ParseLinkCost(const ToolArgs& args) {
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--link-cost", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--splice", "--link-cost", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
   if (args.Switch("--link-cost")) {
@@ -129,6 +143,9 @@ NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   } else if (args.Switch("--likeness")) {
     o.mode = NavaBenchOptions::Mode::kLikeness;
     o.likeness = ParseLikeness(args);
+  } else if (args.Switch("--splice")) {
+    o.mode = NavaBenchOptions::Mode::kSplice;
+    o.splice = ParseSplice(args);
   } else if (args.Switch("--arrival")) {
     o.mode = NavaBenchOptions::Mode::kArrival;
     o.arrival = ParseArrival(args);

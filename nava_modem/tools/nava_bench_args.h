@@ -65,6 +65,15 @@ struct LikenessRequest {
   double sample_rate = 48000.0;
 };
 
+// nava_bench --splice --early A.wav[:K] --late B.wav[:K] --at-ms LIST --out DIR: two responses
+// spliced at each time after their direct sounds (response_splice.h).
+struct SpliceRequest {
+  std::string early, late;  // path[:channel]
+  std::vector<double> at_ms;
+  std::string out_dir;
+  double sample_rate = 48000.0;
+};
+
 // nava_bench --link-cost: what timing packets for ranging adds to a link's CPU.
 struct LinkCostRequest {
   double seconds = 120.0;  // of audio
@@ -75,13 +84,14 @@ struct LinkCostRequest {
 };
 
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kLinkCost };
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kSplice, kLinkCost };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
   DoaRequest doa;
   ArrivalRequest arrival;
   LikenessRequest likeness;
+  SpliceRequest splice;
   LinkCostRequest link_cost;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };
