@@ -90,10 +90,11 @@ class Links {
     return n;
   }
   int Receptions(const std::string& link) { return static_cast<int>(heard_[link].size()); }
-  // Whether `link` heard packet k of round `round` go missing to the air, long after the fault:
-  // it heard packets k-1 and k+1 (when k is not the last), the first ending after `settled`, and
-  // a garbled packet (BAD_CRC noise) between them.
+  // Whether `link` heard packet k of round `round` garbled by the air, after the fault was over:
+  // it missed k, heard packets k-1 (ending after `settled`) and k+1 (unless k is the last), and a
+  // garbled packet (BAD_CRC noise) between them (for the last, within a packet's time of k-1).
   bool GarbledLater(const std::string& link, int k, int round, const ros::Time& settled) {
+    if (Numbers(link, round).count(k)) return false;
     ros::Time before, after;
     for (const AudioReception& r : heard_[link]) {
       if (r.kind != AudioReception::PACKET || r.data.size() != 4 || r.data[0] != 0x60 || r.data[2] != round) continue;
@@ -102,8 +103,10 @@ class Links {
     }
     if (before.isZero() || before < settled || (k < kPackets && after.isZero())) return false;
     for (const AudioReception& r : heard_[link]) {
+      // (A packet and the gap after it last about 1 s: the last one's garbling ends within 2 s.)
+      const ros::Time until = after.isZero() ? before + ros::Duration(2.0) : after;
       if (r.kind == AudioReception::NOISE && r.noise == AudioReception::BAD_CRC && r.header.stamp > before &&
-          (after.isZero() || r.header.stamp < after)) {
+          r.header.stamp < until) {
         return true;
       }
     }
@@ -181,6 +184,13 @@ int NodePid(const std::string& node) {
     return -1;
   }
   return static_cast<int>(answer[2]);
+}
+
+// Each link's reopens so far (-1 before its first diagnostics).
+std::map<std::string, double> Reopens() {
+  std::map<std::string, double> out;
+  for (const std::string& link : kLinks) out[link] = links->Number(link, "device reopens");
+  return out;
 }
 
 // Runs test/nava_air.sh's control of the air: "kill" or "start".
@@ -272,11 +282,18 @@ TEST(NavaAirFaults, NoPacketIsLostOrDuplicatedWhenTheSoundServerRestarts) {
       return true;
     }, kServerDownSeconds - 0.1);
     WaitFor([] { return false; }, kServerDownSeconds - (ros::WallTime::now() - killed).toSec());
+    const std::map<std::string, double> reopens_before = Reopens();
     ASSERT_TRUE(Air("start")) << "could not start the sound server again";
-    // The links reopen within their longest wait (2 s) and send again 0.5 s later: from then on
-    // the fault is over.
-    const ros::Time settled = ros::Time::now() + ros::Duration(3.0);
     EXPECT_TRUE(errors) << "not every link's diagnostics said ERROR while the server was down";
+    // The fault is over once every link has reopened (its diagnostics, once a second, say so) and
+    // waited its 0.5 s before sending again; a packet garbled after that is the air's.
+    ASSERT_TRUE(WaitFor([&] {
+      for (const std::string& link : kLinks) {
+        if (links->Number(link, "device reopens") <= reopens_before.at(link)) return false;
+      }
+      return true;
+    }, 15.0)) << "not every link reopened";
+    const ros::Time settled = ros::Time::now() + ros::Duration(1.0);
 
     const bool all = WaitFor([&] {
       for (const std::string& listener : kListeners) {
@@ -299,12 +316,9 @@ TEST(NavaAirFaults, NoPacketIsLostOrDuplicatedWhenTheSoundServerRestarts) {
       // lost to the air, which is best effort, not to the fault: one a round is let pass, said.
       std::set<int> garbled;
       for (int k = 1; k <= kPackets; ++k) {
-        bool everywhere = true, missing = false;
-        for (const std::string& listener : kListeners) {
-          missing = missing || links->Numbers(listener, round).count(k) == 0;
-          everywhere = everywhere && links->GarbledLater(listener, k, round, settled);
-        }
-        if (missing && everywhere) garbled.insert(k);
+        bool everywhere = true;
+        for (const std::string& listener : kListeners) everywhere = everywhere && links->GarbledLater(listener, k, round, settled);
+        if (everywhere) garbled.insert(k);
       }
       EXPECT_TRUE(all || garbled.size() == 1) << "not every packet was heard";
       EXPECT_LE(garbled.size(), 1u) << "the air garbled more than one packet after the reopen";

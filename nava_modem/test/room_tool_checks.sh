@@ -112,6 +112,8 @@ expect_error "--like-rooms: expected a whole number from 1 to 1000, got 0" --lik
 expect_error "--splice: expected --at-ms T" --splice --early "$out/response.wav:1" --late "$out/response.wav:0" --out "$out/spliced"
 expect_error "--at-ms: expected ascending times after the direct sound, ms separated by commas, got 10,2" --splice --early "$out/response.wav:1" --late "$out/response.wav:0" --at-ms 10,2 --out "$out/spliced"
 expect_error "--late $out/response.wav:" --splice --early "$out/response.wav:1" --late "$out/response.wav" --at-ms 10 --out "$out/spliced"
+expect_error "--early $out/response.wav:99999999999: expected a channel from 0 to 1023" --splice --early "$out/response.wav:99999999999" --late "$out/response.wav:0" --at-ms 10 --out "$out/spliced"
+expect_error "--at-ms 900: splice at 900.* no sound in its span" --splice --early "$out/response.wav:1" --late "$out/response.wav:0" --at-ms 900 --out "$out/spliced"
 expect_error "--early $out/missing.wav: " --splice --early "$out/missing.wav" --late "$out/response.wav:0" --at-ms 10 --out "$out/spliced"
 expect_error "--drier: expected ascending DRRs" --rooms --rir-dir "$out/rooms" --drier 8,4
 expect_error "--drier: there are no measured rooms" --rooms --drier 8

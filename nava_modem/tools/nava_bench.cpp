@@ -36,7 +36,7 @@
 // With --arrival: how well room packets are timed (their first arrival) through each measured
 // room (arrival_table.h). With --likeness: each measured room's features beside the renderer's
 // measured-like rooms at its RT60 and DRR (likeness_table.h). With --splice: two responses
-// spliced at given times after their direct sounds, to decode through (response_splice.h). With
+// spliced at given times after their direct sounds, to decode through (splice_table.h). With
 // --link-cost: what that timing adds to a link's CPU (link_cost.h).
 #include <algorithm>
 #include <cmath>
@@ -61,7 +61,7 @@
 #include "measured_rooms.h"
 #include "arrival_table.h"
 #include "likeness_table.h"
-#include "response_splice.h"
+#include "splice_table.h"
 #include "link_cost.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/measured_response.h"

@@ -34,7 +34,9 @@ struct ResponseFeatures {
   double onset_db = 0.0;
   // The reverberation's early decay over the RT60: the decay time read from the reverberation's
   // own Schroeder curve (everything after kDirectHalfWidthS) between 0 and -10 dB, extended to
-  // 60 dB, over measures.rt60_s (T30). About 1 where the tail decays as one exponential (the
+  // 60 dB, over measures.rt60_s (T30, or T20). The curve is read without subtracting a noise
+  // floor (its first 10 dB stand well over any usable response's). About 1 where the tail decays
+  // as one exponential (the
   // renderers' rooms: 0.9-1.1); below 1 where it falls fast at first and slowly later, as in many
   // measured rooms (0.6-0.7 in a lime kiln, a small TV room, a car park). It tells such rooms
   // from the renderer's, though it predicts little of what nava decodes in them
