@@ -1,7 +1,9 @@
 #include "bench_support/speech.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <system_error>
 
 #include "bench_support/child_process.h"
 #include "package_data/package_data.h"
@@ -33,7 +35,13 @@ std::vector<float> SpeechFrom(const std::vector<float>& speech, std::size_t shif
 }
 
 std::string TempDir(const multirobot_audio::tools::ToolUsage& usage, const std::string& dir) {
-  if (!dir.empty()) return dir;
+  if (!dir.empty()) {
+    // Made when missing, so that the speech and the files written into it have a place.
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error || !std::filesystem::is_directory(dir)) usage.Fail("--dir " + dir + ": expected a folder that exists or can be made");
+    return dir;
+  }
   char tmpl[] = "/tmp/nava_bench.XXXXXX";
   if (!mkdtemp(tmpl)) usage.Fail("cannot make a folder in /tmp");
   return tmpl;

@@ -8,6 +8,7 @@
 #include "nava_modem/fft_plan.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/hop_contrast.h"
 #include "nava_modem/power_of_two.h"
 #include "nava_modem/room_code.h"
 #include "nava_modem/room_modulator.h"
@@ -31,6 +32,25 @@ constexpr double kAlignBefore = 0.010, kAlignAfter = 0.050, kAlignReach = 0.045;
 // detector's own threshold: the window is narrow, and the CRC judges what is decoded.
 constexpr double kSearchRatio = 4.0;
 constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
+// A lone first chirp whose partner no matched filter output marks (in a room whose reverberation
+// stands 15 dB or more over the direct sound for seconds, the second chirp's peak is one among
+// many as tall) has it looked for by the data after it: the symbols are read at trial distances
+// kScanStep apart across the clock tolerance, and the distance at which they stand out most in
+// their sub-bands (HopContrast) is decoded, lined up with the lone chirp's envelope within a step.
+// A step of 2 ms is at most 1 ms off: a symbol window 2.5 % of its length at the packet's end,
+// the highest tone 3 Hz of its 25. Below kScanContrast the best trial is noise (16 equal tones in
+// white noise give about 1.2, the best of a scan's trials up to about 1.7; packets heard at all
+// give 2.5 or more) and nothing is decoded, so that speech's lone chirps seldom add CRC trials.
+// The trials are judged first on every kScanStride-th symbol (21 of 42, spread over the packet,
+// so a wrong clock still slides off them), and the best kScanFinalists at least kScanApart from
+// each other again on all 42: about half the FFTs of judging every trial whole (speech's lone
+// chirps, one every few seconds, each cost a scan). The contrast is broad, and where the
+// reverberation rings on it has a second hump some 40 ms (a symbol) later, as high as the true
+// one (windows late by up to a symbol still hear their own tone ring): the best kScanDecoded
+// humps are decoded, best first.
+constexpr double kScanStep = 0.002, kScanApart = 0.010;
+constexpr double kScanContrast = 1.8;
+constexpr int kScanStride = 2, kScanFinalists = 3, kScanDecoded = 2;
 // A decoded packet's first arrival is looked for from kDirectBeforeStrongestS before its first
 // chirp's strongest peak (the direct sound may precede a stronger reflection) to this long after
 // it, with kFloorLeadS before that for the floor.
@@ -215,6 +235,16 @@ void RoomReceiver::ExpireChirps(std::int64_t now, std::vector<RxEvent>& events) 
         continue;
       }
     }
+    if (!h.failed_post) {
+      // No chirp stands out where its second chirp must be: the data between may still say
+      // where it lies. (Not before it: a packet's first chirp comes out of the air before the
+      // packet, not out of its own reverberant tail, and StrongestIn finds it where the second
+      // chirp stood out.)
+      if (std::optional<std::pair<RxEvent, double>> found = DecodeByData(h.peak)) {
+        Emit(std::move(found->first), found->second, events);
+        continue;
+      }
+    }
     if (h.failure) {
       events.push_back(*h.failure);
       busy_.FrameFound();
@@ -248,11 +278,11 @@ void RoomReceiver::SymbolEnergies(std::int64_t first, int length, double* energi
   }
 }
 
-std::vector<double> RoomReceiver::AlignedPosts(const ChirpPeak& pre, const ChirpPeak& post) const {
+std::vector<double> RoomReceiver::LinedUp(const ChirpPeak& anchor, double around, double reach_s, int picks) const {
   const double fs = modem_.sample_rate;
   const std::int64_t before = std::llround(kAlignBefore * fs), after = std::llround(kAlignAfter * fs);
-  const std::int64_t reach = std::llround(kAlignReach * fs);
-  const std::int64_t p = std::llround(pre.sample), q = std::llround(post.sample);
+  const std::int64_t reach = std::max<std::int64_t>(1, std::llround(reach_s * fs));
+  const std::int64_t p = std::llround(anchor.sample), q = std::llround(around);
   std::vector<double> a(static_cast<std::size_t>(before + after));
   for (std::int64_t i = -before; i < after; ++i) a[static_cast<std::size_t>(i + before)] = std::sqrt(detector_.Envelope(p + i));
   std::vector<double> b(static_cast<std::size_t>(before + after + 2 * reach));
@@ -265,11 +295,11 @@ std::vector<double> RoomReceiver::AlignedPosts(const ChirpPeak& pre, const Chirp
   }
   // The best lag and the best one at least a millisecond from it (a reflection in one chirp
   // lined up with the direct sound in the other scores nearly as well), each to a fraction of
-  // a sample; then the peaks' own distance.
+  // a sample.
   const std::int64_t apart = std::llround(0.001 * fs);
   std::vector<double> out;
   std::size_t first = score.size();
-  for (int pick = 0; pick < 2; ++pick) {
+  for (int pick = 0; pick < picks; ++pick) {
     std::size_t best = score.size();
     for (std::size_t lag = 1; lag + 1 < score.size(); ++lag) {
       const bool local = score[lag] >= score[lag - 1] && score[lag] >= score[lag + 1];
@@ -282,11 +312,66 @@ std::vector<double> RoomReceiver::AlignedPosts(const ChirpPeak& pre, const Chirp
     const double l = score[best - 1], c = score[best], r = score[best + 1];
     const double denom = l - 2.0 * c + r;
     if (denom < 0.0) refined += std::clamp(0.5 * (l - r) / denom, -0.5, 0.5);
-    // The pre chirp's fractional part carries over: the lag is between whole samples.
-    out.push_back(pre.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach));
+    // The anchor's fractional part carries over: the lag is between whole samples.
+    out.push_back(anchor.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach));
   }
+  return out;
+}
+
+std::vector<double> RoomReceiver::AlignedPosts(const ChirpPeak& pre, const ChirpPeak& post) const {
+  std::vector<double> out = LinedUp(pre, post.sample, kAlignReach, 2);
   out.push_back(post.sample);
   return out;
+}
+
+std::optional<std::pair<RxEvent, double>> RoomReceiver::DecodeByData(const ChirpPeak& pre) {
+  const double fs = modem_.sample_rate;
+  const double shortest = packet_length_ * (1.0 - options_.max_rate_error);
+  const double longest = packet_length_ * (1.0 + options_.max_rate_error);
+  const double step = kScanStep * fs;
+  // Every trial's samples must still be in the history, after the last packet decoded, and heard.
+  const double oldest = std::max({0.0, decoded_until_, static_cast<double>(n_) - static_cast<double>(history_.size()) + 1.0});
+  if (pre.sample < oldest) return std::nullopt;
+  std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins);
+  std::vector<std::pair<double, double>> trials;  // (contrast on every kScanStride-th symbol, distance)
+  for (double d = shortest; d <= longest; d += step) {
+    if (pre.sample + d + static_cast<double>(detector_.length()) > static_cast<double>(n_)) continue;
+    ReadSymbols(pre.sample, d / packet_length_, energy, kScanStride);
+    trials.emplace_back(HopContrast(energy, kScanStride), d);
+  }
+  std::sort(trials.rbegin(), trials.rend());
+  std::vector<std::pair<double, double>> finalists;  // (contrast on all symbols, distance)
+  for (const auto& [rough, d] : trials) {
+    if (finalists.size() == static_cast<std::size_t>(kScanFinalists)) break;
+    const bool apart = std::none_of(finalists.begin(), finalists.end(), [&](const auto& f) { return std::abs(f.second - d) < kScanApart * fs; });
+    if (!apart) continue;
+    ReadSymbols(pre.sample, d / packet_length_, energy, 1);
+    finalists.emplace_back(HopContrast(energy), d);
+  }
+  std::sort(finalists.rbegin(), finalists.rend());
+  for (std::size_t k = 0; k < finalists.size() && k < static_cast<std::size_t>(kScanDecoded); ++k) {
+    if (finalists[k].first < kScanContrast) break;
+    const double around = pre.sample + finalists[k].second;
+    std::vector<double> tries = LinedUp(pre, around, kScanStep, 1);
+    tries.push_back(around);
+    for (double at : tries) {
+      const ChirpPeak post{at, 0.0, detector_.Envelope(std::llround(at))};
+      // Timed by the first chirp alone: the second lies where the data put it, to a few
+      // milliseconds, and is not heard above the room.
+      RxEvent ev = DecodeWith(pre, post, at, false);
+      if (ev.kind == RxEvent::Kind::kPacket) return std::make_pair(std::move(ev), at);
+    }
+  }
+  return std::nullopt;
+}
+
+void RoomReceiver::ReadSymbols(double pre, double stretch, std::vector<double>& energy, int stride) {
+  const double fs = modem_.sample_rate;
+  const int length = static_cast<int>(std::lround(kSymbolSeconds * fs * stretch));
+  for (int s = 0; s < kSymbols; s += stride) {
+    const std::int64_t first = std::llround(pre + (kDataStart + s * kSymbolSeconds) * fs * stretch);
+    SymbolEnergies(first, length, &energy[static_cast<std::size_t>(s) * kBins]);
+  }
 }
 
 RxEvent RoomReceiver::Decode(const ChirpPeak& pre, const ChirpPeak& post) {
@@ -299,7 +384,7 @@ RxEvent RoomReceiver::Decode(const ChirpPeak& pre, const ChirpPeak& post) {
   return *failed;
 }
 
-RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, double aligned_post) {
+RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, double aligned_post, bool post_heard) {
   const double fs = modem_.sample_rate;
   // The sender's durations over ours: symbol windows are this much longer, tones this much lower.
   const double stretch = (aligned_post - pre.sample) / packet_length_;
@@ -312,12 +397,8 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
     ev.level_db = 10.0 * std::log10(pre.power + 1e-20);
     return ev;
   }
-  const int length = static_cast<int>(std::lround(kSymbolSeconds * fs * stretch));
   std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins);
-  for (int s = 0; s < kSymbols; ++s) {
-    const std::int64_t first = std::llround(pre.sample + (kDataStart + s * kSymbolSeconds) * fs * stretch);
-    SymbolEnergies(first, length, &energy[static_cast<std::size_t>(s) * kBins]);
-  }
+  ReadSymbols(pre.sample, stretch, energy, 1);
   auto at = [&](int s, int b) -> double& { return energy[static_cast<std::size_t>(s) * kBins + b]; };
   auto active = [](int s, int b) { return b / kTonesPerBand == Band(s); };
 
@@ -372,7 +453,7 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   if (CrcMatches(frame, modem_.crc)) {
     ev.kind = RxEvent::Kind::kPacket;
     ev.data.assign(frame.begin() + 1, frame.begin() + 1 + kDataBytes);
-    if (options_.time_arrivals) ev.arrival = Arrival(pre.sample, aligned_post);
+    if (options_.time_arrivals) ev.arrival = Arrival(pre.sample, post_heard ? std::optional<double>(aligned_post) : std::nullopt);
   } else {
     ev.kind = RxEvent::Kind::kNoise;
     ev.noise = RxEvent::Noise::kBadCrc;
@@ -380,7 +461,7 @@ RxEvent RoomReceiver::DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, do
   return ev;
 }
 
-double RoomReceiver::Arrival(double pre, double post) {
+double RoomReceiver::Arrival(double pre, std::optional<double> post) {
   const double fs = modem_.sample_rate;
   const std::size_t count = arrival_timer_.count();
   // Each chirp's window, from kArrivalBefore before it (its samples, and where its chirp lies in
@@ -389,8 +470,9 @@ double RoomReceiver::Arrival(double pre, double post) {
   std::array<std::vector<float>, 2> heard;
   std::array<double, 2> from{}, at{};
   std::array<std::size_t, 2> lead{};
-  const std::array<double, 2> chirps = {pre, post};
-  for (std::size_t w = 0; w < 2; ++w) {
+  const std::array<double, 2> chirps = {pre, post.value_or(0.0)};
+  const std::size_t windows = post ? 2 : 1;
+  for (std::size_t w = 0; w < windows; ++w) {
     const double start = std::floor(chirps[w] - kArrivalBefore * fs);
     const std::int64_t first = std::max<std::int64_t>(0, static_cast<std::int64_t>(start));
     heard[w].resize(count);
@@ -406,6 +488,7 @@ double RoomReceiver::Arrival(double pre, double post) {
     const double left = std::round(kFloorLeadS * fs - (from[w] - start));
     lead[w] = left >= 0.25 * kFloorLeadS * fs ? static_cast<std::size_t>(left) : 0;
   }
+  if (!post) return from[0] / fs + arrival_timer_.Together({{heard[0].data(), 0.0, lead[0]}});
   return from[0] / fs + arrival_timer_.Together({{heard[0].data(), 0.0, lead[0]}, {heard[1].data(), at[1] - at[0], lead[1]}});
 }
 

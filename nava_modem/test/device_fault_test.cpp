@@ -165,8 +165,10 @@ TEST(DeviceFault, ReopensOnTheBackOffScheduleAndSendsOn) {
 }
 
 // What the link had heard when its device failed is decoded to its end: a packet that had just
-// ended is reported once (the room receiver only reports a third of a second late), a packet
-// cut short is not reported as a packet, and one heard after the reopen is.
+// ended is reported once (the room receiver only reports a third of a second late), and one
+// heard after the reopen is. A packet cut halfway is not reported by `nava`; `room` reports it,
+// once and right: its first chirp was heard, the data search (DecodeByData) places the symbols
+// after it, and its rate-1/3 code carries the payload in the half it heard.
 // What a link hears: packets 7, 8 and 9 with 0.5 s of silence before each, 4 s after, and two
 // points to fail at: 10 ms after 7 ends, and halfway through 8.
 struct ThreeHeard {
@@ -225,7 +227,11 @@ TEST(DeviceFault, WhatWasHeardBeforeAFailureIsStillReported) {
     const ThreeHeard h = ThreePackets(*MakeProfile(profile, o.modem));
     const Heard heard = HearThrough(o, h.input, {h.fail_1, h.fail_2});
     EXPECT_EQ(heard.faults, 2u);
-    EXPECT_EQ(heard.packets, (std::map<int, int>{{7, 1}, {9, 1}}));
+    if (profile == Profile::kNava) {
+      EXPECT_EQ(heard.packets, (std::map<int, int>{{7, 1}, {9, 1}}));
+    } else {
+      EXPECT_EQ(heard.packets, (std::map<int, int>{{7, 1}, {8, 1}, {9, 1}}));
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "nava_modem/frame.h"
+#include "nava_modem/hop_contrast.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_code.h"
@@ -139,6 +140,79 @@ TEST(RoomProfile, DecodesInReverberantRooms) {
   }
   std::printf("room profile in reverberant rooms: %d of %d packets\n", decoded, sent);
   EXPECT_GE(decoded, sent - 1);  // 24 of 24 when written
+}
+
+// A packet whose second chirp never stands out (in a room whose reverberation stands 15-20 dB
+// over the direct sound for seconds, its matched-filter peak is one among many as tall) is
+// found by its data: the receiver reads the symbols at trial clocks across +-3.5 % and decodes
+// where they stand out most in their sub-bands. Before that, each of these was a lone chirp
+// (ONE_BYTE) and nothing was decoded.
+TEST(RoomProfile, FindsAPacketWhoseSecondChirpIsLostByItsData) {
+  ModemOptions o;
+  o.sample_rate = 48000.0;
+  const auto profile = MakeProfile(Profile::kRoom, o);
+  const Payloads payloads = RandomPayloads(4, 31);
+  const std::size_t chirp = static_cast<std::size_t>(room_phy::kChirpSeconds * o.sample_rate);
+  for (double clock : {0.0, 0.02, -0.03}) {
+    std::vector<float> audio = test_signals::Train(payloads, static_cast<std::size_t>(1.0 * o.sample_rate), [&](const auto& p) {
+      std::vector<float> burst = profile->ModulatePacket(p);
+      std::fill(burst.end() - static_cast<std::ptrdiff_t>(chirp), burst.end(), 0.0f);
+      return burst;
+    });
+    if (clock != 0.0) audio = ClockOffset(audio, clock);
+    test_signals::AddNoise(audio, 0.1, 10.0, o.sample_rate, 5, 600.0, 5400.0);
+    const auto events = Hear(*profile, audio);
+    EXPECT_EQ(PacketsOf(events), payloads) << "clock " << clock;
+    for (const RxEvent& e : events) {
+      // The clock as far as the data places the second chirp: within a few milliseconds of 1.8 s.
+      if (e.kind == RxEvent::Kind::kPacket) {
+        EXPECT_NEAR(e.rate_error, clock, 0.003) << "clock " << clock;
+      }
+    }
+  }
+}
+
+// A lone chirp in noise (a knock, a word that passed for one) is reported as ONE_BYTE: the data
+// search finds no symbols standing out after it, and decodes nothing.
+TEST(RoomProfile, ALoneChirpInNoiseIsNoPacket) {
+  ModemOptions o;
+  o.sample_rate = 48000.0;
+  const auto profile = MakeProfile(Profile::kRoom, o);
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::vector<float> audio(static_cast<std::size_t>(3.0 * o.sample_rate), 0.0f);
+    const std::vector<float> chirp = room_phy::Chirp(o.sample_rate);
+    std::transform(chirp.begin(), chirp.end(), audio.begin() + static_cast<std::ptrdiff_t>(audio.size() / 3), audio.begin() + static_cast<std::ptrdiff_t>(audio.size() / 3),
+                   [](float c, float a) { return a + 0.3f * c; });
+    test_signals::AddNoise(audio, 0.045, 10.0, o.sample_rate, seed, 600.0, 5400.0);
+    const auto events = Hear(*profile, audio);
+    EXPECT_TRUE(PacketsOf(events).empty()) << "seed " << seed;
+    ASSERT_EQ(events.size(), 1u) << "seed " << seed;
+    EXPECT_EQ(events[0].noise, RxEvent::Noise::kOneByte);
+  }
+}
+
+TEST(HopContrast, ScoresSymbolsThatStandOutInTheirSubBands) {
+  using namespace room_phy;
+  std::vector<double> flat(static_cast<std::size_t>(kSymbols) * kBins, 1.0);
+  EXPECT_NEAR(HopContrast(flat), 0.0, 1e-12);
+  std::vector<double> sent = flat;
+  for (int s = 0; s < kSymbols; ++s) sent[static_cast<std::size_t>(s) * kBins + Bin(s, s % kTonesPerBand) - kLowestBin] = 100.0;
+  EXPECT_NEAR(HopContrast(sent), std::log(100.0), 1e-9);
+  // With a stride only the symbols it reaches count: a tone in every third symbol alone.
+  std::vector<double> thirds = flat;
+  for (int s = 0; s < kSymbols; s += 3) thirds[static_cast<std::size_t>(s) * kBins + Bin(s, 0) - kLowestBin] = 100.0;
+  EXPECT_NEAR(HopContrast(thirds, 3), std::log(100.0), 1e-9);
+  EXPECT_NEAR(HopContrast(thirds), std::log(100.0) / 3.0, 1e-9);
+  // A tone outside the symbol's own sub-band counts for nothing.
+  std::vector<double> elsewhere = flat;
+  for (int s = 0; s < kSymbols; ++s) elsewhere[static_cast<std::size_t>(s) * kBins + (Bin(s, 0) - kLowestBin + kTonesPerBand) % kBins] = 100.0;
+  EXPECT_NEAR(HopContrast(elsewhere), 0.0, 1e-12);
+  try {
+    HopContrast(std::vector<double>(10, 1.0));
+    FAIL() << "a wrong size was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("10 tone energies, expected 8064"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RoomProfile, RefusesARateThatCannotCarryItsBand) {

@@ -117,6 +117,12 @@ expect_error "--at-ms 900: splice at 900.* no sound in its span" --splice --earl
 expect_error "--early $out/missing.wav: " --splice --early "$out/missing.wav" --late "$out/response.wav:0" --at-ms 10 --out "$out/spliced"
 expect_error "--drier: expected ascending DRRs" --rooms --rir-dir "$out/rooms" --drier 8,4
 expect_error "--drier: there are no measured rooms" --rooms --drier 8
+expect_error "--curve-rt60: expected ascending reverberation times" --rooms --curve-rt60 1,0.5
+expect_error "--curve-drr-min: expected a number from -39" --rooms --curve-drr-min -50
+expect_error "--response dry: expected statistical or measured-like" --rooms --response dry
+expect_error "--response measured-like: expected --rate above 10800 Hz" --rooms --response measured-like --rate 10000
+expect_error "--curve-snr: there is no delivery curve with --measured-only" --rooms --rir-dir "$out/rooms" --measured-only --curve-snr 20
+expect_error "--dir /proc/no_such_folder: expected a folder that exists or can be made" --rooms --dir /proc/no_such_folder
 expect_error "--arrival: expected --rir-dir DIR" --arrival
 mkdir -p "$out/nothing_here"
 expect_error "--rir-dir $out/nothing_here: no audio files" --arrival --rir-dir "$out/nothing_here"

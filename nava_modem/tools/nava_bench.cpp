@@ -318,41 +318,47 @@ int RoomsTable(const RoomsRequest& request, const ToolUsage& usage) {
   if (!request.rir_dir.empty()) MeasuredRoomsTable(request, usage, dir, speech);
 
   if (plot_packets == 0) return 0;
-  // Delivery against DRR for three reverberation times.
+  // Delivery against DRR for each reverberation time of the curve.
   LineChart chart;
   chart.title = "Packets decoded against direct-to-reverberant ratio";
   chart.x_label = "DRR (dB)";
   chart.y_label = "decoded (%)";
-  const double rt60s[3] = {0.3, 0.6, 1.0};
-  std::map<Profile, CleanSignal> few;
-  for (Profile p : profiles) {
-    std::mt19937 rng(seed + 1);
-    few[p] = RandomPackets(*MakeProfile(p, options), plot_packets, 0.6, 0.4, rng);
-  }
-  std::printf("delivery against DRR (%d packets per point):\n%-8s %-6s", plot_packets, "rt60 s", "drr dB");
+  std::printf("delivery against DRR (%d packets per point, %s rooms, white noise SNR %g dB):\n%-8s %-6s", plot_packets,
+              RoomModelName(request.curve_model), request.curve_snr_db, "rt60 s", "drr dB");
   std::printf("%10s%10s%10s\n", has_nava ? "nava" : "", has_nava && !decoders.minimodem.empty() ? "minimodem" : "", has_room ? "room" : "");
-  for (int r = 0; r < 3; ++r) {
+  const std::vector<double>& rt60s = request.curve_rt60;
+  for (int r = 0; r < static_cast<int>(rt60s.size()); ++r) {
+    // The same packets at every reverberation time, each sent once the last one's reverberation
+    // has fallen by 60 dB (at least 0.6 s after it, as the table's rows), as a sender that
+    // waits for quiet air would: the curve is about one packet in a room, not about a tail
+    // running into the next packet.
+    std::map<Profile, CleanSignal> few;
+    for (Profile p : profiles) {
+      std::mt19937 rng(seed + 1);
+      few[p] = RandomPackets(*MakeProfile(p, options), plot_packets, std::max(0.6, rt60s[r]), 0.4, rng);
+    }
     LineSeries series[3];
     for (int d = 0; d < 3; ++d) {
       series[d].colour = r;
       series[d].style = d == 2 ? LineSeries::Style::kSolid : d == 0 ? LineSeries::Style::kDashed : LineSeries::Style::kDotted;
       char label[64];
-      std::snprintf(label, sizeof label, "%s, rt60 %.1f s", d == 0 ? "nava" : d == 1 ? "minimodem" : "room", rt60s[r]);
+      std::snprintf(label, sizeof label, "%s, rt60 %g s", d == 0 ? "nava" : d == 1 ? "minimodem" : "room", rt60s[r]);
       series[d].label = label;
     }
-    for (int drr = 12; drr >= -15; drr -= 3) {
+    for (int drr = 12; drr >= request.curve_drr_min; drr -= 3) {
       RoomOptions room;
       room.rt60 = rt60s[r];
       room.drr_db = drr;
+      room.model = request.curve_model;
       room.noise = RoomOptions::Noise::kWhite;
-      room.snr_db = 40.0;
+      room.snr_db = request.curve_snr_db;
       room.seed = seed * 7919u + static_cast<unsigned>(r * 100 + drr + 50);
       RoomRow row;
       char name[64];
-      std::snprintf(name, sizeof name, "rt60_%.1f_drr_%d", rt60s[r], drr);
+      std::snprintf(name, sizeof name, "rt60_%g_drr_%d", rt60s[r], drr);
       for (Profile p : profiles) measure(p, few[p], room, false, name, row);
       const Decoded* ds[3] = {&row.nava, &row.minimodem, &row.room};
-      std::printf("%-8.1f %-6d", rt60s[r], drr);
+      std::printf("%-8g %-6d", rt60s[r], drr);
       for (int d = 0; d < 3; ++d) {
         if (!ds[d]->ran) {
           std::printf("%10s", "");

@@ -42,8 +42,27 @@ RoomsRequest ParseRooms(const ToolArgs& args) {
   r.rir_packets = static_cast<int>(args.Int("--rir-packets", 20, 1, 100000));
   r.measured_only = args.Switch("--measured-only");
   r.drier = args.AscendingList("--drier", -20.0, 40.0, "DRRs from -20 to 40 (dB)");
+  const std::vector<double> curve_rt60 = args.AscendingList("--curve-rt60", 0.05, 10.0, "reverberation times from 0.05 to 10 (s)");
+  if (!curve_rt60.empty()) r.curve_rt60 = curve_rt60;
+  r.curve_drr_min = args.Double("--curve-drr-min", r.curve_drr_min, -39.0, 12.0);
+  r.curve_snr_db = args.Double("--curve-snr", r.curve_snr_db, -60.0, 100.0);
+  const std::string model = args.String("--response", RoomModelName(r.curve_model));
+  if (const auto parsed = ParseRoomModel(model)) {
+    r.curve_model = *parsed;
+  } else {
+    args.Fail("--response " + model + ": expected " + kRoomModelNames);
+  }
   r.options = ModemArgs(args);
+  if (r.curve_model == RoomOptions::Model::kMeasuredLike && r.options.sample_rate <= 10800.0) {
+    args.Fail("--response measured-like: expected --rate above 10800 Hz (its responses reach 5400 Hz), got " +
+              std::to_string(r.options.sample_rate));
+  }
   args.CheckAllUsed();
+  if (r.measured_only || r.plot_packets == 0) {
+    for (const char* flag : {"--curve-rt60", "--curve-drr-min", "--curve-snr", "--response"}) {
+      if (args.Switch(flag)) args.Fail(std::string(flag) + ": there is no delivery curve with --measured-only or --plot-packets 0");
+    }
+  }
   if (r.rir_dir.empty()) {
     for (const char* flag : {"--rir-packets", "--measured-only", "--drier"}) {
       if (args.Switch(flag)) {  // given at all
@@ -132,7 +151,7 @@ LinkCostRequest ParseLinkCost(const ToolArgs& args) {
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] [--curve-rt60 0.3,0.6,1] [--curve-drr-min -15] [--curve-snr 40] [--response statistical|measured-like] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
   const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--splice", "--link-cost", "--measured-only"});
   NavaBenchOptions o;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "modem_args.h"
+#include "nava_modem/room_channel.h"
 
 namespace nava_modem::tools {
 
@@ -28,6 +29,11 @@ struct RoomsRequest {
   int rir_packets = 20;      // per measured room and condition
   bool measured_only = false;  // --measured-only: no rendered rows, no plot
   std::vector<double> drier;   // --drier: DRRs (dB) each measured room is also made drier to
+  // The delivery-against-DRR curve: its reverberation times (--curve-rt60), its DRRs from +12 dB
+  // down to --curve-drr-min in steps of 3, its white noise (--curve-snr) and room model (--response).
+  std::vector<double> curve_rt60 = {0.3, 0.6, 1.0};
+  double curve_drr_min = -15.0, curve_snr_db = 40.0;
+  RoomOptions::Model curve_model = RoomOptions::Model::kStatistical;
   unsigned seed = 1;
   std::string dir, minimodem, plot;  // dir "" for a new folder; minimodem "" for not run; plot "" for DIR/delivery_vs_drr.png
   std::vector<Profile> profiles;

@@ -19,8 +19,8 @@ std::string MakeSpeech(const std::string& dir, unsigned seed);
 // The speech from sample `shift` (modulo its length) on, wrapping round to its start.
 std::vector<float> SpeechFrom(const std::vector<float>& speech, std::size_t shift);
 
-// The folder for a bench's files: `dir` when given, else a new one in /tmp (refused through
-// `usage` when it cannot be made).
+// The folder for a bench's files: `dir` when given (made if missing), else a new one in /tmp
+// (refused through `usage`, naming --dir, when it cannot be made).
 std::string TempDir(const multirobot_audio::tools::ToolUsage& usage, const std::string& dir);
 
 }  // namespace bench_support

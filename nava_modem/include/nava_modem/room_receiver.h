@@ -5,6 +5,8 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "nava_modem/band_level.h"
@@ -56,19 +58,33 @@ class RoomReceiver : public PacketReceiver {
   void ExpireChirps(std::int64_t now, std::vector<RxEvent>& events);
   // Decodes the packet between two chirps, trying each of AlignedPosts in turn.
   RxEvent Decode(const ChirpPeak& pre, const ChirpPeak& post);
-  RxEvent DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, double aligned_post);
+  // `post_heard`: the second chirp was heard where aligned_post puts it, and times the arrival
+  // with the first (else the first alone does).
+  RxEvent DecodeWith(const ChirpPeak& pre, const ChirpPeak& post, double aligned_post, bool post_heard = true);
   // Where the second chirp starts, to a fraction of a sample, at the lags that best line up the
   // matched filter's envelope around the two peaks (the best and the runner-up), then at the
   // peaks' own distance: in a reverberant room the strongest peak can be the direct sound in
   // one chirp and a reflection in the other, but the room (and so the envelope's pattern of
   // direct sound and reflections) is the same for both.
   std::vector<double> AlignedPosts(const ChirpPeak& pre, const ChirpPeak& post) const;
+  // Where a chirp lies near `around` (samples), by lining up `anchor`'s matched-filter envelope
+  // (its direct sound and reflections) with the envelope there, at lags up to `reach_s` either
+  // way: the best lag, then (picks 2) the best one at least a millisecond from it.
+  std::vector<double> LinedUp(const ChirpPeak& anchor, double around, double reach_s, int picks) const;
+  // A lone first chirp's partner found by the data after it (kScanStep, HopContrast in the
+  // .cpp): the packet and where its second chirp starts, or nothing.
+  std::optional<std::pair<RxEvent, double>> DecodeByData(const ChirpPeak& pre);
+  // The tone energies of the 42 symbol windows of a packet whose first chirp starts at `pre`
+  // (samples), sent by a clock whose durations are `stretch` times ours (kSymbols x kBins); with
+  // `stride` k only every k-th symbol's row from the first (the others are left as they were).
+  void ReadSymbols(double pre, double stretch, std::vector<double>& energy, int stride);
   // The matched filter's strongest output between two sample positions, as a chirp, if it
   // stands out from the output before them (see kSearchRatio).
   std::optional<ChirpPeak> StrongestIn(double from, double to) const;
   // When the packet whose chirps begin at `pre` and `post` (samples, as the decode put them)
-  // first arrived (RxEvent::arrival): both chirps' responses together.
-  double Arrival(double pre, double post);
+  // first arrived (RxEvent::arrival): both chirps' responses together, or the first's alone
+  // without `post`.
+  double Arrival(double pre, std::optional<double> post);
   // Energy of tone bins kLowestBin.. of the window of `length` samples from `first`.
   void SymbolEnergies(std::int64_t first, int length, double* energies);
   // The largest clock error a decode accepts: the pairing's, and the alignment's reach.
