@@ -15,7 +15,8 @@ double HopContrast(const std::vector<double>& energy, int stride) {
   const std::size_t expected = static_cast<std::size_t>(kSymbols) * kBins;
   if (energy.size() != expected) {
     throw std::invalid_argument("HopContrast: " + std::to_string(energy.size()) + " tone energies, expected " +
-                                std::to_string(expected) + " (42 symbols of 192 tones)");
+                                std::to_string(expected) + " (" + std::to_string(kSymbols) + " symbols of " +
+                                std::to_string(kBins) + " tones)");
   }
   if (stride < 1) throw std::invalid_argument("HopContrast: stride " + std::to_string(stride) + ", expected 1 or more");
   double sum = 0.0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "nava_modem/fft_plan.h"
@@ -39,8 +40,9 @@ constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
 // their sub-bands (HopContrast) is decoded, lined up with the lone chirp's envelope within a step.
 // A step of 2 ms is at most 1 ms off: a symbol window 2.5 % of its length at the packet's end,
 // the highest tone 3 Hz of its 25. Below kScanContrast the best trial is noise (16 equal tones in
-// white noise give about 1.2, the best of a scan's trials up to about 1.7; packets heard at all
-// give 2.5 or more) and nothing is decoded, so that speech's lone chirps seldom add CRC trials.
+// white noise give about 1.4 a trial, the best of a scan's up to about 1.7; packets heard at all
+// give 2.5 or more) and nothing is decoded. Speech is tonal: most of its lone chirps pass, and
+// each adds up to 2 * kScanDecoded CRC trials.
 // The trials are judged first on every kScanStride-th symbol (21 of 42, spread over the packet,
 // so a wrong clock still slides off them), and the best kScanFinalists at least kScanApart from
 // each other again on all 42: about half the FFTs of judging every trial whole (speech's lone
@@ -333,25 +335,35 @@ std::optional<std::pair<RxEvent, double>> RoomReceiver::DecodeByData(const Chirp
   const double oldest = std::max({0.0, decoded_until_, static_cast<double>(n_) - static_cast<double>(history_.size()) + 1.0});
   if (pre.sample < oldest) return std::nullopt;
   std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins);
-  std::vector<std::pair<double, double>> trials;  // (contrast on every kScanStride-th symbol, distance)
-  for (double d = shortest; d <= longest; d += step) {
+  struct Trial {
+    double contrast, distance;
+    int index;  // of the trial, kScanStep apart
+    bool operator>(const Trial& o) const { return contrast > o.contrast; }
+  };
+  const int apart_steps = static_cast<int>(std::lround(kScanApart / kScanStep));
+  std::vector<Trial> trials;  // contrast on every kScanStride-th symbol
+  int index = 0;
+  for (double d = shortest; d <= longest; d += step, ++index) {
     if (pre.sample + d + static_cast<double>(detector_.length()) > static_cast<double>(n_)) continue;
     ReadSymbols(pre.sample, d / packet_length_, energy, kScanStride);
-    trials.emplace_back(HopContrast(energy, kScanStride), d);
+    const double contrast = HopContrast(energy, kScanStride);
+    // (Audio that is not finite scores NaN, which no ordering can sort.)
+    if (std::isfinite(contrast)) trials.push_back({contrast, d, index});
   }
-  std::sort(trials.rbegin(), trials.rend());
-  std::vector<std::pair<double, double>> finalists;  // (contrast on all symbols, distance)
-  for (const auto& [rough, d] : trials) {
+  std::stable_sort(trials.begin(), trials.end(), std::greater<Trial>());
+  std::vector<Trial> finalists;  // contrast on all symbols
+  for (const Trial& t : trials) {
     if (finalists.size() == static_cast<std::size_t>(kScanFinalists)) break;
-    const bool apart = std::none_of(finalists.begin(), finalists.end(), [&](const auto& f) { return std::abs(f.second - d) < kScanApart * fs; });
+    const bool apart = std::none_of(finalists.begin(), finalists.end(), [&](const Trial& f) { return std::abs(f.index - t.index) < apart_steps; });
     if (!apart) continue;
-    ReadSymbols(pre.sample, d / packet_length_, energy, 1);
-    finalists.emplace_back(HopContrast(energy), d);
+    ReadSymbols(pre.sample, t.distance / packet_length_, energy, 1);
+    const double contrast = HopContrast(energy);
+    if (std::isfinite(contrast)) finalists.push_back({contrast, t.distance, t.index});
   }
-  std::sort(finalists.rbegin(), finalists.rend());
+  std::stable_sort(finalists.begin(), finalists.end(), std::greater<Trial>());
   for (std::size_t k = 0; k < finalists.size() && k < static_cast<std::size_t>(kScanDecoded); ++k) {
-    if (finalists[k].first < kScanContrast) break;
-    const double around = pre.sample + finalists[k].second;
+    if (finalists[k].contrast < kScanContrast) break;
+    const double around = pre.sample + finalists[k].distance;
     std::vector<double> tries = LinedUp(pre, around, kScanStep, 1);
     tries.push_back(around);
     for (double at : tries) {

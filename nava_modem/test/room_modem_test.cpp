@@ -207,6 +207,7 @@ TEST(HopContrast, ScoresSymbolsThatStandOutInTheirSubBands) {
   std::vector<double> elsewhere = flat;
   for (int s = 0; s < kSymbols; ++s) elsewhere[static_cast<std::size_t>(s) * kBins + (Bin(s, 0) - kLowestBin + kTonesPerBand) % kBins] = 100.0;
   EXPECT_NEAR(HopContrast(elsewhere), 0.0, 1e-12);
+  EXPECT_THROW(HopContrast(flat, 0), std::invalid_argument);
   try {
     HopContrast(std::vector<double>(10, 1.0));
     FAIL() << "a wrong size was taken";

@@ -30,7 +30,8 @@ namespace nava_modem {
 // A chirp is paired with every earlier one at the packet's length (within the clock tolerance)
 // and each such pair is decoded until one passes the CRC: speech and knocks can pass for a
 // chirp, and the first pair found need not be the packet. A chirp without a partner has it
-// looked for where it must be, below the detector's threshold. Noise reports: a chirp whose pairs
+// looked for where it must be, below the detector's threshold, and a first chirp still alone
+// then by the data after it (DecodeByData). Noise reports: a chirp whose pairs
 // all failed the CRC is BAD_CRC; a chirp with no partner at all is ONE_BYTE (a packet begun
 // and never ended, or a sound that looked like a chirp); busy air in which no chirp was heard
 // is ZERO_BYTE.
