@@ -10,6 +10,7 @@
 #include "nava_modem/modem_options.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/packet_receiver.h"
+#include "nava_modem/room_channel.h"
 #include "tool_args/tool_args.h"
 
 namespace nava_modem::tools {
@@ -45,6 +46,15 @@ inline ToolModem ProfileArgs(const multirobot_audio::tools::ToolArgs& args) {
     args.Fail(e.what());
   }
   return m;
+}
+
+// --response: the room model by name (ParseRoomModel), `fallback` when not given; refused
+// through `args`, naming the flag and the names, when unknown.
+inline RoomOptions::Model RoomModelArg(const multirobot_audio::tools::ToolArgs& args, RoomOptions::Model fallback) {
+  const std::string model = args.String("--response", RoomModelName(fallback));
+  const auto parsed = ParseRoomModel(model);
+  if (!parsed) args.Fail("--response " + model + ": expected " + kRoomModelNames);
+  return *parsed;
 }
 
 inline ModemOptions ModemArgs(const multirobot_audio::tools::ToolArgs& args) {

@@ -46,12 +46,7 @@ RoomsRequest ParseRooms(const ToolArgs& args) {
   if (!curve_rt60.empty()) r.curve_rt60 = curve_rt60;
   r.curve_drr_min = args.Double("--curve-drr-min", r.curve_drr_min, -39.0, 12.0);
   r.curve_snr_db = args.Double("--curve-snr", r.curve_snr_db, -60.0, 100.0);
-  const std::string model = args.String("--response", RoomModelName(r.curve_model));
-  if (const auto parsed = ParseRoomModel(model)) {
-    r.curve_model = *parsed;
-  } else {
-    args.Fail("--response " + model + ": expected " + kRoomModelNames);
-  }
+  r.curve_model = RoomModelArg(args, r.curve_model);
   r.options = ModemArgs(args);
   if (r.curve_model == RoomOptions::Model::kMeasuredLike && r.options.sample_rate <= 10800.0) {
     args.Fail("--response measured-like: expected --rate above 10800 Hz (its responses reach 5400 Hz), got " +

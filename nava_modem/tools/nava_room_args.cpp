@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <map>
 
+#include "modem_args.h"
 #include "nava_modem/direction_estimator.h"
 
 namespace nava_modem::tools {
@@ -49,10 +50,7 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   RoomOptions& o = r.room;
   o.rt60 = Number(args, "--rt60", o.rt60);
   o.drr_db = Number(args, "--drr", o.drr_db);
-  const std::string model = args.String("--response", "statistical");
-  const auto parsed = ParseRoomModel(model);
-  if (!parsed) args.Fail("--response " + model + ": expected " + kRoomModelNames);
-  o.model = *parsed;
+  o.model = RoomModelArg(args, RoomOptions::Model::kStatistical);
   r.rir_path = args.String("--rir", "");
   if (!args.String("--channel", "").empty()) r.rir_channel = static_cast<int>(args.Int("--channel", 0, 0, 255));
   o.tilt_db = Number(args, "--tilt", o.tilt_db);
@@ -87,7 +85,7 @@ NavaRoomOptions ParseNavaRoomArgs(const std::vector<std::string>& words) {
   source.distance = Number(args, "--distance", source.distance);
   args.CheckAllUsed();
   if (!r.mics.empty() && o.model != RoomOptions::Model::kStatistical) {
-    args.Fail("--response " + model + ": an array's microphones hear the statistical room (room_array.h); drop one of them");
+    args.Fail(std::string("--response ") + RoomModelName(o.model) + ": an array's microphones hear the statistical room (room_array.h); drop one of them");
   }
   if (!r.mics.empty()) {
     try {
