@@ -12,8 +12,9 @@ export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(
-  # toolchain
-  build-essential cmake git pkg-config
+  # toolchain; ccache keeps compiled objects between builds (CMakeLists.txt uses it when found),
+  # so that CI's clean clones compile only what changed
+  build-essential cmake git pkg-config ccache
   # ROS 1 as Debian packages it: core, build tools, and both halves of each message package
   catkin ros-environment ros-cmake-modules libroscpp-dev librosconsole-dev
   ros-message-generation ros-message-runtime

@@ -107,8 +107,37 @@ await_build() {
   fi
 }
 
+# Each part's name and when it began, for the timings printed at the end.
+parts=()
+part_starts=()
 part() {
   echo "== test.sh: $1 =="
+  parts+=("$1")
+  part_starts+=("$SECONDS")
+}
+
+# How long each part took, and how much of the compiling ccache saved (its counters before the
+# run in ccache_before; none where ccache is not installed).
+timings() {
+  local i end
+  for i in "${!parts[@]}"; do
+    end=$SECONDS
+    [ $((i + 1)) -lt ${#parts[@]} ] && end=${part_starts[$((i + 1))]}
+    printf 'test.sh: %-28s %5d s\n' "${parts[$i]}" $((end - part_starts[i]))
+  done
+  if [ -n "${ccache_before:-}" ]; then
+    local after
+    after=$(ccache_counts)
+    # shellcheck disable=SC2086
+    set -- $ccache_before $after
+    echo "test.sh: ccache: $(($4 - $1)) compiled, $(($5 - $2)) from the cache (direct), $(($6 - $3)) (preprocessed)"
+  fi
+}
+
+# ccache's misses and hits so far: three numbers.
+ccache_counts() {
+  ccache --print-stats | awk '$1 == "cache_miss" {m = $2} $1 == "direct_cache_hit" {d = $2}
+    $1 == "preprocessed_cache_hit" {p = $2} END {print m + 0, d + 0, p + 0}'
 }
 
 case "${1:-}" in
@@ -126,15 +155,20 @@ case "${1:-}" in
     # tests keep the processor whenever they want it.
     start=$SECONDS
     mkdir -p "$here/build-logs"
-    part "main suite"
+    # setup.sh installs ccache with everything else; counted from before the first build.
+    "$here/scripts/setup.sh" --no-build
+    command -v ccache >/dev/null && ccache_before=$(ccache_counts)
+    part "main build"
     main_build
     # The over-the-air tests (label "air") first, alone: their links stream through a sound
     # server in real time with 10 ms buffers, and a busy processor cuts their packets.
+    part "main suite, over the air"
     main_tests -L air
     background_build "$here/build-logs/sanitize.log" \
       bash -c "$(declare -f sanitized_build); here='$here'; set -euo pipefail; sanitized_build"
     sanitized_pid=$background_pid
     trap stop_background_builds EXIT
+    part "main suite, the others"
     main_tests -LE air
     part "sanitized suite"
     await_build "$sanitized_pid" "$here/build-logs/sanitize.log" sanitized
@@ -145,6 +179,7 @@ case "${1:-}" in
     await_build "$fuzz_pid" "$here/build-logs/fuzz.log" fuzz
     trap - EXIT
     "$here/scripts/fuzz.sh" all 20
+    timings
     echo "test.sh: every part passed in $((SECONDS - start)) s"
     ;;
   *)
