@@ -5,20 +5,27 @@
 #include <limits>
 #include <stdexcept>
 
+#include "audio_propagation/acoustic_reception.h"
 #include "audio_propagation/microphone.h"
+#include "audio_propagation/threshold_reception.h"
 #include "grid/option_checks.h"
 
 namespace audio_propagation {
 namespace {
 
-// Acoustic model: an arrival this far below the noise (dB) is not tracked.
-constexpr double kNegligibleSnrDb = -30.0;
-// Acoustic model: how often (s) the noise at each robot is worked out again.
-constexpr double kNoiseUpdateSeconds = 0.05;
 // Packets stamped for later that one robot may have waiting (far more than a step brings).
 constexpr std::size_t kMaxPendingSends = 1000;
 // Cells whose view of the corners VisibilityMemo keeps (with a path cache).
 constexpr std::size_t kMemoCells = 8192;
+
+// The reception model the channel's options and an acoustic model (or none) ask for.
+std::unique_ptr<ReceptionModel> MakeReception(const PropagationModel& model, const ChannelOptions& options,
+                                              const AcousticModel* acoustic) {
+  ValidateOptions(options);
+  if (acoustic) return std::make_unique<AcousticReception>(*acoustic, options.noise_floor_db);
+  return std::make_unique<ThresholdReception>(model.options().threshold_db, options.capture_margin_db,
+                                              options.noise_floor_db);
+}
 
 }  // namespace
 
@@ -32,11 +39,14 @@ void ValidateOptions(const ChannelOptions& o) {
   grid::RequireAbove("audio channel fate_distance (m)", o.fate_distance, 0.0);
 }
 
-AudioChannel::AudioChannel(const PropagationModel& model,
-                           std::vector<world_sim::Microphone> microphones,
+AudioChannel::AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,
                            const ChannelOptions& options, const AcousticModel* acoustic)
+    : AudioChannel(model, std::move(microphones), options, MakeReception(model, options, acoustic)) {}
+
+AudioChannel::AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,
+                           const ChannelOptions& options, std::unique_ptr<ReceptionModel> reception)
     : model_(model),
-      acoustic_(acoustic),
+      reception_(std::move(reception)),
       microphones_(std::move(microphones)),
       options_(options),
       cache_(options.cache_size),
@@ -44,10 +54,11 @@ AudioChannel::AudioChannel(const PropagationModel& model,
       memo_(options.cache_size > 0 ? kMemoCells : 0),
       rng_(options.seed) {
   ValidateOptions(options_);
+  if (!reception_) throw std::invalid_argument("audio channel: expected a reception model, got none");
   nava_modem::MacOptions mac = options_.mac;
-  // With the acoustic model each robot calibrates its threshold on the noise it hears at the
+  // Unless the model fixes one, each robot calibrates its threshold on the noise it hears at the
   // start, as a real robot does (the loudest level of its calibration time plus a margin).
-  if (!mac.fixed_threshold_db && !acoustic_) mac.fixed_threshold_db = model_.options().threshold_db;
+  if (!mac.fixed_threshold_db) mac.fixed_threshold_db = reception_->CarrierThresholdDb();
   const std::size_t n = microphones_.size();
   for (std::size_t k = 0; k < n; ++k) {
     // Robots draw their own back-offs, so adding a robot does not change the others'.
@@ -59,11 +70,12 @@ AudioChannel::AudioChannel(const PropagationModel& model,
   powers_.assign(n, 0.0);
   arrivals_.resize(n);
   sending_.resize(n);
-  noise_powers_.assign(n, 0.0);
+  background_.assign(n, 0.0);
   pending_per_robot_.assign(n, 0);
   level_edge_.assign(n, 0);
   finish_edge_.assign(n, 0);
-  noise_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(kNoiseUpdateSeconds / (16.0 * tick_)));
+  const double every = reception_->BackgroundSeconds();
+  if (every > 0.0) background_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(every / (16.0 * tick_)));
 }
 
 std::vector<Eigen::Vector2d> AudioChannel::Positions() const {
@@ -72,16 +84,13 @@ std::vector<Eigen::Vector2d> AudioChannel::Positions() const {
   return at;
 }
 
-void AudioChannel::UpdateNoise() {
-  const std::vector<Eigen::Vector2d> at = Positions();
-  acoustic_->PreparePaths(at, at);
-  for (std::size_t r = 0; r < at.size(); ++r) {
-    double power = 0.0;
-    // What the robot's level meter reads: each noise by its share in the profile's bands.
-    for (const Disturbance& d : acoustic_->NoiseAt(at[r], time(), at)) power += d.power * d.heard;
-    noise_powers_[r] = power;
-    level_edge_[r] = 0;  // the level is summed again at the next tick
-  }
+void AudioChannel::UpdateBackground() {
+  reception_->Background(time(), Positions(), background_);
+  std::fill(level_edge_.begin(), level_edge_.end(), 0);  // each level is summed again at the next tick
+}
+
+std::int64_t AudioChannel::NextBackgroundTick() const {
+  return background_ticks_ > 0 ? (ticks_ / background_ticks_ + 1) * background_ticks_ : std::numeric_limits<std::int64_t>::max();
 }
 
 bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
@@ -129,11 +138,6 @@ void AudioChannel::ApplyPending() {
   }
 }
 
-double AudioChannel::LevelOf(double power) const {
-  if (!(power > 0.0)) return options_.noise_floor_db;
-  return acoustic_ ? 10.0 * std::log10(power) : std::max(options_.noise_floor_db, 10.0 * std::log10(power));
-}
-
 double AudioChannel::NextEventTime() const {
   if (Idle()) return std::numeric_limits<double>::infinity();
   std::int64_t next = std::numeric_limits<std::int64_t>::max();
@@ -141,19 +145,19 @@ double AudioChannel::NextEventTime() const {
   for (std::size_t r = 0; r < macs_.size(); ++r) {
     // The level changes only where an arrival starts or ends; until then it is what the next
     // tick hears.
-    double power = acoustic_ ? noise_powers_[r] : 0.0;
+    double power = background_[r];
     for (const Arrival& a : arrivals_[r]) {
       if (a.start > ticks_) next = std::min(next, a.start);
       if (!a.done) next = std::min(next, a.end);
       if (a.start <= ticks_ + 1 && ticks_ + 1 < a.end) power += a.power;
     }
-    if (const std::optional<int> change = macs_[r].TicksToNextChange(LevelOf(power))) {
+    if (const std::optional<int> change = macs_[r].TicksToNextChange(reception_->LevelDb(power))) {
       next = std::min(next, ticks_ + *change);
     }
   }
-  // The noise may move a carrier at its next update (and a carrier coming and going starts a
-  // fresh back-off): with the air busy, every update is looked at.
-  if (acoustic_) next = std::min(next, (ticks_ / noise_ticks_ + 1) * noise_ticks_);
+  // The background may move a carrier at its next update (and a carrier coming and going starts
+  // a fresh back-off): with the air busy, every update is looked at.
+  next = std::min(next, NextBackgroundTick());
   if (next == std::numeric_limits<std::int64_t>::max()) return std::numeric_limits<double>::infinity();
   return static_cast<double>(next) * tick_;
 }
@@ -161,8 +165,7 @@ double AudioChannel::NextEventTime() const {
 std::int64_t AudioChannel::NextWake(std::int64_t target) const {
   std::int64_t wake = target;
   if (!pending_sends_.empty()) wake = std::min(wake, pending_sends_.front().tick);
-  if (acoustic_) wake = std::min(wake, (ticks_ / noise_ticks_ + 1) * noise_ticks_);
-  return wake;
+  return std::min(wake, NextBackgroundTick());
 }
 
 std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
@@ -204,28 +207,16 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
   sent.erase(std::remove_if(sent.begin(), sent.end(), [&](const auto& s) { return s.second < horizon; }), sent.end());
   sent.emplace_back(ticks_, ticks_ + duration);
   std::vector<double> probability;
-  std::vector<Eigen::Vector2d> at;
-  if (acoustic_) {
-    probability.assign(n, 0.0);
-    at = Positions();
-  }
+  if (reception_->Predicts()) probability.assign(n, 0.0);
+  const std::vector<Eigen::Vector2d> at = Positions();
   for (std::size_t r = 0; r < n; ++r) {
     if (r == sender) continue;
+    const ArrivalSound sound = reception_->Arrive(paths[r], r, at, time());
+    if (sound.probability && !probability.empty()) probability[r] = *sound.probability;
+    if (!sound.level_db) continue;  // nothing this robot would notice
     const std::int64_t start = ticks_ + std::llround(paths[r].travel_time / tick_);
-    if (!acoustic_) {
-      if (!paths[r].audible) continue;
-      arrivals_[r].push_back({sender, start, start + duration, paths[r].level_db,
-                              std::pow(10.0, paths[r].level_db / 10.0), data, paths[r], {}});
-      NoteArrival(r, start, start + duration);
-      continue;
-    }
-    if (!paths[r].reachable) continue;
-    const LinkPrediction p = acoustic_->Predict(paths[r], at[r], acoustic_->NoiseAt(at[r], time(), at));
-    probability[r] = p.probability;
-    // Far below the noise an arrival changes neither the carrier nor any decision.
-    if (p.snr_db < kNegligibleSnrDb) continue;
-    arrivals_[r].push_back({sender, start, start + duration, p.signal.total_db,
-                            std::pow(10.0, p.signal.total_db / 10.0), data, paths[r], p.signal});
+    arrivals_[r].push_back({sender, start, start + duration, *sound.level_db, std::pow(10.0, *sound.level_db / 10.0), data,
+                            paths[r]});
     NoteArrival(r, start, start + duration);
   }
   events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths),
@@ -244,10 +235,13 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
       return;
     }
   }
-  double loudest_other = -std::numeric_limits<double>::infinity();
+  // What overlapped it there, in the order it arrived.
+  std::vector<Overlap> overlaps;
+  const double length = static_cast<double>(a.end - a.start);
   for (const Arrival& other : arrivals_[receiver]) {
     if (&other == &a || !(other.start < a.end && a.start < other.end)) continue;
-    loudest_other = std::max(loudest_other, other.level_db);
+    const double overlap = static_cast<double>(std::min(a.end, other.end) - std::max(a.start, other.start));
+    overlaps.push_back({other.level_db, other.power * overlap / length});
   }
   Reception rx;
   rx.receiver = receiver;
@@ -258,49 +252,19 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
                                 options_.direction_noise, rng_);
   rx.direction_confidence = std::isfinite(rx.direction) ? 1.0 : 0.0;
-  if (acoustic_) {
-    FinishAcoustic(receiver, a, rx);
-    if (rx.kind == Reception::Kind::kNoise && rx.noise == nava_modem::RxEvent::Noise::kNone) {
-      ++unheard_;  // the receiver would not have noticed it
-      return;
-    }
-  } else if (a.level_db >= loudest_other + options_.capture_margin_db) {
-    rx.kind = Reception::Kind::kPacket;
-    rx.data = a.data;
-  } else {
-    rx.kind = Reception::Kind::kNoise;
-    rx.collision = true;
-  }
-  events.received.push_back(std::move(rx));
-}
-
-void AudioChannel::FinishAcoustic(std::size_t receiver, const Arrival& a, Reception& rx) {
   const std::vector<Eigen::Vector2d> at = Positions();
-  // The noise over the whole arrival (its mean power, as the tables define SNR), not at one moment.
-  std::vector<Disturbance> disturbances = acoustic_->NoiseDuring(at[receiver], a.start * tick_, a.end * tick_, at);
-  const double length = static_cast<double>(a.end - a.start);
-  for (const Arrival& other : arrivals_[receiver]) {
-    if (&other == &a) continue;
-    const double overlap = static_cast<double>(std::min(a.end, other.end) - std::max(a.start, other.start));
-    if (overlap > 0.0) disturbances.push_back({Interference::kPacket, other.power * overlap / length, 0.0});
+  const Decision d = reception_->Decide(a.path, receiver, a.level_db, a.start * tick_, a.end * tick_, overlaps, at,
+                                        [&] { return DecisionDraw(a.sender, receiver, at); });
+  if (!d.heard) {
+    ++unheard_;  // the receiver would not have noticed it
+    return;
   }
-  const LinkPrediction p = acoustic_->Predict(a.path, at[receiver], disturbances);
-  rx.probability = p.probability;
-  rx.collision = p.kind == Interference::kPacket;
-  const DecodeOutcome& o = p.outcome;
-  const double u = DecisionDraw(a.sender, receiver, at);
-  rx.kind = Reception::Kind::kNoise;
-  using Noise = nava_modem::RxEvent::Noise;
-  if (u < o.packet) {
-    rx.kind = Reception::Kind::kPacket;
-    rx.data = a.data;
-  } else if (u < o.packet + o.zero_byte) {
-    rx.noise = Noise::kZeroByte;
-  } else if (u < o.packet + o.zero_byte + o.one_byte) {
-    rx.noise = Noise::kOneByte;
-  } else if (u < o.packet + o.zero_byte + o.one_byte + o.bad_crc) {
-    rx.noise = Noise::kBadCrc;
-  }
+  rx.kind = d.packet ? Reception::Kind::kPacket : Reception::Kind::kNoise;
+  if (d.packet) rx.data = a.data;
+  rx.collision = d.collision;
+  rx.noise = d.noise;
+  rx.probability = d.probability;
+  events.received.push_back(std::move(rx));
 }
 
 double AudioChannel::DecisionDraw(std::size_t sender, std::size_t listener, const std::vector<Eigen::Vector2d>& at) {
@@ -319,12 +283,8 @@ double AudioChannel::DecisionDraw(std::size_t sender, std::size_t listener, cons
 bool AudioChannel::Quiet() const {
   for (std::size_t r = 0; r < macs_.size(); ++r) {
     if (!macs_[r].Idle()) return false;
-    // With an acoustic model the noise is always there: quiet while it stays below the carrier
-    // threshold (it is checked again every bit once the medium is busy).
-    const bool silent = acoustic_ ? powers_[r] == noise_powers_[r] && !macs_[r].carrier() &&
-                                        levels_[r] < macs_[r].threshold_db()
-                                  : levels_[r] == options_.noise_floor_db;
-    if (!silent) return false;
+    // (Checked again every bit once the medium is busy.)
+    if (!reception_->Quiet(powers_[r], background_[r], levels_[r], macs_[r])) return false;
     for (const Arrival& a : arrivals_[r]) {
       if (!a.done) return false;
     }
@@ -338,9 +298,9 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
   const std::size_t n = macs_.size();
   while (ticks_ < target) {
     ApplyPending();
-    // The noise changes as robots move a cell or a source turns on or off: every 50 ms is often
-    // enough, and the check for quiet below runs on the same bit boundaries.
-    if (acoustic_ && ticks_ % noise_ticks_ == 0) UpdateNoise();
+    // The background changes as robots move a cell or a source turns on or off: every so often
+    // is enough, and the check for quiet below runs on the same bit boundaries.
+    if (background_ticks_ > 0 && ticks_ % background_ticks_ == 0) UpdateBackground();
     // Long silences (robots that say something every few seconds) are skipped in one go, up to
     // the next moment something is due (a stamped send, the noise's update); the check runs
     // once a bit, so at most a bit of silence is ticked through. A silent tick of an idle MAC
@@ -356,7 +316,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
       // The level only changes where an arrival starts or ends (or the noise is updated): the
       // sum is taken again there, and only there (a big team hears dozens of arrivals).
       if (ticks_ >= level_edge_[r]) {
-        double power = acoustic_ ? noise_powers_[r] : 0.0;  // linear sum of what is arriving now
+        double power = background_[r];  // linear sum of what is arriving now
         std::int64_t edge = std::numeric_limits<std::int64_t>::max();
         for (const Arrival& a : arrivals_[r]) {
           if (a.start <= ticks_ && ticks_ < a.end) power += a.power;
@@ -366,7 +326,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
         level_edge_[r] = edge;
         if (power != powers_[r]) {
           powers_[r] = power;
-          levels_[r] = LevelOf(power);
+          levels_[r] = reception_->LevelDb(power);
         }
       }
       if (auto packet = macs_[r].Tick(levels_[r])) StartTransmission(r, std::move(*packet), events);

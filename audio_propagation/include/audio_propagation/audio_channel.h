@@ -2,12 +2,14 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <random>
 #include <vector>
 
 #include "audio_propagation/acoustic_model.h"
 #include "audio_propagation/path_cache.h"
 #include "audio_propagation/propagation_model.h"
+#include "audio_propagation/reception_model.h"
 #include "grid/pose2d.h"
 #include "nava_modem/csma_mac.h"
 #include "nava_modem/packet_receiver.h"
@@ -81,22 +83,28 @@ struct Transmission {
 // a packet lasts `packet_bits` bit times, reaches each robot after its travel time along the
 // shortest path, raises that robot's carrier while it lasts, and arrives as a packet, or as
 // noise when another audible transmission overlapped it at that robot and was not weaker by the
-// capture margin. A robot does not hear itself, nor anything while it is sending.
-// Deterministic for a seed. Time advances in ticks of 1/16 bit.
+// capture margin (ThresholdReception). A robot does not hear itself, nor anything while it is
+// sending. Deterministic for a seed. Time advances in ticks of 1/16 bit.
 //
-// With an acoustic model (acoustic_model.h) instead: a packet reaches every robot a path
-// reaches, at its direct-plus-reverberant level; each robot's carrier level sums the arrivals,
-// the ambient sound and the noise sources sounding; each robot's MAC calibrates its threshold
-// on that noise during its calibration time (unless the MAC options fix one), as a real robot
-// does; and at the end of an arrival the model's decode table decides, by a draw, whether the
-// robot decodes it, reports noise of some class, or hears nothing at all, against the noise
+// With an acoustic model (acoustic_model.h, AcousticReception) instead: a packet reaches every
+// robot a path reaches, at its direct-plus-reverberant level; each robot's carrier level sums the
+// arrivals, the ambient sound and the noise sources sounding; each robot's MAC calibrates its
+// threshold on that noise during its calibration time (unless the MAC options fix one), as a real
+// robot does; and at the end of an arrival the model's decode table decides, by a draw, whether
+// the robot decodes it, reports noise of some class, or hears nothing at all, against the noise
 // of that moment and the other packets overlapping it (each weighted by how much it overlaps).
+//
+// The channel itself is the same for every model (reception_model.h): the ticks, the MACs, the
+// transmissions and their arrivals, the overlaps, the skipping of quiet time, the draws.
 class AudioChannel {
  public:
   // `acoustic`, when given, must outlive the channel and be built for the same robots in the
-  // same order.
+  // same order; without it, the propagation model's hearing threshold decides.
   AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,
                const ChannelOptions& options, const AcousticModel* acoustic = nullptr);
+  // Any reception model (not null; options.capture_margin_db is then the model's business).
+  AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,
+               const ChannelOptions& options, std::unique_ptr<ReceptionModel> reception);
 
   std::size_t size() const { return macs_.size(); }
   void SetPose(std::size_t robot, const grid::Pose2D& pose) { poses_.at(robot) = pose; }
@@ -137,7 +145,8 @@ class AudioChannel {
   std::uint64_t send_overflows() const { return send_overflows_; }
   // Acoustic model: arrivals the receiver would not have noticed at all.
   std::uint64_t unheard() const { return unheard_; }
-  const AcousticModel* acoustic() const { return acoustic_; }
+  const AcousticModel* acoustic() const { return reception_->acoustic(); }
+  const ReceptionModel& reception() const { return *reception_; }
   const PathCache& cache() const { return cache_; }
   const VisibilityMemo& memo() const { return memo_; }
 
@@ -149,7 +158,6 @@ class AudioChannel {
     double power;  // 10^(level_db / 10), summed every tick the arrival lasts
     std::vector<std::uint8_t> data;
     SoundPath path;
-    LinkLevels levels;  // acoustic model
     bool done = false;  // finished, kept a while to judge overlaps with later arrivals
   };
   struct PendingPose {
@@ -162,14 +170,12 @@ class AudioChannel {
     std::size_t robot;
     std::vector<std::uint8_t> data;
   };
-  // The level (dB) behind a linear power.
-  double LevelOf(double power) const;
   // The first tick at or after `time`, never before the current one.
   std::int64_t TickAt(double time) const;
   // Puts into effect what was stamped up to the current tick.
   void ApplyPending();
   // The first tick after the current one at which something must be looked at even in quiet:
-  // a stamped send, or (acoustic model) the next update of the noise.
+  // a stamped send, or the next update of the background.
   std::int64_t NextWake(std::int64_t target) const;
   void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
   // A new arrival at `receiver`: its level and its finishing are looked at then.
@@ -179,15 +185,17 @@ class AudioChannel {
   bool Quiet() const;
   // The path from the sender to every robot, from the cache where it can.
   std::vector<SoundPath> PathsFrom(std::size_t sender);
-  // Acoustic model: the robots' positions, and the noise power at each from ambient and sources.
+  // The robots' positions.
   std::vector<Eigen::Vector2d> Positions() const;
-  void UpdateNoise();
-  void FinishAcoustic(std::size_t receiver, const Arrival& a, Reception& rx);
+  // Each robot's background power, worked out again.
+  void UpdateBackground();
+  // The first tick after the current one at which the background is worked out again, if ever.
+  std::int64_t NextBackgroundTick() const;
 
   const PropagationModel& model_;
-  const AcousticModel* acoustic_;
-  std::vector<double> noise_powers_;  // acoustic model: per robot, linear
-  std::int64_t noise_ticks_ = 16;     // acoustic model: ticks between noise updates (whole bits)
+  std::unique_ptr<ReceptionModel> reception_;
+  std::vector<double> background_;     // per robot, linear
+  std::int64_t background_ticks_ = 0;  // ticks between background updates (whole bits; 0: never)
   std::vector<world_sim::Microphone> microphones_;
   ChannelOptions options_;
   std::vector<nava_modem::CsmaMac> macs_;
