@@ -17,9 +17,6 @@ constexpr double kTiny = 1e-20;
 // A packet's first arrival is looked for from this long before the start the decoder placed (its
 // filters' delay, and a direct sound before a stronger reflection) to this long after it.
 constexpr double kArrivalBefore = 0.015, kArrivalAfter = 0.010;
-// Per-sample in-band power below which the break detector sees silence (-70 dB of full scale):
-// the ratios it takes are meaningless on digital silence.
-constexpr double kSilence = 1e-7;
 constexpr int kDetectorBits = 10;  // each half of the break detector
 // After the detector first passes its threshold, the strongest step within this many bits is
 // taken as the break: noise can pass the threshold just before a real break arrives.
@@ -59,15 +56,6 @@ constexpr int kMarkSettleBits = 2;
 constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
 constexpr double kLoopMinSoft = 0.3;
-// The tone model (FitToneModel). Bits of the break whose windows lie inside its SPACE half and
-// its MARK half even with the bit rate max_rate_error off and the break found a bit or two off.
-constexpr int kSpaceFirst = -17, kSpaceLast = -3, kMarkFirst = 2, kMarkLast = 17;
-// The SPACE tail's decay is read from three groups of bits in the MARK half, 6 bits apart.
-constexpr int kGroupBits = 6, kGroup1 = 2, kGroupWidth = 4;
-// The decay across the groups must exceed this share of the last group's power to count as
-// a tail rather than noise's wander (the group means vary by about a third in white noise).
-constexpr double kTailSignificance = 1.0;
-constexpr double kMaxDecay = 0.985;  // per bit: RT60 about 4 s at 300 bits/s
 // The noise a tone's decision assumes is at least this share of its level: the filters'
 // leakage from neighbouring bits, which the break does not show, is about this large.
 constexpr double kMinNoise = 0.01;
@@ -168,16 +156,12 @@ FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& optio
                                                           modem.sample_rate)
                          : nullptr),
       per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
+      w_(static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_))),
+      ring_(RingSize(per_bit_)),
+      detector_(w_),
       equalizer_(modem) {
   ValidateModemOptions(modem_);
   ValidateReceiverOptions(options_);
-  w_ = static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_));
-  const std::size_t size = RingSize(per_bit_);
-  m_.assign(size, 0.0f);
-  s_.assign(size, 0.0f);
-  mc_.assign(size, 0.0f);
-  sc_.assign(size, 0.0f);
-  mask_ = size - 1;
   // Busy air with no frame, at least a bit long, ends after a bit of quiet.
   busy_ = BusyAir(Seconds(per_bit_), Seconds(per_bit_));
   // A packet is reported well within a second of its end.
@@ -192,7 +176,7 @@ void FskReceiver::SetCarrierThreshold(std::optional<double> db) {
   busy_.SetThreshold(db);
 }
 
-double FskReceiver::level_db() const { return 10.0 * std::log10(E(n_ - 1) + kTiny); }
+double FskReceiver::level_db() const { return 10.0 * std::log10(ring_.sum(n_ - 1) + kTiny); }
 
 void FskReceiver::SetMuted(bool muted) {
   if (muted && !muted_) {
@@ -219,42 +203,14 @@ void FskReceiver::Flush(std::vector<RxEvent>& events) {
 
 void FskReceiver::Step(std::vector<RxEvent>& events) {
   const std::int64_t n = n_;
-  m_[n & mask_] = static_cast<float>(filters_.mark_power());
-  s_[n & mask_] = static_cast<float>(filters_.space_power());
-  mc_[n & mask_] = std::complex<float>(static_cast<float>(filters_.mark_re()), static_cast<float>(filters_.mark_im()));
-  sc_[n & mask_] = std::complex<float>(static_cast<float>(filters_.space_re()), static_cast<float>(filters_.space_im()));
-  const double d = D(n), e = E(n);
-  // The break detector's running sums over the last w samples and the w before them.
-  after_ += d - D(n - w_);
-  before_ += D(n - w_) - D(n - 2 * w_);
-  after_power_ += e - E(n - w_);
-  before_power_ += E(n - w_) - E(n - 2 * w_);
+  ring_.Put(n, filters_.mark_power(), filters_.space_power(), {filters_.mark_re(), filters_.mark_im()},
+            {filters_.space_re(), filters_.space_im()});
+  detector_.Update(ring_, n);
   ++n_;
-  if ((n & 0xFFFF) == 0) {  // renew the running sums against rounding
-    after_ = before_ = after_power_ = before_power_ = 0.0;
-    for (std::int64_t k = n - 2 * w_ + 1; k <= n; ++k) {
-      (k > n - w_ ? after_ : before_) += D(k);
-      (k > n - w_ ? after_power_ : before_power_) += E(k);
-    }
-  }
   if (muted_) return;
-  TrackCarrier(e, events);
+  TrackCarrier(ring_.sum(n), events);
   if (n < 2 * w_) return;
-  // How much the last w samples are MARK and the w before them SPACE, each from -1 to 1; the
-  // step is the smaller, so that the edge of a burst (tones on one side only) is no step.
-  const double floor = kSilence * w_;
-  const double mixed = std::min(after_ / std::max(after_power_, floor), -before_ / std::max(before_power_, floor));
-  // The same step with each tone on its own scale (its larger window's power): a room and a
-  // speaker can leave MARK 10 dB or more below SPACE, and SPACE's reverberant tail then
-  // outweighs MARK's direct sound in the sums above, so that the break goes unseen. Balanced,
-  // the step peaks where the sums' one would with the tones equal: at the break.
-  const double mark_after = (after_power_ + after_) / 2.0, mark_before = (before_power_ + before_) / 2.0;
-  const double space_after = (after_power_ - after_) / 2.0, space_before = (before_power_ - before_) / 2.0;
-  const double mark_scale = std::max({mark_after, mark_before, floor}), space_scale = std::max({space_after, space_before, floor});
-  const double ma = mark_after / mark_scale, mb = mark_before / mark_scale;
-  const double sa = space_after / space_scale, sb = space_before / space_scale;
-  const double balanced = std::min((ma - sa) / std::max(ma + sa, kTiny), (sb - mb) / std::max(sb + mb, kTiny));
-  const double step = std::max(mixed, balanced);
+  const double step = detector_.Step();
 
   switch (state_) {
     case State::kSearching:
@@ -262,14 +218,14 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         state_ = State::kPeaking;
         peak_ = step;
         peak_at_ = n;
-        peak_power_ = after_power_ + before_power_;
+        peak_power_ = detector_.power();
       }
       break;
     case State::kPeaking:
       if (step > peak_) {
         peak_ = step;
         peak_at_ = n;
-        peak_power_ = after_power_ + before_power_;
+        peak_power_ = detector_.power();
       } else if (n - peak_at_ > kPeakWindowBits * per_bit_) {
         // The windows' boundary sits on the filters' zero crossing, which lags the step by
         // half a window.
@@ -280,12 +236,12 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
       }
       break;
     case State::kCollecting:
-      if (step > peak_ + kSupersede || (step > options_.detect_threshold && after_power_ + before_power_ > kLouder * peak_power_)) {
+      if (step > peak_ + kSupersede || (step > options_.detect_threshold && detector_.power() > kLouder * peak_power_)) {
         // A much clearer or louder break than the one being collected: that one was noise.
         state_ = State::kPeaking;
         peak_ = step;
         peak_at_ = n;
-        peak_power_ = after_power_ + before_power_;
+        peak_power_ = detector_.power();
       } else if (n >= decode_at_) {
         if (!break_settled_) {
           // Once a break's packet is in, the break may move; a later one's packet is waited for
@@ -320,7 +276,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
 void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
   // Busy air ends after a bit of quiet; a frame being decoded is waited for.
   const std::int64_t n = n_ - 1;
-  busy_.Step(Seconds(static_cast<double>(n)), e, FilterSum(D(n), e), state_ != State::kSearching, events);
+  busy_.Step(Seconds(static_cast<double>(n)), e, FilterSum(ring_.difference(n), e), state_ != State::kSearching, events);
 }
 
 double FskReceiver::FitMetric(double first_mark, double period) const {
@@ -361,57 +317,6 @@ FskReceiver::ClockFit FskReceiver::BestFit(double start0, double period0, double
   return best;
 }
 
-FskReceiver::ToneModel FskReceiver::FitToneModel(double break_step) const {
-  // The mean of a tone's filter over the windows of bits first..last of the break (bit 0 its
-  // first MARK bit), on the clock of the detector's estimate.
-  auto mean = [&](int tone, int first, int last) {
-    const std::int64_t lo = std::llround(break_step + (first + 1) * per_bit_ - 1.0);
-    const std::int64_t hi = std::llround(break_step + (last + 1) * per_bit_ - 1.0);
-    double sum = 0.0;
-    for (std::int64_t n = lo; n <= hi; ++n) sum += tone == 0 ? M(n) : S(n);
-    return sum / static_cast<double>(hi - lo + 1);
-  };
-  ToneModel model;
-  // With SPACE off in the MARK half, the SPACE filter shows the room's tail of the 20 SPACE
-  // bits decaying (plus the noise floor): three group means, g_i = floor + t0 decay^c_i, give
-  // the decay per bit, the tail at the step and the floor.
-  const double c1 = kGroup1 + kGroupWidth / 2.0;
-  const double g1 = mean(1, kGroup1, kGroup1 + kGroupWidth);
-  const double g2 = mean(1, kGroup1 + kGroupBits, kGroup1 + kGroupBits + kGroupWidth);
-  const double g3 = mean(1, kGroup1 + 2 * kGroupBits, kGroup1 + 2 * kGroupBits + kGroupWidth);
-  double t0 = 0.0;
-  if (g1 > g2 && g2 > g3 && g1 - g3 > kTailSignificance * g3) {
-    const double decay = std::min(kMaxDecay, std::pow((g2 - g3) / (g1 - g2), 1.0 / kGroupBits));
-    model.decay = decay;
-    t0 = (g1 - g2) / (std::pow(decay, c1) * (1.0 - std::pow(decay, kGroupBits)));
-    model.floor[1] = std::max(0.0, g3 - t0 * std::pow(decay, c1 + 2 * kGroupBits));
-  } else {
-    model.floor[1] = mean(1, kMarkFirst, kMarkLast);
-  }
-  const double a = model.decay, a20 = std::pow(a, kBreakSpaceBits);
-  // The SPACE tail builds up over the SPACE half towards t0 at the step: subtract its mean
-  // there from the SPACE level to leave the direct power.
-  double built = 0.0;
-  for (int k = kSpaceFirst; k <= kSpaceLast; ++k) built += t0 * (1.0 - std::pow(a, k + kBreakSpaceBits)) / (1.0 - a20 + kTiny);
-  built /= kSpaceLast - kSpaceFirst + 1;
-  model.floor[0] = mean(0, kSpaceFirst, kSpaceLast);
-  const double space_level = mean(1, kSpaceFirst, kSpaceLast) - model.floor[1] - built;
-  model.level[1] = std::max(space_level, 0.1 * (space_level + built));
-  // Tail power added per bit of a tone, over its direct power: the same for MARK (one room).
-  model.gain = t0 > 0.0 ? t0 * (1.0 - a) / (model.level[1] * (1.0 - a20)) : 0.0;
-  // MARK's own tail builds up over the MARK half likewise.
-  double growth = 0.0;
-  for (int k = kMarkFirst; k <= kMarkLast; ++k) growth += model.gain * (1.0 - std::pow(a, k)) / (1.0 - a);
-  growth /= kMarkLast - kMarkFirst + 1;
-  model.level[0] = std::max(mean(0, kMarkFirst, kMarkLast) - model.floor[0], 0.0) / (1.0 + growth);
-  const double weak = kTiny + 1e-6 * std::max(model.level[0], model.level[1]);
-  model.level[0] = std::max(model.level[0], weak);
-  model.level[1] = std::max(model.level[1], weak);
-  model.tail[0] = model.gain * model.level[0] * (1.0 - a20) / (1.0 - a + kTiny);
-  model.tail[1] = t0 * a20;
-  return model;
-}
-
 void FskReceiver::Normalize(double earliest_break, double latest_break) {
   const double margin = (1.0 + options_.max_rate_error) * per_bit_;
   normalized_start_ = static_cast<std::int64_t>(std::floor(earliest_break + (kFirstBit - 2) * margin));
@@ -424,7 +329,8 @@ void FskReceiver::Normalize(double earliest_break, double latest_break) {
       normalized_[k] = 0.0f;
       continue;
     }
-    normalized_[k] = static_cast<float>((M(n) - model_.floor[0]) / model_.level[0] - (S(n) - model_.floor[1]) / model_.level[1]);
+    normalized_[k] = static_cast<float>((ring_.mark_power(n) - model_.floor[0]) / model_.level[0] -
+                                        (ring_.space_power(n) - model_.floor[1]) / model_.level[1]);
   }
 }
 
@@ -432,7 +338,7 @@ std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_
                                                                     std::int64_t* first_at, std::uint8_t* first_hard) {
   // Each tone on its own scale, so that a tone weaker than the other (the speaker's, the
   // room's and the microphone's responses tilt the spectrum) weighs as much in the clock fit.
-  model_ = FitToneModel(break_step);
+  model_ = FitToneModel(ring_, break_step, per_bit_);
   Normalize(break_step, break_step);
   // The bit clock that best explains the packet's known bits and the strength of its unknown
   // ones, over a grid of phases for each rate. In deep noise the best fit can be a wrong one,
@@ -483,7 +389,7 @@ double FskReceiver::SettleBreak(double break_step) {
   // clearly better than any within reach; else the detector's estimate stands (the tone model is
   // read best there). A late clock's last bits are not heard yet and count for nothing here
   // (Normalize), so a late break must win on fewer bits.
-  model_ = FitToneModel(break_step);
+  model_ = FitToneModel(ring_, break_step, per_bit_);
   Normalize(break_step - kWideEarlyBits * per_bit_, break_step + kWideLateBits * per_bit_);
   const double span = (kWideEarlyBits + kWideLateBits) / 2.0 * per_bit_;
   const ClockFit wide = BestFit(break_step + kWideLateBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
@@ -557,8 +463,8 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
 
 void FskReceiver::Outputs(const std::int64_t* at_step, std::complex<double> heard[2][kPacketBits], double* at) const {
   for (int k = 0; k < kPacketBits; ++k) {
-    heard[0][k] = MC(at_step[k]);
-    heard[1][k] = SC(at_step[k]);
+    heard[0][k] = ring_.mark(at_step[k]);
+    heard[1][k] = ring_.space(at_step[k]);
     at[k] = static_cast<double>(at_step[k]) * filters_.step();
   }
 }
@@ -634,14 +540,14 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
   for (int k = kFrameStart; k < kEndBit; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
     read_at_[k - kFirstBit] = at;
-    const double d = D(at), e = E(at);
+    const double d = ring_.difference(at), e = ring_.sum(at);
     // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
     // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
     // the tone is on (Rician against Rayleigh), MARK's less SPACE's.
     const double noise[2] = {model_.floor[0] + tail[0], model_.floor[1] + tail[1]};
-    heard[0][k - kFrameStart] = M(at);
-    heard[1][k - kFrameStart] = S(at);
-    const double llr = BitLlr(model_.level, noise, M(at), S(at));
+    heard[0][k - kFrameStart] = ring_.mark_power(at);
+    heard[1][k - kFrameStart] = ring_.space_power(at);
+    const double llr = BitLlr(model_.level, noise, ring_.mark_power(at), ring_.space_power(at));
     const double v = std::tanh(llr / 2.0);  // P(MARK) - P(SPACE)
     // The tails the next bit sees: what is left of these, and what this bit adds.
     const double mark = (1.0 + v) / 2.0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nava_modem/bit_clock.h"
+#include "nava_modem/break_detector.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/busy_air.h"
 #include "nava_modem/frame_repair.h"
@@ -15,17 +16,20 @@
 #include "nava_modem/timing_reference.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
+#include "nava_modem/tone_model.h"
+#include "nava_modem/tone_ring.h"
 
 namespace nava_modem {
 
-// The Nava demodulator. Samples pass the two tone filters (ToneFilters). The break before each
-// packet is found by its SPACE-to-MARK step, seen both in the tones' sum and tone by tone (a
-// room can leave one tone 10 dB or more below the other, and the strong tone's tail then hides
-// the step in the sum), and moved to where the clock that best explains the packet's known bits
+// The Nava demodulator. Samples pass the two tone filters (ToneFilters), whose outputs a ToneRing
+// keeps. The break before each packet is found by its SPACE-to-MARK step (BreakDetector, the
+// first stage; its peak and the state around it are this class's), seen both in the tones' sum
+// and tone by tone (a room can leave one tone 10 dB or more below the other, and the strong
+// tone's tail then hides the step in the sum), and moved to where the clock that best explains the packet's known bits
 // puts it when that lies beyond the clock search's reach (a faint tone or a room's tail can make
 // the detector's estimate up to a window late, and a dip in SPACE's sound 10 bits early; a packet
 // whose break moves later is reported once it is in). Each tone's level and floor (and a room's tail)
-// are read from the break, so that a tone weaker than the other counts as much; the bit clock
+// are read from the break (FitToneModel, the second stage), so that a tone weaker than the other counts as much; the bit clock
 // is fitted to the break, the start and stop bits and the header (bit rate and phase, by
 // maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
@@ -55,25 +59,6 @@ class FskReceiver : public PacketReceiver {
 
  private:
   enum class State { kSearching, kPeaking, kCollecting };
-  // Before the first sample, the air was silent.
-  double M(std::int64_t n) const { return n < 0 ? 0.0 : m_[static_cast<std::size_t>(n) & mask_]; }
-  double S(std::int64_t n) const { return n < 0 ? 0.0 : s_[static_cast<std::size_t>(n) & mask_]; }
-  // The filters' complex outputs (for the equaliser).
-  std::complex<double> MC(std::int64_t n) const { return n < 0 ? 0.0 : std::complex<double>(mc_[static_cast<std::size_t>(n) & mask_]); }
-  std::complex<double> SC(std::int64_t n) const { return n < 0 ? 0.0 : std::complex<double>(sc_[static_cast<std::size_t>(n) & mask_]); }
-  double D(std::int64_t n) const { return M(n) - S(n); }
-  double E(std::int64_t n) const { return M(n) + S(n); }
-  // What the break before a packet tells of how each tone arrives (see FitToneModel): each
-  // tone's own level and noise floor, and the room's reverberant tail, so that the bits are
-  // decided on each tone's energy against its own level and its own tail.
-  struct ToneModel {
-    double level[2] = {1.0, 1.0};  // direct power of MARK, SPACE in its own filter
-    double floor[2] = {0.0, 0.0};  // the filter's power with its tone absent and no tail
-    double decay = 0.0;            // the tail's power kept from one bit to the next
-    double gain = 0.0;             // tail power a bit of a tone adds, over its direct power
-    double tail[2] = {0.0, 0.0};   // each tone's tail at the first bit of the frame
-  };
-  ToneModel FitToneModel(double break_step) const;
   // The tone filters' difference, each tone less its floor and over its level (over the
   // packet being decoded; 0 outside it).
   double Normalized(std::int64_t n) const {
@@ -124,12 +109,10 @@ class FskReceiver : public PacketReceiver {
   double per_bit_;    // steps per bit
   double seconds_per_step_;
   std::int64_t w_;    // steps in each half of the break detector
-  std::vector<float> m_, s_;  // MARK^2 and SPACE^2, per step, a ring
-  std::vector<std::complex<float>> mc_, sc_;  // MARK and SPACE as complex amplitudes, a ring
+  ToneRing ring_;     // the filters' outputs, per step
+  BreakDetector detector_;
   FskEqualizer equalizer_;
-  std::size_t mask_;
   std::int64_t n_ = 0;  // steps processed
-  double after_ = 0.0, before_ = 0.0, after_power_ = 0.0, before_power_ = 0.0;  // break detector sums
   State state_ = State::kSearching;
   double peak_ = 0.0, peak_power_ = 0.0;  // the clearest step so far, and its windows' power
   std::int64_t peak_at_ = 0, decode_at_ = 0, blank_until_ = 0;

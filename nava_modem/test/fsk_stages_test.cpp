@@ -1,0 +1,168 @@
+// The nava receiver's stages alone: the ring of the tone filters' outputs, the break detector
+// and the tone model, on made-up filter outputs whose answer is known and on a packet heard
+// through a measured room.
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <filesystem>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "nava_modem/break_detector.h"
+#include "nava_modem/first_arrival.h"
+#include "nava_modem/frame.h"
+#include "nava_modem/fsk_modulator.h"
+#include "nava_modem/measured_response.h"
+#include "nava_modem/modem_options.h"
+#include "nava_modem/packet_receiver.h"
+#include "nava_modem/room_channel.h"
+#include "nava_modem/tone_filters.h"
+#include "nava_modem/tone_model.h"
+#include "nava_modem/tone_ring.h"
+
+namespace nava_modem {
+namespace {
+
+TEST(ToneRing, KeepsTheLastStepsAndSilenceBeforeTheFirst) {
+  ToneRing ring(8);
+  EXPECT_EQ(ring.mark_power(-1), 0.0);
+  for (int n = 0; n < 12; ++n) ring.Put(n, n, 2.0 * n, {1.0 * n, -1.0}, {0.0, 0.5 * n});
+  EXPECT_EQ(ring.mark_power(11), 11.0);
+  EXPECT_EQ(ring.space_power(11), 22.0);
+  EXPECT_EQ(ring.difference(10), -10.0);
+  EXPECT_EQ(ring.sum(10), 30.0);
+  EXPECT_EQ(ring.mark(9), std::complex<double>(9.0, -1.0));
+  EXPECT_EQ(ring.space(9), std::complex<double>(0.0, 4.5));
+  EXPECT_EQ(ring.mark_power(3), 11.0);  // overwritten: step 3 lies 8 steps before step 11
+  EXPECT_THROW(ToneRing(12), std::invalid_argument);
+  EXPECT_THROW(ToneRing(0), std::invalid_argument);
+}
+
+constexpr double kPerBit = 10.0;  // filter steps a bit in the made-up outputs
+
+// A break's filter outputs, step by step, its SPACE-to-MARK step at step `at` (kPerBit steps a
+// bit): SPACE for kBreakSpaceBits bits at `space`, then MARK at `mark`; each filter also holds
+// `floor`, and SPACE's tail, `tail` at the step, decays by `decay` a bit after it.
+ToneRing Break(double at, double mark, double space, double floor, double tail, double decay) {
+  ToneRing ring(1024);
+  for (int n = 0; n < 1024; ++n) {
+    const double bit = (n - at) / kPerBit;  // bits after the step
+    const bool in_space = bit < 0.0 && bit >= -kBreakSpaceBits;
+    const double space_tail = bit >= 0.0 ? tail * std::pow(decay, bit) : 0.0;
+    const double m = floor + (bit >= 0.0 ? mark : 0.0);
+    const double s = floor + (in_space ? space : 0.0) + space_tail;
+    ring.Put(n, m, s, {std::sqrt(m), 0.0}, {std::sqrt(s), 0.0});
+  }
+  return ring;
+}
+
+TEST(ToneModelStage, ReadsSpacesTailDecayAndEachTonesLevel) {
+  const double at = 400.0, decay = 0.9;
+  const ToneRing ring = Break(at, 2.0, 8.0, 0.01, 0.8, decay);
+  const ToneModel model = FitToneModel(ring, at, kPerBit);
+  EXPECT_NEAR(model.decay, decay, 1e-3);  // three group means of a geometric tail give it exactly
+  EXPECT_NEAR(model.floor[1], 0.01, 0.01);
+  EXPECT_NEAR(model.floor[0], 0.01, 1e-9);  // MARK's filter in the SPACE half
+  EXPECT_NEAR(model.level[1], 8.0, 0.8);
+  EXPECT_GT(model.gain, 0.0);
+  EXPECT_GT(model.tail[1], 0.0);
+  // MARK's level, less the tail the model lets MARK's own bits build (the same room): near 2.
+  EXPECT_NEAR(model.level[0], 2.0, 0.4);
+}
+
+TEST(ToneModelStage, ADryBreakHasNoTail) {
+  const double at = 400.0;
+  const ToneRing ring = Break(at, 2.0, 8.0, 0.01, 0.0, 0.0);
+  const ToneModel model = FitToneModel(ring, at, kPerBit);
+  EXPECT_EQ(model.decay, 0.0);
+  EXPECT_EQ(model.gain, 0.0);
+  EXPECT_NEAR(model.floor[1], 0.01, 1e-9);
+  EXPECT_NEAR(model.level[0], 2.0, 1e-6);
+  EXPECT_NEAR(model.level[1], 8.0, 1e-6);
+}
+
+// The detector's step at each filter step, from step 0.
+std::vector<double> Steps(const ToneRing& ring, std::int64_t window, std::int64_t count) {
+  BreakDetector detector(window);
+  std::vector<double> steps;
+  for (std::int64_t n = 0; n < count; ++n) {
+    detector.Update(ring, n);
+    steps.push_back(n >= 2 * window ? detector.Step() : -1.0);
+  }
+  return steps;
+}
+
+TEST(BreakDetectorStage, PeaksWhereItsWindowsStraddleTheBreak) {
+  const double at = 400.0;
+  const std::int64_t window = 100;  // 10 bits
+  const std::vector<double> steps = Steps(Break(at, 1.0, 1.0, 1e-4, 0.0, 0.0), window, 700);
+  const auto peak = std::max_element(steps.begin(), steps.end());
+  EXPECT_GT(*peak, 0.95);
+  // The later window is all MARK, the earlier all SPACE: the window's end lies a window past the step.
+  EXPECT_NEAR(static_cast<double>(peak - steps.begin()) - static_cast<double>(window), at, 1.0);
+}
+
+TEST(BreakDetectorStage, FindsAFaintMarkUnderSpacesTail) {
+  // MARK 15 dB under SPACE, SPACE's tail 6 dB over MARK at the step and dying slowly (a long
+  // reverberation): summed, the tones never step from SPACE to MARK; each on its own scale they do.
+  const double at = 400.0;
+  const std::vector<double> steps = Steps(Break(at, 1.0, 31.6, 1e-4, 4.0, 0.95), 100, 700);
+  EXPECT_GT(*std::max_element(steps.begin(), steps.end()), ReceiverOptions{}.detect_threshold);
+}
+
+TEST(BreakDetectorStage, NoiseAloneStaysUnderTheThreshold) {
+  std::mt19937 rng(3);
+  std::exponential_distribution<double> power(1.0);  // a Rayleigh envelope's power
+  ToneRing ring(4096);
+  for (int n = 0; n < 4000; ++n) ring.Put(n, power(rng), power(rng), {}, {});
+  const std::vector<double> steps = Steps(ring, 100, 4000);
+  EXPECT_LT(*std::max_element(steps.begin(), steps.end()), ReceiverOptions{}.detect_threshold);
+  EXPECT_THROW(BreakDetector(0), std::invalid_argument);
+}
+
+TEST(BreakDetectorStage, FindsABreakHeardThroughAMeasuredRoom) {
+  const std::filesystem::path file = std::filesystem::path(MULTIROBOT_AUDIO_REALROOMS) / "pori_s1_r1_b.wav";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no " << file;
+  ModemOptions modem;
+  const double fs = modem.sample_rate;
+  const std::vector<float> packet = FskModulator(modem).ModulatePacket({0x12, 0x34, 0x56, 0x78});
+  std::vector<float> clean(static_cast<std::size_t>(0.3 * fs), 0.0f);
+  const double sent = static_cast<double>(clean.size());
+  clean.insert(clean.end(), packet.begin(), packet.end());
+  clean.resize(clean.size() + static_cast<std::size_t>(0.5 * fs), 0.0f);
+  RoomOptions room;
+  room.response = LoadImpulseResponse(file.string(), 0, fs);
+  room.noise = RoomOptions::Noise::kWhite;
+  room.snr_db = 20.0;
+  const std::vector<float> heard = RenderRoom(clean, fs, room);
+  // Where the break's step is heard, in filter steps: the packet's start, its SPACE half and
+  // the room's delay to its direct sound.
+  ToneFilters filters(modem);
+  const double per_bit = SamplesPerBit(modem) / filters.step();
+  const double truth = (sent + LeadingEdge(room.response, fs) * fs) / filters.step() + kBreakSpaceBits * per_bit;
+  const std::int64_t window = std::lround(10.0 * per_bit);
+  ToneRing ring(4096);
+  BreakDetector detector(window);
+  std::int64_t n = 0, peak_at = 0;
+  double peak = -1.0;
+  for (float x : heard) {
+    if (!filters.Push(x)) continue;
+    ring.Put(n, filters.mark_power(), filters.space_power(), {filters.mark_re(), filters.mark_im()},
+             {filters.space_re(), filters.space_im()});
+    detector.Update(ring, n);
+    if (n >= 2 * window && detector.Step() > peak) peak = detector.Step(), peak_at = n;
+    ++n;
+  }
+  EXPECT_GT(peak, ReceiverOptions{}.detect_threshold);
+  // As the receiver places it: the windows' boundary, less the filters' half window.
+  const double found = static_cast<double>(peak_at - window) - filters.window() / 2.0;
+  EXPECT_NEAR(found, truth, 2.0 * per_bit) << "found at bit " << (found - truth) / per_bit << " from the break";
+}
+
+}  // namespace
+}  // namespace nava_modem
