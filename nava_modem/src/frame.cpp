@@ -44,4 +44,14 @@ UartByte ReadUartByte(const std::uint8_t* bits) {
   return out;
 }
 
+int KnownPacketBit(int k) {
+  if (k < kBreakSpaceBits) return 0;
+  if (k < kBreakSpaceBits + kBreakMarkBits) return 1;
+  const int j = k - kBreakSpaceBits - kBreakMarkBits, pos = j % kBitsPerByte, byte = j / kBitsPerByte;
+  if (pos == 0) return 0;  // start bit
+  if (pos == 9) return 1;  // stop bit
+  if (byte == 0) return (kHeader >> (pos - 1)) & 1;
+  return -1;
+}
+
 }  // namespace nava_modem

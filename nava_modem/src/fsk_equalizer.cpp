@@ -47,15 +47,6 @@ using Matrix = Eigen::Matrix<Complex, Eigen::Dynamic, kTaps>;
 using Square = Eigen::Matrix<Complex, kTaps, kTaps>;
 using Vector = Eigen::Matrix<Complex, kTaps, 1>;
 
-int KnownBit(int k) {
-  if (k < kBreakSpaceBits) return 0;
-  if (k < kBreakBits) return 1;
-  const int j = k - kBreakBits, pos = j % kBitsPerByte, byte = j / kBitsPerByte;
-  if (pos == 0) return 0;
-  if (pos == 9) return 1;
-  if (byte == 0) return (kHeader >> (pos - 1)) & 1;
-  return -1;
-}
 
 // The tone a bit sends: 0 MARK (bit 1), 1 SPACE (bit 0).
 int ToneOf(int bit) { return bit ? 0 : 1; }
@@ -161,7 +152,7 @@ OffsetFit SearchOffset(const Fit fit[2], const Turning& turning, int rows, doubl
 // bits; the first fit uses only these, the later ones every bit as decided.
 int KnownRows() {
   int rows = 0;
-  while (rows + kEarly < kPacketBits && KnownBit(rows + kEarly) >= 0) ++rows;
+  while (rows + kEarly < kPacketBits && KnownPacketBit(rows + kEarly) >= 0) ++rows;
   return rows;
 }
 
@@ -176,7 +167,7 @@ void Rotations(const ModemOptions& modem, Complex rot[2][2]) {
 std::array<std::uint8_t, kPacketBits> KnownAndFirst(const std::uint8_t* first) {
   std::array<std::uint8_t, kPacketBits> bits;
   for (int k = 0; k < kPacketBits; ++k) {
-    const int known = KnownBit(k);
+    const int known = KnownPacketBit(k);
     bits[k] = static_cast<std::uint8_t>(known >= 0 ? known : first[k - kBreakBits]);
   }
   return bits;
@@ -298,7 +289,7 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
     };
     for (int j = kBreakBits; j < kPacketBits + kEarly; ++j) {
       for (Survivor& s : next) s.metric = std::numeric_limits<double>::infinity();
-      const int known = j < kPacketBits && j < kBreakBits ? KnownBit(j) : -1;
+      const int known = j < kPacketBits && j < kBreakBits ? KnownPacketBit(j) : -1;
       double competitor[kStates];
       std::fill(competitor, competitor + kStates, std::numeric_limits<double>::infinity());
       int from[kStates], loser[kStates];
@@ -389,7 +380,7 @@ bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const do
     if (pass == 0 && misframed > kMaxMisframedFirst) return false;
     std::array<std::uint8_t, kPacketBits> decided = best->bits;
     for (int k = 0; k < kPacketBits; ++k)
-      if (KnownBit(k) >= 0) decided[k] = static_cast<std::uint8_t>(KnownBit(k));
+      if (KnownPacketBit(k) >= 0) decided[k] = static_cast<std::uint8_t>(KnownPacketBit(k));
     if (pass > 0 && decided == bits) break;
     bits = decided;
   }

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 
+#include "nava_modem/bit_likelihood.h"
 #include "nava_modem/first_arrival.h"
+#include "nava_modem/frame_reading.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/power_of_two.h"
 #include "nava_modem/timing_reference.h"
@@ -56,18 +58,6 @@ constexpr int kMarkSettleBits = 2;
 constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
 constexpr double kLoopMinSoft = 0.3;
-// The noise a tone's decision assumes is at least this share of its level: the filters'
-// leakage from neighbouring bits, which the break does not show, is about this large.
-constexpr double kMinNoise = 0.01;
-
-// Bit repairs (FrameRepair) are allowed only on clocks within this of the nominal rate: the
-// receiver searches max_rate_error (3.5 %) for robustness, but sound cards are within a few
-// tenths of a percent, and the far clocks are where wrong fits to echoes or noise land.
-constexpr double kRepairRateLimit = 0.015;
-// Bits a repair may flip in a reading decided on the break's model of the tones (ReadFrame).
-constexpr int kMaxBreakModelRepairs = 1;
-// Start and stop bits (of 14) a clock's reading may get wrong and still have its frame repaired.
-constexpr int kMaxMisframedRepaired = 2;
 // Where the equaliser reads a packet no clock read (DecodeFrame): on the nominal bit rate from
 // where the best clock put the break, and up to this far later and earlier, in whole bits
 // (earlier further: a room's echoes and tail make the break look late, by up to 5 bits through
@@ -86,59 +76,10 @@ constexpr double kEqualizerOwnClockRate = 0.001;
 // whose only errors were one 3-bit event.
 constexpr int kEventRepairs = 2, kMaxEventBits = 4;
 
-// ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
-// 9.8.2), for x >= 0.
-double LogBesselI0(double x) {
-  if (x < 3.75) {
-    const double t = (x / 3.75) * (x / 3.75);
-    return std::log(1.0 + t * (3.5156229 + t * (3.0899424 + t * (1.2067492 + t * (0.2659732 + t * (0.0360768 + t * 0.0045813))))));
-  }
-  const double t = 3.75 / x;
-  return x - 0.5 * std::log(x) +
-         std::log(0.39894228 + t * (0.01328592 + t * (0.00225319 + t * (-0.00157565 + t * (0.00916281 +
-                  t * (-0.02057706 + t * (0.02635537 + t * (-0.01647633 + t * 0.00392377))))))));
-}
-
-// The log-likelihood ratio of MARK over SPACE for one bit whose filters heard powers m and s.
-// Each tone's filter holds its direct sound, if sent, and a random part (noise, and the
-// room's reverberation of earlier bits) of known mean power: Rician against Rayleigh.
-double BitLlr(const double level[2], const double noise[2], double m, double s) {
-  const double heard[2] = {m, s};
-  double llr = 0.0;
-  for (int t = 0; t < 2; ++t) {
-    const double n = std::max(noise[t], kMinNoise * level[t]);
-    const double l = LogBesselI0(2.0 * std::sqrt(level[t] * heard[t]) / n) - level[t] / n;
-    llr += t == 0 ? l : -l;
-  }
-  return llr;
-}
-
-// Two estimates of a quantity for MARK and SPACE, drawn towards their geometric mean as far
-// as their ratio is within its standard error (var_log: the variance of the log ratio), so
-// that the tones are told apart only where the audio shows a real difference.
-void Shrink(double value[2], double var_log) {
-  const double lr = std::log(value[0] / value[1]);
-  const double kept = lr * lr / (lr * lr + var_log + kTiny) * lr;
-  const double mid = std::sqrt(value[0] * value[1]);
-  value[0] = mid * std::exp(kept / 2.0);
-  value[1] = mid * std::exp(-kept / 2.0);
-}
-
 // The MARK and SPACE filter outputs summed (the thesis's quality figure), from the difference d
 // and the sum e of their squares.
 double FilterSum(double d, double e) {
   return std::sqrt(std::max(0.0, (e + d) / 2.0)) + std::sqrt(std::max(0.0, (e - d) / 2.0));
-}
-
-// The value a bit is known to have, or -1 where the packet's content decides.
-int KnownBit(int k) {
-  if (k < 0) return 0;            // the break's SPACE half
-  if (k < kFrameStart) return 1;  // its MARK half
-  const int j = k - kFrameStart, pos = j % kBitsPerByte, byte = j / kBitsPerByte;
-  if (pos == 0) return 0;  // start bit
-  if (pos == 9) return 1;  // stop bit
-  if (byte == 0) return (kHeader >> (pos - 1)) & 1;
-  return -1;
 }
 
 // Filter outputs kept: the packet and the clock search's reach either side.
@@ -285,7 +226,7 @@ double FskReceiver::FitMetric(double first_mark, double period) const {
   static const std::array<int, kEndBit - kFirstBit> weight = [] {
     std::array<int, kEndBit - kFirstBit> w{};
     for (int k = kFirstBit; k < kEndBit; ++k) {
-      const int known = KnownBit(k);
+      const int known = KnownPacketBit(k + kBreakSpaceBits);
       // 1: counts for MARK; -1: for SPACE; 2: either way (an unknown bit's strength); 0: not at all.
       w[static_cast<std::size_t>(k - kFirstBit)] = k >= 0 && k < kMarkSettleBits ? 0 : known < 0 ? 2 : known ? 1 : -1;
     }
@@ -361,7 +302,8 @@ std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_
   ClockFit best{break_step, per_bit_, -1e300};
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ClockFit fine = BestFit(candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, rate_step, 0.0005);
-    RxEvent ev = ReadFrame(fine.start, fine.period);
+    const FrameReading reading = ReadFrame(fine.start, fine.period);
+    RxEvent ev = AcceptReading(reading, modem_.crc, options_.max_fixed_bits);
     if (ev.kind == RxEvent::Kind::kPacket) {
       first = ev;
       return std::nullopt;
@@ -369,8 +311,8 @@ std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_
     if (k == 0) {
       best = fine;
       first = ev;
-      std::copy(read_at_, read_at_ + kPacketBits, first_at);
-      std::copy(read_hard_, read_hard_ + kFrameBits, first_hard);
+      std::copy(reading.at.begin(), reading.at.end(), first_at);
+      std::copy(reading.hard.begin(), reading.hard.end(), first_hard);
     }
   }
   return best;
@@ -487,80 +429,41 @@ std::optional<RepairedFrame> FskReceiver::Equalize(const std::int64_t* at_step, 
   return repaired;
 }
 
-SoftFrame FskReceiver::FrameModelSoft(const double heard[2][kFrameBits], const std::uint8_t* hard) const {
-  // The break shows each tone held steady, which a room colours by its steady-state response
-  // (a fade of several dB at one frequency, another at the other), not as the short bits
-  // arrive; so each tone's level and floor are read again from the frame's own bits: the
-  // known ones (start, stop, header) and the others as first decided.
-  double sum[2][2] = {}, sum2[2][2] = {};  // [tone][on]
-  int count[2][2] = {};
-  for (int j = 0; j < kFrameBits; ++j) {
-    const int known = KnownBit(kFrameStart + j);
-    const int bit = known < 0 ? hard[j] : known;
-    for (int t = 0; t < 2; ++t) {
-      const int on = (t == 0) == (bit == 1);
-      sum[t][on] += heard[t][j];
-      sum2[t][on] += heard[t][j] * heard[t][j];
-      ++count[t][on];
-    }
-  }
-  double level[2], noise[2], var_level = 0.0, var_noise = 0.0;
-  for (int t = 0; t < 2; ++t) {
-    if (count[t][0] < 2 || count[t][1] < 2) return SoftFrame{};
-    const double on = sum[t][1] / count[t][1], off = sum[t][0] / count[t][0];
-    noise[t] = std::max(off, kTiny);
-    level[t] = std::max(on - off, kMinNoise * on + kTiny);
-    // The variance of the log of each mean.
-    const double var_on = std::max(0.0, sum2[t][1] / count[t][1] - on * on) / count[t][1];
-    const double var_off = std::max(0.0, sum2[t][0] / count[t][0] - off * off) / count[t][0];
-    var_level += (var_on + var_off) / (level[t] * level[t]);
-    var_noise += var_off / (noise[t] * noise[t]);
-  }
-  Shrink(level, var_level);
-  Shrink(noise, var_noise);
-  SoftFrame soft{};
-  for (int j = 0; j < kFrameBits; ++j) {
-    const int pos = j % kBitsPerByte;
-    if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(BitLlr(level, noise, heard[0][j], heard[1][j]));
-  }
-  return soft;
-}
-
-RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
+FrameReading FskReceiver::ReadFrame(double best_start, double best_period) const {
   BitClock clock(best_start, best_period, filters_.window(), kPhaseGain, kPeriodGain);
-  SoftFrame soft{};
-  std::uint8_t hard[kFrameBits];
+  FrameReading r;
   double power = 0.0, quality = 0.0;
   int previous = 1;  // the break's last bit is MARK
   double previous_soft = 1.0;
   double tail[2] = {model_.tail[0], model_.tail[1]};
-  double heard[2][kFrameBits];  // MARK's and SPACE's filters at each bit
   // Where each bit of the packet was read, for the equaliser.
-  for (int k = kFirstBit; k < kFrameStart; ++k) read_at_[k - kFirstBit] = std::llround(best_start + (k + 1) * best_period - 1.0);
+  for (int k = kFirstBit; k < kFrameStart; ++k) {
+    r.at[static_cast<std::size_t>(k - kFirstBit)] = std::llround(best_start + (k + 1) * best_period - 1.0);
+  }
   for (int k = kFrameStart; k < kEndBit; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
-    read_at_[k - kFirstBit] = at;
+    r.at[static_cast<std::size_t>(k - kFirstBit)] = at;
     const double d = ring_.difference(at), e = ring_.sum(at);
     // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
     // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
     // the tone is on (Rician against Rayleigh), MARK's less SPACE's.
     const double noise[2] = {model_.floor[0] + tail[0], model_.floor[1] + tail[1]};
-    heard[0][k - kFrameStart] = ring_.mark_power(at);
-    heard[1][k - kFrameStart] = ring_.space_power(at);
+    const int j = k - kFrameStart, pos = j % kBitsPerByte;
+    const std::size_t bit = static_cast<std::size_t>(j);
+    r.heard[0][bit] = ring_.mark_power(at);
+    r.heard[1][bit] = ring_.space_power(at);
     const double llr = BitLlr(model_.level, noise, ring_.mark_power(at), ring_.space_power(at));
     const double v = std::tanh(llr / 2.0);  // P(MARK) - P(SPACE)
     // The tails the next bit sees: what is left of these, and what this bit adds.
     const double mark = (1.0 + v) / 2.0;
     tail[0] = model_.decay * tail[0] + model_.gain * model_.level[0] * mark;
     tail[1] = model_.decay * tail[1] + model_.gain * model_.level[1] * (1.0 - mark);
-    const int j = k - kFrameStart, pos = j % kBitsPerByte;
-    hard[j] = llr > 0.0;
-    read_hard_[j] = hard[j];
-    if (pos >= 1 && pos <= 8) soft[(j / kBitsPerByte) * 8 + pos - 1] = static_cast<float>(llr);
+    r.hard[bit] = llr > 0.0;
+    if (pos >= 1 && pos <= 8) r.soft[static_cast<std::size_t>((j / kBitsPerByte) * 8 + pos - 1)] = static_cast<float>(llr);
     power += e;
     quality += FilterSum(d, e);
     // Follow the transition into this bit, if it is clear on both sides.
-    if (hard[j] != previous && std::abs(v) > kLoopMinSoft && std::abs(previous_soft) > kLoopMinSoft) {
+    if (r.hard[bit] != previous && std::abs(v) > kLoopMinSoft && std::abs(previous_soft) > kLoopMinSoft) {
       const double expected = clock.ExpectedCrossing(k);
       const std::int64_t lo = std::llround(expected - clock.period() / 4.0);
       const std::int64_t hi = std::llround(expected + clock.period() / 4.0);
@@ -576,52 +479,15 @@ RxEvent FskReceiver::ReadFrame(double best_start, double best_period) {
       }
       if (nearest < 1e300) clock.Observe(k, crossing);
     }
-    previous = hard[j];
+    previous = r.hard[bit];
     previous_soft = v;
   }
-
-  RxEvent ev;
-  ev.start = Seconds(best_start - kBreakSpaceBits * best_period);
-  ev.end = Seconds(clock.Start(kEndBit));
-  ev.level_db = 10.0 * std::log10(power / kFrameBits + kTiny);
-  ev.quality = quality / kFrameBits;
-  ev.rate_error = per_bit_ / best_period - 1.0;
-  // A clock fitted this far off is rarer in a sound card than a wrong fit to a room's echoes or
-  // to noise, whose reading the CRC must then pass unrepaired.
-  const int max_fixed = std::abs(ev.rate_error) > kRepairRateLimit ? 0 : options_.max_fixed_bits;
-  std::optional<RepairedFrame> repaired = RepairFrame(FrameModelSoft(heard, hard), modem_.crc, max_fixed);
-  // The break's model of the tones is blind to a room's early echoes, and its log-likelihoods
-  // can then be sure of three or more wrong bits; a two-bit repair of such a reading once passed
-  // the CRC with a wrong packet (FskRobustness.DiscreteEarlyReflectionsAFewBitsLate), so it
-  // gets one.
-  if (!repaired) repaired = RepairFrame(soft, modem_.crc, std::min(max_fixed, kMaxBreakModelRepairs));
-  // The start and stop bits are checks the CRC does not see: a reading that got more of them
-  // wrong than this has more wrong data bits than a repair should trust (a one-bit repair of a
-  // reading with three wrong framing bits passed the CRC with a wrong packet in a measured room
-  // whose reverberation was scaled to DRR +4 dB).
-  if (repaired && repaired->fixed_bits > 0) {
-    int misframed = 0;
-    for (int c = 0; c < kFrameBytes; ++c) misframed += (hard[c * kBitsPerByte] != 0) + (hard[c * kBitsPerByte + 9] != 1);
-    if (misframed > kMaxMisframedRepaired) repaired.reset();
-  }
-  if (repaired) {
-    ev.kind = RxEvent::Kind::kPacket;
-    ev.data.assign(repaired->frame.begin() + 1, repaired->frame.begin() + 1 + kDataBytes);
-    ev.fixed_bits = repaired->fixed_bits;
-    return ev;
-  }
-  ev.kind = RxEvent::Kind::kNoise;
-  bool any_framed = false;
-  for (int c = 0; c < kFrameBytes; ++c) any_framed = any_framed || ReadUartByte(hard + c * kBitsPerByte).framed;
-  const UartByte header = ReadUartByte(hard);
-  if (!any_framed) {
-    ev.noise = RxEvent::Noise::kZeroByte;
-  } else if (!header.framed || header.value != kHeader) {
-    ev.noise = RxEvent::Noise::kOneByte;
-  } else {
-    ev.noise = RxEvent::Noise::kBadCrc;
-  }
-  return ev;
+  r.start = Seconds(best_start - kBreakSpaceBits * best_period);
+  r.end = Seconds(clock.Start(kEndBit));
+  r.level_db = 10.0 * std::log10(power / kFrameBits + kTiny);
+  r.quality = quality / kFrameBits;
+  r.rate_error = per_bit_ / best_period - 1.0;
+  return r;
 }
 
 // The packet's known start (PacketTimingReference) timed in the input around where the decoder

@@ -16,6 +16,7 @@
 #include "nava_modem/break_detector.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/frame_reading.h"
 #include "nava_modem/fsk_modulator.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/modem_options.h"
@@ -162,6 +163,87 @@ TEST(BreakDetectorStage, FindsABreakHeardThroughAMeasuredRoom) {
   // As the receiver places it: the windows' boundary, less the filters' half window.
   const double found = static_cast<double>(peak_at - window) - filters.window() / 2.0;
   EXPECT_NEAR(found, truth, 2.0 * per_bit) << "found at bit " << (found - truth) / per_bit << " from the break";
+}
+
+// A reading of the frame carrying `data`, every bit decided as sure as `sure` (a log-likelihood
+// ratio), the tones heard at power 1 when on and 0.01 when off.
+FrameReading Reading(const std::vector<std::uint8_t>& data, double sure = 8.0) {
+  const std::vector<std::uint8_t> bits = PacketBits(MakeFrame(data, CrcVariant::kCcittFalse));
+  FrameReading r;
+  for (int j = 0; j < kFrameBits; ++j) {
+    const std::uint8_t bit = bits[static_cast<std::size_t>(kBreakSpaceBits + kBreakMarkBits + j)];
+    r.hard[static_cast<std::size_t>(j)] = bit;
+    r.heard[0][static_cast<std::size_t>(j)] = bit ? 1.0 : 0.01;
+    r.heard[1][static_cast<std::size_t>(j)] = bit ? 0.01 : 1.0;
+    const int pos = j % kBitsPerByte;
+    if (pos >= 1 && pos <= 8) r.soft[static_cast<std::size_t>((j / kBitsPerByte) * 8 + pos - 1)] = static_cast<float>(bit ? sure : -sure);
+  }
+  r.start = 1.0;
+  r.end = 1.3;
+  r.level_db = -20.0;
+  r.quality = 0.5;
+  return r;
+}
+
+// Bit `bit` of the frame (0 = the header's start bit) read as `value`, as surely as the tones'
+// powers `on` and `off` say (and the log-likelihood ratio `sure`): its first decision, what the
+// tones heard and its soft decision all agree.
+void SetBit(FrameReading& r, int bit, int value, double on = 1.0, double off = 0.01, float sure = 8.0f) {
+  const std::size_t j = static_cast<std::size_t>(bit);
+  r.hard[j] = static_cast<std::uint8_t>(value);
+  r.heard[0][j] = value ? on : off;
+  r.heard[1][j] = value ? off : on;
+  const int pos = bit % kBitsPerByte;
+  if (pos >= 1 && pos <= 8) r.soft[static_cast<std::size_t>((bit / kBitsPerByte) * 8 + pos - 1)] = value ? sure : -sure;
+}
+
+// Bit `bit` read as the other value, unsure.
+void Flip(FrameReading& r, int bit) { SetBit(r, bit, !r.hard[static_cast<std::size_t>(bit)], 0.6, 0.4, 0.2f); }
+
+TEST(AcceptanceStage, AReadingWhoseCrcPassesIsThePacket) {
+  const RxEvent ev = AcceptReading(Reading({1, 2, 3, 4}), CrcVariant::kCcittFalse, 2);
+  ASSERT_EQ(ev.kind, RxEvent::Kind::kPacket);
+  EXPECT_EQ(ev.data, std::vector<std::uint8_t>({1, 2, 3, 4}));
+  EXPECT_EQ(ev.fixed_bits, 0);
+  EXPECT_EQ(ev.start, 1.0);
+  EXPECT_EQ(ev.end, 1.3);
+  EXPECT_EQ(ev.level_db, -20.0);
+  EXPECT_EQ(ev.quality, 0.5);
+}
+
+TEST(AcceptanceStage, RepairsAnUnsureBitOnlyOnAClockNearTheNominalRate) {
+  FrameReading r = Reading({0xA5, 0x5A, 0x0F, 0xF0});
+  Flip(r, 2 * kBitsPerByte + 3);  // a data bit of the second data byte
+  const RxEvent repaired = AcceptReading(r, CrcVariant::kCcittFalse, 2);
+  ASSERT_EQ(repaired.kind, RxEvent::Kind::kPacket);
+  EXPECT_EQ(repaired.data, std::vector<std::uint8_t>({0xA5, 0x5A, 0x0F, 0xF0}));
+  EXPECT_EQ(repaired.fixed_bits, 1);
+  EXPECT_EQ(AcceptReading(r, CrcVariant::kCcittFalse, 0).noise, RxEvent::Noise::kBadCrc);
+  r.rate_error = 0.02;  // a clock this far off is more often a wrong fit than a sound card
+  const RxEvent far = AcceptReading(r, CrcVariant::kCcittFalse, 2);
+  EXPECT_EQ(far.kind, RxEvent::Kind::kNoise);
+  EXPECT_EQ(far.noise, RxEvent::Noise::kBadCrc);
+  EXPECT_EQ(far.rate_error, 0.02);
+}
+
+TEST(AcceptanceStage, NoRepairWhereTheFramingBitsAreWrong) {
+  FrameReading r = Reading({9, 8, 7, 6});
+  Flip(r, 2 * kBitsPerByte + 3);
+  // Three start bits read as MARK: more wrong framing than a repair should trust.
+  for (int c = 2; c <= 4; ++c) r.hard[static_cast<std::size_t>(c * kBitsPerByte)] = 1;
+  EXPECT_EQ(AcceptReading(r, CrcVariant::kCcittFalse, 2).kind, RxEvent::Kind::kNoise);
+}
+
+TEST(AcceptanceStage, NamesTheNoiseByWhatWasFramed) {
+  FrameReading nothing = Reading({1, 2, 3, 4});
+  for (int j = 0; j < kFrameBits; ++j) SetBit(nothing, j, 0);  // every stop bit SPACE: nothing framed
+  EXPECT_EQ(AcceptReading(nothing, CrcVariant::kCcittFalse, 2).noise, RxEvent::Noise::kZeroByte);
+  FrameReading wrong_header = Reading({1, 2, 3, 4});
+  for (int pos = 1; pos <= 8; ++pos) SetBit(wrong_header, pos, 1);  // header 0xFF: framed, not 0x55
+  EXPECT_EQ(AcceptReading(wrong_header, CrcVariant::kCcittFalse, 2).noise, RxEvent::Noise::kOneByte);
+  FrameReading bad_data = Reading({1, 2, 3, 4});
+  for (int pos = 1; pos <= 8; ++pos) SetBit(bad_data, kBitsPerByte + pos, 1);  // 0x01 read surely as 0xFF
+  EXPECT_EQ(AcceptReading(bad_data, CrcVariant::kCcittFalse, 2).noise, RxEvent::Noise::kBadCrc);
 }
 
 }  // namespace

@@ -26,6 +26,11 @@ using Frame = std::array<std::uint8_t, kFrameBytes>;
 // Header, data and CRC. `data` must hold kDataBytes bytes (std::invalid_argument otherwise).
 Frame MakeFrame(const std::vector<std::uint8_t>& data, CrcVariant crc);
 
+// The value bit k of a packet has whatever its data (0 at the break's first SPACE bit; before it,
+// SPACE too): 0 or 1 for the break, the start and stop bits and the header; -1 where the data
+// and CRC decide.
+int KnownPacketBit(int k);
+
 // Every bit of the packet in air order, break included: kPacketBits values of 0 or 1.
 std::vector<std::uint8_t> PacketBits(const Frame& frame);
 

@@ -10,6 +10,7 @@
 #include "nava_modem/break_detector.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/busy_air.h"
+#include "nava_modem/frame_reading.h"
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
@@ -34,7 +35,8 @@ namespace nava_modem {
 // maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
 // against their levels and floors (read again from the frame itself, as a room colours the
-// break's steady tones), the emulated UART reads 8N1 characters from them, and the CRC repairs
+// break's steady tones), the emulated UART reads 8N1 characters from them (the frame reader's
+// FrameReading; AcceptReading, the acceptance step, does the rest), and the CRC repairs
 // up to two unsure bits (one in a reading on the break's own model, which a room's echoes can
 // make sure of wrong bits; none on a clock more than 1.5 % off the nominal rate, where wrong
 // fits land). When no clock's reading passes, the break is placed where the best clock put
@@ -91,12 +93,10 @@ class FskReceiver : public PacketReceiver {
   // The equaliser's reading of the packet with its bits' filter outputs taken at at_step
   // (kPacketBits steps, the break's first SPACE bit first), the sender's clock rate_error off.
   std::optional<RepairedFrame> Equalize(const std::int64_t* at_step, double rate_error, const std::uint8_t* first_hard) const;
-  // Reads the frame with the bit clock starting there (the first MARK bit of the break).
-  RxEvent ReadFrame(double first_mark, double period);
+  // The frame reader: reads the frame with the bit clock starting there (the first MARK bit of
+  // the break), on the tone model of the packet being decoded.
+  FrameReading ReadFrame(double first_mark, double period) const;
   double FitMetric(double first_mark, double period) const;
-  // Soft decisions on the frame from its bits' filter outputs, each tone's level and floor
-  // read from the frame itself; `hard`: the first decisions.
-  SoftFrame FrameModelSoft(const double heard[2][kFrameBits], const std::uint8_t* hard) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
 
   ModemOptions modem_;
@@ -121,9 +121,6 @@ class FskReceiver : public PacketReceiver {
   bool break_moved_late_ = false;  // and SettleBreak moved it later
   ToneModel model_;          // of the packet being decoded
   std::vector<float> normalized_;
-  // The last ReadFrame's step for each bit of the packet, and its first decisions on the frame.
-  std::int64_t read_at_[kPacketBits] = {};
-  std::uint8_t read_hard_[kFrameBits] = {};
   std::int64_t normalized_start_ = 0;
   bool muted_ = false;
   BusyAir busy_{0.0, 0.0};  // for ZERO_BYTE reports
