@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "nava_modem/bit_likelihood.h"
+#include "nava_modem/clock_search.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/frame_reading.h"
 #include "nava_modem/measured_response.h"
@@ -49,11 +50,6 @@ constexpr double kPhaseSpanBits = 2.5;
 // early (a concert hall's and a museum basement's measured responses, made drier).
 constexpr double kWideEarlyBits = 12.0, kWideLateBits = 12.0;
 constexpr double kFarBreakGain = 1.1;
-// The break's first MARK bits do not count in the clock fit (FitMetric): they lie under SPACE's
-// reverberant tail while MARK's own sound builds up, and in a room they pull the fit a bit or
-// two late (with a wrong rate to make up for it); without these two, measured rooms at DRR 0 to
-// +2 dB read about a tenth more packets.
-constexpr int kMarkSettleBits = 2;
 // Bit clocks tried per packet (see DecodeFrame).
 constexpr std::size_t kClockHypotheses = 3;
 // Crossings are trusted for the loop only between bits decided at least this clearly.
@@ -220,62 +216,15 @@ void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
   busy_.Step(Seconds(static_cast<double>(n)), e, FilterSum(ring_.difference(n), e), state_ != State::kSearching, events);
 }
 
-double FskReceiver::FitMetric(double first_mark, double period) const {
-  // The clock search calls this some two thousand times a packet: the bits' weights are made
-  // once, and the rounding is done inline (std::llround is a library call).
-  static const std::array<int, kEndBit - kFirstBit> weight = [] {
-    std::array<int, kEndBit - kFirstBit> w{};
-    for (int k = kFirstBit; k < kEndBit; ++k) {
-      const int known = KnownPacketBit(k + kBreakSpaceBits);
-      // 1: counts for MARK; -1: for SPACE; 2: either way (an unknown bit's strength); 0: not at all.
-      w[static_cast<std::size_t>(k - kFirstBit)] = k >= 0 && k < kMarkSettleBits ? 0 : known < 0 ? 2 : known ? 1 : -1;
-    }
-    return w;
-  }();
-  double sum = 0.0;
-  for (int k = kFirstBit; k < kEndBit; ++k) {
-    const int w = weight[static_cast<std::size_t>(k - kFirstBit)];
-    if (w == 0) continue;
-    const double at = first_mark + (k + 1) * period - 0.5;  // rounded: floor(x - 1 + 0.5)
-    std::int64_t n = static_cast<std::int64_t>(at);
-    if (static_cast<double>(n) > at) --n;
-    const double v = Normalized(n);
-    sum += w == 2 ? std::abs(v) : w * v;
-  }
-  return sum;
-}
-
-FskReceiver::ClockFit FskReceiver::BestFit(double start0, double period0, double phase_span, double phase_step,
-                                           double rate_span, double rate_step) const {
-  ClockFit best{start0, period0, -1e300};
-  for (double r = -rate_span; r <= rate_span + 1e-12; r += rate_step) {
-    const double period = period0 * (1.0 + r);
-    for (double p = -phase_span; p <= phase_span + 1e-9; p += phase_step) {
-      const double metric = FitMetric(start0 + p, period);
-      if (metric > best.metric) best = {start0 + p, period, metric};
-    }
-  }
-  return best;
-}
-
 void FskReceiver::Normalize(double earliest_break, double latest_break) {
   const double margin = (1.0 + options_.max_rate_error) * per_bit_;
-  normalized_start_ = static_cast<std::int64_t>(std::floor(earliest_break + (kFirstBit - 2) * margin));
-  const std::int64_t normalized_end = static_cast<std::int64_t>(std::ceil(latest_break + (kEndBit + 2) * margin));
-  normalized_.resize(static_cast<std::size_t>(std::max<std::int64_t>(0, normalized_end - normalized_start_)));
-  for (std::size_t k = 0; k < normalized_.size(); ++k) {
-    const std::int64_t n = normalized_start_ + static_cast<std::int64_t>(k);
-    // Not heard yet (a late break's packet): no evidence either way.
-    if (n >= n_) {
-      normalized_[k] = 0.0f;
-      continue;
-    }
-    normalized_[k] = static_cast<float>((ring_.mark_power(n) - model_.floor[0]) / model_.level[0] -
-                                        (ring_.space_power(n) - model_.floor[1]) / model_.level[1]);
-  }
+  const std::int64_t from = static_cast<std::int64_t>(std::floor(earliest_break + (kFirstBit - 2) * margin));
+  const std::int64_t to = static_cast<std::int64_t>(std::ceil(latest_break + (kEndBit + 2) * margin));
+  // What is not heard yet (a late break's packet) gives no evidence either way.
+  normalized_ = NormalizedTones(ring_, model_, from, to, n_);
 }
 
-std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent& first,
+std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent& first,
                                                                     std::int64_t* first_at, std::uint8_t* first_hard) {
   // Each tone on its own scale, so that a tone weaker than the other (the speaker's, the
   // room's and the microphone's responses tilt the spectrum) weighs as much in the clock fit.
@@ -285,23 +234,12 @@ std::optional<FskReceiver::ClockFit> FskReceiver::ReadOnBestClocks(double break_
   // ones, over a grid of phases for each rate. In deep noise the best fit can be a wrong one,
   // so the best few rates that are local optima are each refined on a finer grid and read in
   // turn; the first whose frame checks is the packet.
-  const double rate_step = 0.0025;
-  const int rates = static_cast<int>(std::lround(options_.max_rate_error / rate_step));
-  std::vector<ClockFit> per_rate;
-  for (int k = -rates; k <= rates; ++k) {
-    per_rate.push_back(BestFit(break_step, per_bit_ * (1.0 + k * rate_step), kPhaseSpanBits * per_bit_, per_bit_ / 8.0, 0.0, 1.0));
-  }
-  std::vector<ClockFit> candidates;
-  for (std::size_t k = 0; k < per_rate.size(); ++k) {
-    const bool left = k == 0 || per_rate[k].metric >= per_rate[k - 1].metric;
-    const bool right = k + 1 == per_rate.size() || per_rate[k].metric >= per_rate[k + 1].metric;
-    if (left && right) candidates.push_back(per_rate[k]);
-  }
-  std::sort(candidates.begin(), candidates.end(), [](const ClockFit& a, const ClockFit& b) { return a.metric > b.metric; });
-  if (candidates.size() > kClockHypotheses) candidates.resize(kClockHypotheses);
+  const std::vector<ClockFit> candidates =
+      ClockCandidates(normalized_, break_step, per_bit_, kPhaseSpanBits * per_bit_, options_.max_rate_error, kClockHypotheses);
   ClockFit best{break_step, per_bit_, -1e300};
   for (std::size_t k = 0; k < candidates.size(); ++k) {
-    const ClockFit fine = BestFit(candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, rate_step, 0.0005);
+    const ClockFit fine =
+        BestClock(normalized_, candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, kClockRateStep, 0.0005);
     const FrameReading reading = ReadFrame(fine.start, fine.period);
     RxEvent ev = AcceptReading(reading, modem_.crc, options_.max_fixed_bits);
     if (ev.kind == RxEvent::Kind::kPacket) {
@@ -334,8 +272,8 @@ double FskReceiver::SettleBreak(double break_step) {
   model_ = FitToneModel(ring_, break_step, per_bit_);
   Normalize(break_step - kWideEarlyBits * per_bit_, break_step + kWideLateBits * per_bit_);
   const double span = (kWideEarlyBits + kWideLateBits) / 2.0 * per_bit_;
-  const ClockFit wide = BestFit(break_step + kWideLateBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
-  const ClockFit near = BestFit(break_step, per_bit_, kPhaseSpanBits * per_bit_, per_bit_ / 4.0, 0.0, 1.0);
+  const ClockFit wide = BestClock(normalized_, break_step + kWideLateBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
+  const ClockFit near = BestClock(normalized_, break_step, per_bit_, kPhaseSpanBits * per_bit_, per_bit_ / 4.0, 0.0, 1.0);
   return std::abs(wide.start - break_step) > kPhaseSpanBits * per_bit_ && wide.metric > kFarBreakGain * near.metric ? wide.start
                                                                                                                    : break_step;
 }
@@ -469,7 +407,7 @@ FrameReading FskReceiver::ReadFrame(double best_start, double best_period) const
       const std::int64_t hi = std::llround(expected + clock.period() / 4.0);
       double crossing = 0.0, nearest = 1e300;
       for (std::int64_t i = lo + 1; i <= hi; ++i) {
-        const double a = Normalized(i - 1), b = Normalized(i);
+        const double a = normalized_(i - 1), b = normalized_(i);
         if ((a > 0.0) == (b > 0.0) || a == b) continue;
         const double at_zero = (i - 1) + a / (a - b);
         if (std::abs(at_zero - expected) < nearest) {

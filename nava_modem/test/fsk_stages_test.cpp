@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "nava_modem/break_detector.h"
+#include "nava_modem/clock_search.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/frame_reading.h"
@@ -244,6 +245,62 @@ TEST(AcceptanceStage, NamesTheNoiseByWhatWasFramed) {
   FrameReading bad_data = Reading({1, 2, 3, 4});
   for (int pos = 1; pos <= 8; ++pos) SetBit(bad_data, kBitsPerByte + pos, 1);  // 0x01 read surely as 0xFF
   EXPECT_EQ(AcceptReading(bad_data, CrcVariant::kCcittFalse, 2).noise, RxEvent::Noise::kBadCrc);
+}
+
+// A whole packet's filter outputs, as one-bit tone filters give them without noise: each tone's
+// amplitude the share of the last `period` steps its tone sounded, squared (a bit's tone is
+// clearest at the bit's end). The break's first SPACE bit begins at step `first`.
+ToneRing Packet(const std::vector<std::uint8_t>& data, double first, double period) {
+  const std::vector<std::uint8_t> bits = PacketBits(MakeFrame(data, CrcVariant::kCcittFalse));
+  auto tone_at = [&](double t) {  // 1 MARK, 0 SPACE, -1 silence
+    const double bit = std::floor((t - first) / period);
+    return bit >= 0.0 && bit < kPacketBits ? static_cast<int>(bits[static_cast<std::size_t>(bit)]) : -1;
+  };
+  ToneRing ring(4096);
+  constexpr int kSub = 16;  // points a step, to integrate the window
+  for (int n = 0; n < 4096; ++n) {
+    double mark = 0.0, space = 0.0;
+    const int points = static_cast<int>(std::lround(period * kSub));
+    for (int q = 0; q < points; ++q) {
+      const int tone = tone_at(n - period + (q + 0.5) / kSub);
+      mark += tone == 1;
+      space += tone == 0;
+    }
+    mark /= points;
+    space /= points;
+    ring.Put(n, mark * mark, space * space, {}, {});
+  }
+  return ring;
+}
+
+TEST(ClockSearchStage, FindsTheSendersRateAndThePhaseOfItsBreak) {
+  const double per_bit = 10.0, first = 300.0;
+  for (const double rate : {-0.02, 0.0, 0.013}) {
+    const double period = per_bit / (1.0 + rate);  // a fast sender's bits are shorter
+    const ToneRing ring = Packet({0x31, 0x41, 0x59, 0x26}, first, period);
+    const double mark = first + kBreakSpaceBits * period;  // where its break's first MARK bit begins
+    // The detector's estimate a bit and a half late, as a room's tail makes it.
+    const double estimate = mark + 1.5 * per_bit;
+    const NormalizedTones tones(ring, ToneModel{}, 0, 4096, 4096);
+    const std::vector<ClockFit> candidates = ClockCandidates(tones, estimate, per_bit, 2.5 * per_bit, 0.035, 3);
+    ASSERT_FALSE(candidates.empty());
+    const ClockFit fine = BestClock(tones, candidates[0].start, candidates[0].period, per_bit / 16.0, per_bit / 64.0,
+                                    kClockRateStep, 0.0005);
+    EXPECT_NEAR(per_bit / fine.period - 1.0, rate, 0.003) << "rate " << rate;
+    EXPECT_NEAR(fine.start, mark, 0.5 * per_bit) << "rate " << rate;
+    // The fit is worse a bit off, and worse at the wrong rate.
+    EXPECT_GT(fine.metric, ClockFitMetric(tones, fine.start + per_bit, fine.period));
+    EXPECT_GT(fine.metric, ClockFitMetric(tones, fine.start, fine.period * 1.03));
+  }
+}
+
+TEST(ClockSearchStage, WhatIsNotHeardYetIsNoEvidence) {
+  const ToneRing ring = Packet({1, 2, 3, 4}, 300.0, 10.0);
+  const NormalizedTones heard(ring, ToneModel{}, 0, 4096, 4096), half(ring, ToneModel{}, 0, 4096, 900);
+  EXPECT_NE(heard(1000), 0.0);
+  EXPECT_EQ(half(1000), 0.0);
+  EXPECT_EQ(heard(5000), 0.0);  // outside the stretch
+  EXPECT_GT(ClockFitMetric(heard, 500.0, 10.0), ClockFitMetric(half, 500.0, 10.0));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nava_modem/bit_clock.h"
+#include "nava_modem/clock_search.h"
 #include "nava_modem/break_detector.h"
 #include "nava_modem/first_arrival.h"
 #include "nava_modem/busy_air.h"
@@ -61,26 +62,14 @@ class FskReceiver : public PacketReceiver {
 
  private:
   enum class State { kSearching, kPeaking, kCollecting };
-  // The tone filters' difference, each tone less its floor and over its level (over the
-  // packet being decoded; 0 outside it).
-  double Normalized(std::int64_t n) const {
-    const std::int64_t k = n - normalized_start_;
-    return k < 0 || k >= static_cast<std::int64_t>(normalized_.size()) ? 0.0 : normalized_[static_cast<std::size_t>(k)];
-  }
   void Step(std::vector<RxEvent>& events);  // one filter output
   void TrackCarrier(double e, std::vector<RxEvent>& events);
-  struct ClockFit {
-    double start, period, metric;
-  };
-  // The best of a grid of clocks around (start0, period0): phases +-phase_span, rates +-rate_span.
-  ClockFit BestFit(double start0, double period0, double phase_span, double phase_step, double rate_span,
-                   double rate_step) const;
   // Where the frame after a break at break_step is in, with the sender's clock as slow as allowed.
   std::int64_t DecodeAt(double break_step) const;
   // The break the packet's known bits place best, from the detector's estimate break_step.
   double SettleBreak(double break_step);
   RxEvent DecodeFrame(double break_step);
-  // The tone filters' normalised difference (Normalized) over a packet whose break lies from
+  // The tone filters' normalised difference (normalized_) over a packet whose break lies from
   // earliest_break to latest_break.
   void Normalize(double earliest_break, double latest_break);
   // The tone model read at break_step, the clocks searched around it and read in turn: nullopt
@@ -96,7 +85,6 @@ class FskReceiver : public PacketReceiver {
   // The frame reader: reads the frame with the bit clock starting there (the first MARK bit of
   // the break), on the tone model of the packet being decoded.
   FrameReading ReadFrame(double first_mark, double period) const;
-  double FitMetric(double first_mark, double period) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
 
   ModemOptions modem_;
@@ -120,8 +108,7 @@ class FskReceiver : public PacketReceiver {
   bool break_settled_ = false;  // break_step_ is SettleBreak's, not the detector's
   bool break_moved_late_ = false;  // and SettleBreak moved it later
   ToneModel model_;          // of the packet being decoded
-  std::vector<float> normalized_;
-  std::int64_t normalized_start_ = 0;
+  NormalizedTones normalized_;  // over the packet being decoded (Normalize)
   bool muted_ = false;
   BusyAir busy_{0.0, 0.0};  // for ZERO_BYTE reports
   // The input itself, a ring, for timing each packet's first arrival (RxEvent::arrival).
