@@ -35,11 +35,6 @@ constexpr double kLouder = 10.0;
 constexpr int kFirstBit = -kBreakSpaceBits;
 constexpr int kFrameStart = kBreakMarkBits;
 constexpr int kEndBit = kBreakMarkBits + kFrameBits;
-// The bit clock's loop gains: small, because the fit over the whole packet already has the
-// clock right to a few hundredths of a bit; the loop only follows what a straight line cannot
-// (a resampler's wander).
-constexpr double kPhaseGain = 0.1;
-constexpr double kPeriodGain = 0.002;
 // Phases searched either side of the detector's estimate of the break, in bits: a room's tail
 // of the SPACE half delays the step the detector sees by a bit or two.
 constexpr double kPhaseSpanBits = 2.5;
@@ -52,8 +47,6 @@ constexpr double kWideEarlyBits = 12.0, kWideLateBits = 12.0;
 constexpr double kFarBreakGain = 1.1;
 // Bit clocks tried per packet (see DecodeFrame).
 constexpr std::size_t kClockHypotheses = 3;
-// Crossings are trusted for the loop only between bits decided at least this clearly.
-constexpr double kLoopMinSoft = 0.3;
 // Where the equaliser reads a packet no clock read (DecodeFrame): on the nominal bit rate from
 // where the best clock put the break, and up to this far later and earlier, in whole bits
 // (earlier further: a room's echoes and tail make the break look late, by up to 5 bits through
@@ -71,12 +64,6 @@ constexpr double kEqualizerOwnClockRate = 0.001;
 // of 3 to kMaxEventBits bits. A concert hall's tail beyond the equaliser's reach left packets
 // whose only errors were one 3-bit event.
 constexpr int kEventRepairs = 2, kMaxEventBits = 4;
-
-// The MARK and SPACE filter outputs summed (the thesis's quality figure), from the difference d
-// and the sum e of their squares.
-double FilterSum(double d, double e) {
-  return std::sqrt(std::max(0.0, (e + d) / 2.0)) + std::sqrt(std::max(0.0, (e - d) / 2.0));
-}
 
 // Filter outputs kept: the packet and the clock search's reach either side.
 std::size_t RingSize(double per_bit) { return PowerOfTwoAtLeast(150.0 * per_bit + 64.0); }
@@ -213,7 +200,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
 void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
   // Busy air ends after a bit of quiet; a frame being decoded is waited for.
   const std::int64_t n = n_ - 1;
-  busy_.Step(Seconds(static_cast<double>(n)), e, FilterSum(ring_.difference(n), e), state_ != State::kSearching, events);
+  busy_.Step(Seconds(static_cast<double>(n)), e, ring_.amplitude_sum(n), state_ != State::kSearching, events);
 }
 
 void FskReceiver::Normalize(double earliest_break, double latest_break) {
@@ -240,7 +227,7 @@ std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ClockFit fine =
         BestClock(normalized_, candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, kClockRateStep, 0.0005);
-    const FrameReading reading = ReadFrame(fine.start, fine.period);
+    const FrameReading reading = ReadFrame({ring_, model_, normalized_, filters_.window(), per_bit_, seconds_per_step_}, fine.start, fine.period);
     RxEvent ev = AcceptReading(reading, modem_.crc, options_.max_fixed_bits);
     if (ev.kind == RxEvent::Kind::kPacket) {
       first = ev;
@@ -365,67 +352,6 @@ std::optional<RepairedFrame> FskReceiver::Equalize(const std::int64_t* at_step, 
     return repaired.has_value();
   });
   return repaired;
-}
-
-FrameReading FskReceiver::ReadFrame(double best_start, double best_period) const {
-  BitClock clock(best_start, best_period, filters_.window(), kPhaseGain, kPeriodGain);
-  FrameReading r;
-  double power = 0.0, quality = 0.0;
-  int previous = 1;  // the break's last bit is MARK
-  double previous_soft = 1.0;
-  double tail[2] = {model_.tail[0], model_.tail[1]};
-  // Where each bit of the packet was read, for the equaliser.
-  for (int k = kFirstBit; k < kFrameStart; ++k) {
-    r.at[static_cast<std::size_t>(k - kFirstBit)] = std::llround(best_start + (k + 1) * best_period - 1.0);
-  }
-  for (int k = kFrameStart; k < kEndBit; ++k) {
-    const std::int64_t at = std::llround(clock.AlignedSample(k));
-    r.at[static_cast<std::size_t>(k - kFirstBit)] = at;
-    const double d = ring_.difference(at), e = ring_.sum(at);
-    // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
-    // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
-    // the tone is on (Rician against Rayleigh), MARK's less SPACE's.
-    const double noise[2] = {model_.floor[0] + tail[0], model_.floor[1] + tail[1]};
-    const int j = k - kFrameStart, pos = j % kBitsPerByte;
-    const std::size_t bit = static_cast<std::size_t>(j);
-    r.heard[0][bit] = ring_.mark_power(at);
-    r.heard[1][bit] = ring_.space_power(at);
-    const double llr = BitLlr(model_.level, noise, ring_.mark_power(at), ring_.space_power(at));
-    const double v = std::tanh(llr / 2.0);  // P(MARK) - P(SPACE)
-    // The tails the next bit sees: what is left of these, and what this bit adds.
-    const double mark = (1.0 + v) / 2.0;
-    tail[0] = model_.decay * tail[0] + model_.gain * model_.level[0] * mark;
-    tail[1] = model_.decay * tail[1] + model_.gain * model_.level[1] * (1.0 - mark);
-    r.hard[bit] = llr > 0.0;
-    if (pos >= 1 && pos <= 8) r.soft[static_cast<std::size_t>((j / kBitsPerByte) * 8 + pos - 1)] = static_cast<float>(llr);
-    power += e;
-    quality += FilterSum(d, e);
-    // Follow the transition into this bit, if it is clear on both sides.
-    if (r.hard[bit] != previous && std::abs(v) > kLoopMinSoft && std::abs(previous_soft) > kLoopMinSoft) {
-      const double expected = clock.ExpectedCrossing(k);
-      const std::int64_t lo = std::llround(expected - clock.period() / 4.0);
-      const std::int64_t hi = std::llround(expected + clock.period() / 4.0);
-      double crossing = 0.0, nearest = 1e300;
-      for (std::int64_t i = lo + 1; i <= hi; ++i) {
-        const double a = normalized_(i - 1), b = normalized_(i);
-        if ((a > 0.0) == (b > 0.0) || a == b) continue;
-        const double at_zero = (i - 1) + a / (a - b);
-        if (std::abs(at_zero - expected) < nearest) {
-          nearest = std::abs(at_zero - expected);
-          crossing = at_zero;
-        }
-      }
-      if (nearest < 1e300) clock.Observe(k, crossing);
-    }
-    previous = r.hard[bit];
-    previous_soft = v;
-  }
-  r.start = Seconds(best_start - kBreakSpaceBits * best_period);
-  r.end = Seconds(clock.Start(kEndBit));
-  r.level_db = 10.0 * std::log10(power / kFrameBits + kTiny);
-  r.quality = quality / kFrameBits;
-  r.rate_error = per_bit_ / best_period - 1.0;
-  return r;
 }
 
 // The packet's known start (PacketTimingReference) timed in the input around where the decoder

@@ -262,7 +262,7 @@ ToneRing Packet(const std::vector<std::uint8_t>& data, double first, double peri
     double mark = 0.0, space = 0.0;
     const int points = static_cast<int>(std::lround(period * kSub));
     for (int q = 0; q < points; ++q) {
-      const int tone = tone_at(n - period + (q + 0.5) / kSub);
+      const int tone = tone_at(n + 1 - period + (q + 0.5) / kSub);  // step n holds sample n and those before
       mark += tone == 1;
       space += tone == 0;
     }
@@ -301,6 +301,37 @@ TEST(ClockSearchStage, WhatIsNotHeardYetIsNoEvidence) {
   EXPECT_EQ(half(1000), 0.0);
   EXPECT_EQ(heard(5000), 0.0);  // outside the stretch
   EXPECT_GT(ClockFitMetric(heard, 500.0, 10.0), ClockFitMetric(half, 500.0, 10.0));
+}
+
+TEST(FrameReaderStage, ReadsEveryBitOnTheSendersClock) {
+  const double per_bit = 10.0, first = 300.0, rate = 0.01, period = per_bit / (1.0 + rate);
+  const std::vector<std::uint8_t> data = {0xDE, 0xAD, 0xBE, 0xEF};
+  const ToneRing ring = Packet(data, first, period);
+  ToneModel model;
+  model.floor[0] = model.floor[1] = 0.01;
+  const NormalizedTones tones(ring, model, 0, 4096, 4096);
+  const double mark = first + kBreakSpaceBits * period;
+  const FrameReading reading = ReadFrame({ring, model, tones, 10, per_bit, 0.001}, mark, period);
+  const std::vector<std::uint8_t> bits = PacketBits(MakeFrame(data, CrcVariant::kCcittFalse));
+  for (int j = 0; j < kFrameBits; ++j) {
+    EXPECT_EQ(reading.hard[static_cast<std::size_t>(j)], bits[static_cast<std::size_t>(kBreakSpaceBits + kBreakMarkBits + j)])
+        << "frame bit " << j;
+  }
+  // Each bit read at its end, where a one-bit filter hears it whole.
+  for (int k = 0; k < kPacketBits; ++k) {
+    EXPECT_NEAR(static_cast<double>(reading.at[static_cast<std::size_t>(k)]), first + (k + 1) * period - 1.0, 1.0) << "bit " << k;
+  }
+  EXPECT_NEAR(reading.rate_error, rate, 1e-9);
+  EXPECT_NEAR(reading.start, first * 0.001, 1e-9);
+  const RxEvent ev = AcceptReading(reading, CrcVariant::kCcittFalse, 2);
+  ASSERT_EQ(ev.kind, RxEvent::Kind::kPacket);
+  EXPECT_EQ(ev.data, data);
+  EXPECT_EQ(ev.fixed_bits, 0);
+  // Half a bit off the sender's clock, the bits' ends smear into their neighbours': the
+  // reading is worse, never a different packet.
+  const RxEvent off = AcceptReading(ReadFrame({ring, model, tones, 10, per_bit, 0.001}, mark + 0.5 * period, period * 1.03),
+                                    CrcVariant::kCcittFalse, 2);
+  EXPECT_TRUE(off.kind == RxEvent::Kind::kNoise || off.data == data);
 }
 
 }  // namespace

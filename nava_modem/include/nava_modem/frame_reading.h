@@ -5,10 +5,13 @@
 #include <array>
 #include <cstdint>
 
+#include "nava_modem/clock_search.h"
 #include "nava_modem/crc16.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/packet_receiver.h"
+#include "nava_modem/tone_model.h"
+#include "nava_modem/tone_ring.h"
 
 namespace nava_modem {
 
@@ -23,6 +26,24 @@ struct FrameReading {
   double quality = 0.0;           // the tone filters' outputs summed, over the frame's bits
   double rate_error = 0.0;        // the clock read on: the sender's rate over the nominal, less 1
 };
+
+// What the frame reader reads from: the tone filters' outputs, the packet's tone model, the
+// tones normalised by it (the bit clock's loop follows their zero crossings), the filters' window
+// and filter steps a bit (the nominal rate), and seconds a filter step.
+struct FrameSource {
+  const ToneRing& ring;
+  const ToneModel& model;
+  const NormalizedTones& tones;
+  int window;
+  double per_bit;
+  double seconds_per_step;
+};
+
+// The frame reader: the frame read on the bit clock that starts at filter step `first_mark` (the
+// break's first MARK bit), `period` steps a bit, which a digital PLL (BitClock) then follows
+// through the data's clear transitions; each bit decided by its log-likelihood ratio against
+// each tone's level and floor plus the tail the room keeps of the bits before (tone model).
+FrameReading ReadFrame(const FrameSource& source, double first_mark, double period);
 
 // A packet when the reading's frame passes its CRC, repaired where that is trusted: first on
 // each tone's level and floor read again from the frame's own bits (a room colours the break's

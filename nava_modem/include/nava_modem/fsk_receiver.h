@@ -82,9 +82,6 @@ class FskReceiver : public PacketReceiver {
   // The equaliser's reading of the packet with its bits' filter outputs taken at at_step
   // (kPacketBits steps, the break's first SPACE bit first), the sender's clock rate_error off.
   std::optional<RepairedFrame> Equalize(const std::int64_t* at_step, double rate_error, const std::uint8_t* first_hard) const;
-  // The frame reader: reads the frame with the bit clock starting there (the first MARK bit of
-  // the break), on the tone model of the packet being decoded.
-  FrameReading ReadFrame(double first_mark, double period) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
 
   ModemOptions modem_;

@@ -3,6 +3,8 @@
 // The nava receiver's memory of its two tone filters (ToneFilters): per filter step, each tone's
 // power and complex amplitude, for the last size() steps. Before the first step the air was
 // silent: what lies before step 0 reads as 0. No ROS.
+#include <algorithm>
+#include <cmath>
 #include <complex>
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +26,12 @@ class ToneRing {
   // MARK's power less SPACE's, and the two summed.
   double difference(std::int64_t n) const { return mark_power(n) - space_power(n); }
   double sum(std::int64_t n) const { return mark_power(n) + space_power(n); }
+  // The two filters' amplitudes summed (the thesis's quality figure), from the difference and
+  // the sum of their powers.
+  double amplitude_sum(std::int64_t n) const {
+    const double d = difference(n), e = sum(n);
+    return std::sqrt(std::max(0.0, (e + d) / 2.0)) + std::sqrt(std::max(0.0, (e - d) / 2.0));
+  }
   std::size_t size() const { return mark_power_.size(); }
 
  private:
