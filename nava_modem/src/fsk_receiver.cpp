@@ -17,9 +17,6 @@ namespace nava_modem {
 namespace {
 
 constexpr double kTiny = 1e-20;
-// A packet's first arrival is looked for from this long before the start the decoder placed (its
-// filters' delay, and a direct sound before a stronger reflection) to this long after it.
-constexpr double kArrivalBefore = 0.015, kArrivalAfter = 0.010;
 constexpr int kDetectorBits = 10;  // each half of the break detector
 // After the detector first passes its threshold, the strongest step within this many bits is
 // taken as the break: noise can pass the threshold just before a real break arrives.
@@ -71,27 +68,15 @@ std::size_t RingSize(double per_bit) { return PowerOfTwoAtLeast(150.0 * per_bit 
 }  // namespace
 
 FskReceiver::FskReceiver(const ModemOptions& modem, const ReceiverOptions& options)
-    : modem_(modem), options_(options), filters_(modem),
-      reference_(PacketTimingReference(Profile::kNava, modem)),
-      arrival_timer_(modem.sample_rate >= 2.0 * kResponseBandHighHz
-                         ? std::make_unique<ArrivalTimer>(reference_.sound,
-                                                          reference_.sound.size() + static_cast<std::size_t>(std::lround(
-                                                                                        (kArrivalBefore + kArrivalAfter) * modem.sample_rate)),
-                                                          modem.sample_rate)
-                         : nullptr),
+    : modem_((ValidateModemOptions(modem), modem)), options_((ValidateReceiverOptions(options), options)), filters_(modem),
+      timer_(modem, options.max_rate_error),
       per_bit_(SamplesPerBit(modem) / filters_.step()), seconds_per_step_(filters_.step() / modem.sample_rate),
       w_(static_cast<std::int64_t>(std::lround(kDetectorBits * per_bit_))),
       ring_(RingSize(per_bit_)),
       detector_(w_),
       equalizer_(modem) {
-  ValidateModemOptions(modem_);
-  ValidateReceiverOptions(options_);
   // Busy air with no frame, at least a bit long, ends after a bit of quiet.
   busy_ = BusyAir(Seconds(per_bit_), Seconds(per_bit_));
-  // A packet is reported well within a second of its end.
-  const std::size_t raw = PowerOfTwoAtLeast((kPacketBits / modem.baud * (1.0 + options_.max_rate_error) + 1.5) * modem.sample_rate);
-  raw_.assign(raw, 0.0f);
-  raw_mask_ = raw - 1;
   SetCarrierThreshold(options_.carrier_threshold_db);
 }
 
@@ -113,7 +98,7 @@ void FskReceiver::SetMuted(bool muted) {
 
 void FskReceiver::Process(const float* samples, std::size_t count, std::vector<RxEvent>& events) {
   for (std::size_t k = 0; k < count; ++k) {
-    raw_[static_cast<std::size_t>(samples_++) & raw_mask_] = samples[k];
+    timer_.Push(samples[k]);
     if (filters_.Push(samples[k])) Step(events);
   }
 }
@@ -179,7 +164,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         }
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
-        if (options_.time_arrivals && arrival_timer_ && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = Arrival(events.back());
+        if (options_.time_arrivals && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = timer_.Time(events.back().start);
         busy_.FrameFound();
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step. Not after a faint step that decoded to
@@ -352,20 +337,6 @@ std::optional<RepairedFrame> FskReceiver::Equalize(const std::int64_t* at_step, 
     return repaired.has_value();
   });
   return repaired;
-}
-
-// The packet's known start (PacketTimingReference) timed in the input around where the decoder
-// placed its start.
-double FskReceiver::Arrival(const RxEvent& packet) {
-  const double fs = modem_.sample_rate;
-  const std::int64_t from = std::llround((packet.start - kArrivalBefore) * fs + reference_.offset);
-  const std::size_t count = arrival_timer_->count();
-  if (from < 0 || from < samples_ - static_cast<std::int64_t>(raw_.size()) || from + static_cast<std::int64_t>(count) > samples_) {
-    return std::numeric_limits<double>::quiet_NaN();  // not all of it is still (or yet) held
-  }
-  std::vector<float> heard(count);
-  for (std::size_t k = 0; k < count; ++k) heard[k] = raw_[static_cast<std::size_t>(from + static_cast<std::int64_t>(k)) & raw_mask_];
-  return (static_cast<double>(from) - reference_.offset) / fs + arrival_timer_->Time(heard.data());
 }
 
 }  // namespace nava_modem

@@ -15,6 +15,7 @@
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
+#include "nava_modem/nava_packet_timer.h"
 #include "nava_modem/timing_reference.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
@@ -87,9 +88,7 @@ class FskReceiver : public PacketReceiver {
   ModemOptions modem_;
   ReceiverOptions options_;
   ToneFilters filters_;
-  TimingReference reference_;  // what each packet is timed on
-  // None when the rate cannot carry the timing band (below 2 x 5400 Hz): packets go untimed.
-  std::unique_ptr<ArrivalTimer> arrival_timer_;
+  NavaPacketTimer timer_;  // each packet's first arrival
   // Time inside the receiver runs in the filters' steps (a few samples each).
   double per_bit_;    // steps per bit
   double seconds_per_step_;
@@ -108,11 +107,6 @@ class FskReceiver : public PacketReceiver {
   NormalizedTones normalized_;  // over the packet being decoded (Normalize)
   bool muted_ = false;
   BusyAir busy_{0.0, 0.0};  // for ZERO_BYTE reports
-  // The input itself, a ring, for timing each packet's first arrival (RxEvent::arrival).
-  double Arrival(const RxEvent& packet);
-  std::vector<float> raw_;
-  std::size_t raw_mask_ = 0;
-  std::int64_t samples_ = 0;  // samples processed
 };
 
 }  // namespace nava_modem
