@@ -78,10 +78,13 @@ AudioChannel::AudioChannel(const PropagationModel& model, std::vector<world_sim:
   if (every > 0.0) background_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(every / (16.0 * tick_)));
 }
 
-std::vector<Eigen::Vector2d> AudioChannel::Positions() const {
-  std::vector<Eigen::Vector2d> at(poses_.size());
-  for (std::size_t k = 0; k < poses_.size(); ++k) at[k] = poses_[k].position();
-  return at;
+const std::vector<Eigen::Vector2d>& AudioChannel::Positions() {
+  if (positions_stale_) {
+    positions_.resize(poses_.size());
+    for (std::size_t k = 0; k < poses_.size(); ++k) positions_[k] = poses_[k].position();
+    positions_stale_ = false;
+  }
+  return positions_;
 }
 
 void AudioChannel::UpdateBackground() {
@@ -128,6 +131,7 @@ bool AudioChannel::SendAt(std::size_t robot, std::vector<std::uint8_t> data, dou
 void AudioChannel::ApplyPending() {
   while (!pending_poses_.empty() && pending_poses_.front().tick <= ticks_) {
     poses_[pending_poses_.front().robot] = pending_poses_.front().pose;
+    positions_stale_ = true;
     pending_poses_.pop_front();
   }
   while (!pending_sends_.empty() && pending_sends_.front().tick <= ticks_) {
@@ -170,7 +174,7 @@ std::int64_t AudioChannel::NextWake(std::int64_t target) const {
 
 std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
   const std::size_t n = macs_.size();
-  const std::vector<Eigen::Vector2d> at = Positions();
+  const std::vector<Eigen::Vector2d>& at = Positions();
   auto compute = [&] {
     // From one source, without the n x n table Compute() would fill; no path to itself.
     std::vector<SoundPath> paths = model_.From(at[sender], at, memo_.capacity() > 0 ? &memo_ : nullptr);
@@ -208,7 +212,7 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
   sent.emplace_back(ticks_, ticks_ + duration);
   std::vector<double> probability;
   if (reception_->Predicts()) probability.assign(n, 0.0);
-  const std::vector<Eigen::Vector2d> at = Positions();
+  const std::vector<Eigen::Vector2d>& at = Positions();
   for (std::size_t r = 0; r < n; ++r) {
     if (r == sender) continue;
     const ArrivalSound sound = reception_->Arrive(paths[r], r, at, time());
@@ -252,7 +256,7 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
                                 options_.direction_noise, rng_);
   rx.direction_confidence = std::isfinite(rx.direction) ? 1.0 : 0.0;
-  const std::vector<Eigen::Vector2d> at = Positions();
+  const std::vector<Eigen::Vector2d>& at = Positions();
   const Decision d = reception_->Decide(a.path, receiver, a.level_db, a.start * tick_, a.end * tick_, overlaps, at,
                                         [&] { return DecisionDraw(a.sender, receiver, at); });
   if (!d.heard) {

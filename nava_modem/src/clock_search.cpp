@@ -9,9 +9,6 @@
 namespace nava_modem {
 namespace {
 
-// Bit indices relative to the first MARK bit of the break.
-constexpr int kFirstBit = -kBreakSpaceBits;
-constexpr int kEndBit = kBreakMarkBits + kFrameBits;
 // The break's first MARK bits do not count in the clock fit: they lie under SPACE's reverberant
 // tail while MARK's own sound builds up, and in a room they pull the fit a bit or two late (with
 // a wrong rate to make up for it); without these two, measured rooms at DRR 0 to +2 dB read
@@ -37,18 +34,18 @@ NormalizedTones::NormalizedTones(const ToneRing& ring, const ToneModel& model, s
 double ClockFitMetric(const NormalizedTones& tones, double first_mark, double period) {
   // The clock search calls this some two thousand times a packet: the bits' weights are made
   // once, and the rounding is done inline (std::llround is a library call).
-  static const std::array<int, kEndBit - kFirstBit> weight = [] {
-    std::array<int, kEndBit - kFirstBit> w{};
-    for (int k = kFirstBit; k < kEndBit; ++k) {
+  static const std::array<int, kEndBitFromMark - kFirstBitFromMark> weight = [] {
+    std::array<int, kEndBitFromMark - kFirstBitFromMark> w{};
+    for (int k = kFirstBitFromMark; k < kEndBitFromMark; ++k) {
       const int known = KnownPacketBit(k + kBreakSpaceBits);
       // 1: counts for MARK; -1: for SPACE; 2: either way (an unknown bit's strength); 0: not at all.
-      w[static_cast<std::size_t>(k - kFirstBit)] = k >= 0 && k < kMarkSettleBits ? 0 : known < 0 ? 2 : known ? 1 : -1;
+      w[static_cast<std::size_t>(k - kFirstBitFromMark)] = k >= 0 && k < kMarkSettleBits ? 0 : known < 0 ? 2 : known ? 1 : -1;
     }
     return w;
   }();
   double sum = 0.0;
-  for (int k = kFirstBit; k < kEndBit; ++k) {
-    const int w = weight[static_cast<std::size_t>(k - kFirstBit)];
+  for (int k = kFirstBitFromMark; k < kEndBitFromMark; ++k) {
+    const int w = weight[static_cast<std::size_t>(k - kFirstBitFromMark)];
     if (w == 0) continue;
     const double at = first_mark + (k + 1) * period - 0.5;  // rounded: floor(x - 1 + 0.5)
     std::int64_t n = static_cast<std::int64_t>(at);

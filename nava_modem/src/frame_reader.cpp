@@ -9,10 +9,6 @@ namespace nava_modem {
 namespace {
 
 constexpr double kTiny = 1e-20;
-// Bit indices relative to the first MARK bit of the break.
-constexpr int kFirstBit = -kBreakSpaceBits;
-constexpr int kFrameStart = kBreakMarkBits;
-constexpr int kEndBit = kBreakMarkBits + kFrameBits;
 // The bit clock's loop gains: small, because the fit over the whole packet already has the
 // clock right to a few hundredths of a bit; the loop only follows what a straight line cannot
 // (a resampler's wander).
@@ -33,18 +29,18 @@ FrameReading ReadFrame(const FrameSource& source, double best_start, double best
   double previous_soft = 1.0;
   double tail[2] = {model.tail[0], model.tail[1]};
   // Where each bit of the packet was read, for the equaliser.
-  for (int k = kFirstBit; k < kFrameStart; ++k) {
-    r.at[static_cast<std::size_t>(k - kFirstBit)] = std::llround(best_start + (k + 1) * best_period - 1.0);
+  for (int k = kFirstBitFromMark; k < kFrameStartFromMark; ++k) {
+    r.at[static_cast<std::size_t>(k - kFirstBitFromMark)] = std::llround(best_start + (k + 1) * best_period - 1.0);
   }
-  for (int k = kFrameStart; k < kEndBit; ++k) {
+  for (int k = kFrameStartFromMark; k < kEndBitFromMark; ++k) {
     const std::int64_t at = std::llround(clock.AlignedSample(k));
-    r.at[static_cast<std::size_t>(k - kFirstBit)] = at;
+    r.at[static_cast<std::size_t>(k - kFirstBitFromMark)] = at;
     const double e = ring.sum(at);
     // Each tone's filter holds its direct sound, if sent, and a random tail (the room's
     // reverberation of earlier bits, and noise) of known mean power: the log-likelihood that
     // the tone is on (Rician against Rayleigh), MARK's less SPACE's.
     const double noise[2] = {model.floor[0] + tail[0], model.floor[1] + tail[1]};
-    const int j = k - kFrameStart, pos = j % kBitsPerByte;
+    const int j = k - kFrameStartFromMark, pos = j % kBitsPerByte;
     const std::size_t bit = static_cast<std::size_t>(j);
     r.heard[0][bit] = ring.mark_power(at);
     r.heard[1][bit] = ring.space_power(at);
@@ -79,7 +75,7 @@ FrameReading ReadFrame(const FrameSource& source, double best_start, double best
     previous_soft = v;
   }
   r.start = (best_start - kBreakSpaceBits * best_period) * source.seconds_per_step;
-  r.end = clock.Start(kEndBit) * source.seconds_per_step;
+  r.end = clock.Start(kEndBitFromMark) * source.seconds_per_step;
   r.level_db = 10.0 * std::log10(power / kFrameBits + kTiny);
   r.quality = quality / kFrameBits;
   r.rate_error = source.per_bit / best_period - 1.0;

@@ -47,7 +47,6 @@ using Matrix = Eigen::Matrix<Complex, Eigen::Dynamic, kTaps>;
 using Square = Eigen::Matrix<Complex, kTaps, kTaps>;
 using Vector = Eigen::Matrix<Complex, kTaps, 1>;
 
-
 // The tone a bit sends: 0 MARK (bit 1), 1 SPACE (bit 0).
 int ToneOf(int bit) { return bit ? 0 : 1; }
 

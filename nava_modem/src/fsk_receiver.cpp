@@ -1,17 +1,11 @@
 #include "nava_modem/fsk_receiver.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 
-#include "nava_modem/bit_likelihood.h"
 #include "nava_modem/clock_search.h"
-#include "nava_modem/first_arrival.h"
 #include "nava_modem/frame_reading.h"
-#include "nava_modem/measured_response.h"
 #include "nava_modem/power_of_two.h"
-#include "nava_modem/timing_reference.h"
 
 namespace nava_modem {
 namespace {
@@ -28,10 +22,6 @@ constexpr double kSupersede = 0.2;
 // So does a step past the threshold this many times louder: a break heard in the quiet before
 // a packet (noise passes the threshold now and then) must not hide the packet's own break.
 constexpr double kLouder = 10.0;
-// Bit indices relative to the first MARK bit of the break.
-constexpr int kFirstBit = -kBreakSpaceBits;
-constexpr int kFrameStart = kBreakMarkBits;
-constexpr int kEndBit = kBreakMarkBits + kFrameBits;
 // Phases searched either side of the detector's estimate of the break, in bits: a room's tail
 // of the SPACE half delays the step the detector sees by a bit or two.
 constexpr double kPhaseSpanBits = 2.5;
@@ -104,7 +94,7 @@ void FskReceiver::Process(const float* samples, std::size_t count, std::vector<R
 }
 
 void FskReceiver::Flush(std::vector<RxEvent>& events) {
-  const std::size_t tail = filters_.step() * (static_cast<std::size_t>(std::ceil((kWideLateBits + kEndBit + 4) * per_bit_ * (1.0 + options_.max_rate_error))) +
+  const std::size_t tail = filters_.step() * (static_cast<std::size_t>(std::ceil((kWideLateBits + kEndBitFromMark + 4) * per_bit_ * (1.0 + options_.max_rate_error))) +
                                                static_cast<std::size_t>(2 * w_));
   const std::vector<float> silence(tail, 0.0f);
   Process(silence.data(), silence.size(), events);
@@ -190,8 +180,8 @@ void FskReceiver::TrackCarrier(double e, std::vector<RxEvent>& events) {
 
 void FskReceiver::Normalize(double earliest_break, double latest_break) {
   const double margin = (1.0 + options_.max_rate_error) * per_bit_;
-  const std::int64_t from = static_cast<std::int64_t>(std::floor(earliest_break + (kFirstBit - 2) * margin));
-  const std::int64_t to = static_cast<std::int64_t>(std::ceil(latest_break + (kEndBit + 2) * margin));
+  const std::int64_t from = static_cast<std::int64_t>(std::floor(earliest_break + (kFirstBitFromMark - 2) * margin));
+  const std::int64_t to = static_cast<std::int64_t>(std::ceil(latest_break + (kEndBitFromMark + 2) * margin));
   // What is not heard yet (a late break's packet) gives no evidence either way.
   normalized_ = NormalizedTones(ring_, model_, from, to, n_);
 }
@@ -229,7 +219,7 @@ std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent
 }
 
 std::int64_t FskReceiver::DecodeAt(double break_step) const {
-  return static_cast<std::int64_t>(std::ceil(break_step + (kEndBit + 1) * per_bit_ * (1.0 + options_.max_rate_error) + per_bit_));
+  return static_cast<std::int64_t>(std::ceil(break_step + (kEndBitFromMark + 1) * per_bit_ * (1.0 + options_.max_rate_error) + per_bit_));
 }
 
 double FskReceiver::SettleBreak(double break_step) {

@@ -107,7 +107,10 @@ class AudioChannel {
                const ChannelOptions& options, std::unique_ptr<ReceptionModel> reception);
 
   std::size_t size() const { return macs_.size(); }
-  void SetPose(std::size_t robot, const grid::Pose2D& pose) { poses_.at(robot) = pose; }
+  void SetPose(std::size_t robot, const grid::Pose2D& pose) {
+    poses_.at(robot) = pose;
+    positions_stale_ = true;
+  }
   const grid::Pose2D& pose(std::size_t robot) const { return poses_.at(robot); }
   // Queues a packet to send; false (and counted by the MAC) when its queue is full.
   bool Send(std::size_t robot, std::vector<std::uint8_t> data);
@@ -185,8 +188,9 @@ class AudioChannel {
   bool Quiet() const;
   // The path from the sender to every robot, from the cache where it can.
   std::vector<SoundPath> PathsFrom(std::size_t sender);
-  // The robots' positions.
-  std::vector<Eigen::Vector2d> Positions() const;
+  // The robots' positions, worked out again only after a pose has changed (every reception asks
+  // for them, and a big team hears many receptions a pose update).
+  const std::vector<Eigen::Vector2d>& Positions();
   // Each robot's background power, worked out again.
   void UpdateBackground();
   // The first tick after the current one at which the background is worked out again, if ever.
@@ -200,6 +204,8 @@ class AudioChannel {
   ChannelOptions options_;
   std::vector<nava_modem::CsmaMac> macs_;
   std::vector<grid::Pose2D> poses_;
+  std::vector<Eigen::Vector2d> positions_;  // of poses_ (Positions)
+  bool positions_stale_ = true;
   std::vector<double> levels_;
   std::vector<double> powers_;  // linear power behind each level
   std::vector<std::deque<Arrival>> arrivals_;  // per receiver: pending and recently finished

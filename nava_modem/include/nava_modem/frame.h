@@ -21,6 +21,12 @@ constexpr int kBitsPerByte = 10;  // 8N1
 constexpr int kFrameBits = kFrameBytes * kBitsPerByte;                   // 70
 constexpr int kPacketBits = kBreakSpaceBits + kBreakMarkBits + kFrameBits;  // 110
 
+// The nava receiver counts a packet's bits from the break's first MARK bit (where its bit clock
+// is anchored): the packet's first bit, the frame's first and one past the packet's last.
+constexpr int kFirstBitFromMark = -kBreakSpaceBits;
+constexpr int kFrameStartFromMark = kBreakMarkBits;
+constexpr int kEndBitFromMark = kBreakMarkBits + kFrameBits;
+
 using Frame = std::array<std::uint8_t, kFrameBytes>;
 
 // Header, data and CRC. `data` must hold kDataBytes bytes (std::invalid_argument otherwise).

@@ -2,21 +2,17 @@
 
 #include <complex>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <vector>
 
-#include "nava_modem/bit_clock.h"
 #include "nava_modem/clock_search.h"
 #include "nava_modem/break_detector.h"
-#include "nava_modem/first_arrival.h"
 #include "nava_modem/busy_air.h"
 #include "nava_modem/frame_reading.h"
 #include "nava_modem/frame_repair.h"
 #include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/nava_packet_timer.h"
-#include "nava_modem/timing_reference.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/tone_filters.h"
 #include "nava_modem/tone_model.h"
@@ -28,12 +24,13 @@ namespace nava_modem {
 // keeps. The break before each packet is found by its SPACE-to-MARK step (BreakDetector, the
 // first stage; its peak and the state around it are this class's), seen both in the tones' sum
 // and tone by tone (a room can leave one tone 10 dB or more below the other, and the strong
-// tone's tail then hides the step in the sum), and moved to where the clock that best explains the packet's known bits
-// puts it when that lies beyond the clock search's reach (a faint tone or a room's tail can make
-// the detector's estimate up to a window late, and a dip in SPACE's sound 10 bits early; a packet
-// whose break moves later is reported once it is in). Each tone's level and floor (and a room's tail)
-// are read from the break (FitToneModel, the second stage), so that a tone weaker than the other counts as much; the bit clock
-// is fitted to the break, the start and stop bits and the header (bit rate and phase, by
+// tone's tail then hides the step in the sum), and moved to where the clock that best explains
+// the packet's known bits puts it when that lies beyond the clock search's reach (a faint tone or
+// a room's tail can make the detector's estimate up to a window late, and a dip in SPACE's sound
+// 10 bits early; a packet whose break moves later is reported once it is in). Each tone's level
+// and floor (and a room's tail) are read from the break (FitToneModel, the second stage), so
+// that a tone weaker than the other counts as much; the bit clock (clock_search.h) is fitted to
+// the break, the start and stop bits and the header (bit rate and phase, by
 // maximum likelihood over the packet), then a digital PLL (BitClock) follows the data's
 // transitions; each bit's soft decision is a log-likelihood ratio of the two tones' powers
 // against their levels and floors (read again from the frame itself, as a room colours the
