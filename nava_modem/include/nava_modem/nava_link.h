@@ -1,19 +1,18 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "nava_modem/audio_device.h"
-#include "nava_modem/card_rate.h"
 #include "nava_modem/clock.h"
 #include "nava_modem/csma_mac.h"
-#include "nava_modem/direction_estimator.h"
+#include "nava_modem/link_capture.h"
+#include "nava_modem/link_playback.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/receive_chain.h"
 #include "nava_modem/reopen_schedule.h"
-#include "nava_modem/self_timer.h"
 
 namespace nava_modem {
 
@@ -44,7 +43,9 @@ struct LinkOptions {
 // checks the modem, and the MAC its options once given the profile's timing.
 void ValidateLinkOptions(const LinkOptions& options);
 
-// A whole Nava link on an audio device (thesis section 5.2.4), with any modem profile: every
+// A whole Nava link on an audio device (thesis section 5.2.4), with any modem profile, wired from
+// its capture (LinkCapture), its receive chain (ReceiveChain) and its playback (LinkPlayback)
+// round the CSMA-CA MAC: every
 // tick (1/16 of the profile's MAC bit) it reads
 // a tick of audio, runs the receiver on it (deaf while sending and for the echo time after),
 // tells the CSMA-CA MAC the level heard, and writes a tick of the packet being sent, or of
@@ -69,7 +70,7 @@ class NavaLink {
   bool Tick(std::vector<RxEvent>& events);
 
   const CsmaMac& mac() const { return mac_; }
-  double level_db() const { return receiver_->level_db(); }
+  double level_db() const { return receive_.level_db(); }
   const ModemProfile& profile() const { return *profile_; }
   bool carrier() const { return mac_.carrier(); }
   // s of audio run (the receiver's clock: audio heard, and the silence a failure ended it with).
@@ -79,9 +80,9 @@ class NavaLink {
   std::uint64_t underruns() const { return device_.underruns(); }
   // Packets during whose sending the device reported a playback underrun: they went out with
   // a gap, so listeners most likely heard noise.
-  std::uint64_t packets_cut() const { return packets_cut_; }
+  std::uint64_t packets_cut() const { return playback_.packets_cut(); }
   // Times the capture fell more than max_capture_lag behind and the link caught up.
-  std::uint64_t catch_ups() const { return catch_ups_; }
+  std::uint64_t catch_ups() const { return capture_.catch_ups(); }
   // Device failures: whether it is down now, why it last failed (or a try to reopen it did),
   // failures so far, reopens that worked, tries that failed since the last failure, and
   // packets put back to be sent again because their sound had not all played.
@@ -92,73 +93,31 @@ class NavaLink {
   int failed_reopens() const { return reopen_.failed_tries(); }
   std::uint64_t packets_requeued() const { return mac_.requeued(); }
   // Its own packets as its microphone heard them (SelfTimer), on the receiver's clock, since the
-  // last call; at most kMaxOwnTimings wait, and the oldest beyond are dropped and counted.
-  std::vector<OwnTiming> TakeOwnTimings();
-  std::uint64_t own_timings_dropped() const { return own_timings_dropped_; }
-  static constexpr std::size_t kMaxOwnTimings = 64;
+  // last call; at most ReceiveChain::kMaxOwnTimings wait, and the oldest beyond are dropped and counted.
+  std::vector<OwnTiming> TakeOwnTimings() { return receive_.TakeOwnTimings(); }
+  std::uint64_t own_timings_dropped() const { return receive_.own_timings_dropped(); }
   // The sound card's capture rate over its nominal one, minus 1, against the host's steady
   // clock (card_rate.h); NaN until some 30 s after the device (re)opened.
-  double card_rate_error() const { return card_rate_.rate_error(); }
+  double card_rate_error() const { return capture_.card_rate_error(); }
 
  private:
+  bool Run(std::vector<RxEvent>& events);  // a tick on a working device
+  void Fail(const std::string& error, std::vector<RxEvent>& events);
+  void TryReopen();
+
   LinkOptions options_;
   AudioDevice& device_;
+  Clock& clock_;
   std::unique_ptr<ModemProfile> profile_;
-  std::unique_ptr<PacketReceiver> receiver_;
   CsmaMac mac_;
+  ReceiveChain receive_;
+  LinkCapture capture_;
+  LinkPlayback playback_;
   double samples_per_tick_;
   std::uint64_t ticks_ = 0;
   std::int64_t samples_done_ = 0;
   std::int64_t samples_flushed_ = 0;  // heard by the receiver on failures, not in ticks
-  bool Run(std::vector<RxEvent>& events);  // a tick on a working device
-  void Fail(const std::string& error, std::vector<RxEvent>& events);
-  void EndHearing(std::vector<RxEvent>& events);
-  void TryReopen();
-  bool Take(float* out, std::size_t count);  // captured samples, read from the device by blocks
-  // Each event's direction from its own samples on every microphone.
-  void EstimateDirections(std::vector<RxEvent>& events, std::size_t first);
-  void Put(const float* in, std::size_t count);  // samples to play, written by blocks
-  void Write();                                  // what waits in playing_
-
-  std::size_t block_;
-  std::size_t channels_;          // captured per frame; the receiver hears the first
-  std::vector<float> frames_;     // a block as read, interleaved
-  std::vector<float> captured_, playing_;
-  // Every channel's recent samples, by frame number (a ring), for the direction estimator.
-  std::vector<std::vector<float>> history_;
-  std::size_t history_mask_ = 0;
-  std::int64_t frames_read_ = 0;
-  std::unique_ptr<DirectionEstimator> estimator_;
-  std::vector<std::vector<float>> span_;  // scratch: an event's samples per channel
-  std::size_t captured_at_ = 0;
-  std::vector<float> in_, burst_;
-  std::size_t burst_at_ = 0;
-  bool threshold_shared_ = false;  // the receiver has the MAC's carrier threshold
-  std::uint64_t underruns_seen_ = 0;
-  std::uint64_t packets_cut_ = 0;
-  bool behind_ = false;  // catching up on a capture backlog
-  std::int64_t behind_since_ = 0;  // samples_done_ when it fell behind
-  std::uint64_t catch_ups_ = 0;
-  bool burst_cut_ = false;  // the packet being sent has been counted in packets_cut_
-  std::size_t burst_written_ = 0, burst_pending_ = 0;  // its samples written, and waiting in playing_
-
-  // Playback since the device was last (re)opened, in samples: handed to Put(), written to
-  // the device, and known to have played. A packet leaves `in_flight_` once its end has played.
-  struct InFlight {
-    CsmaMac::Packet data;
-    std::int64_t end;
-  };
-  std::deque<InFlight> in_flight_;
-  std::int64_t queued_out_ = 0, written_ = 0, played_ = 0;
-
-  SelfTimer self_timer_;
-  std::vector<OwnTiming> own_timings_;
-  std::uint64_t own_timings_dropped_ = 0;
-  void KeepOwnTimings(std::vector<OwnTiming>& fresh);
-
-  Clock& clock_;
-  CardRateTracker card_rate_;
-  std::int64_t card_frames_ = 0;  // frames read since the device (re)opened
+  std::vector<float> in_;
   ReopenSchedule reopen_;
   bool device_down_ = false;
   std::string device_error_;
