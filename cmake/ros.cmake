@@ -37,6 +37,7 @@ add_library(multirobot_audio_ros STATIC
   src/wanderer_ros.cpp
   src/wanderer_team_ros.cpp
   src/audio_propagation_ros.cpp
+  src/nava_modem_options.cpp
   src/nava_modem_ros.cpp
   src/ranging_ros.cpp
   src/simulated_ranging_ros.cpp

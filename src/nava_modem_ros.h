@@ -41,24 +41,11 @@ class NavaModemRos {
   ~NavaModemRos();
 
  private:
-  struct Counts {
-    std::string state;
-    double threshold_db = 0.0, level_db = 0.0;
-    std::uint64_t sent = 0, packets = 0, zero_byte = 0, one_byte = 0, bad_crc = 0, repaired = 0;
-    std::uint64_t overruns = 0, underruns = 0, packets_cut = 0, queue_drops = 0;
-  };
-  // The sound card's health, as the link last reported it (guarded by mutex_).
-  struct DeviceHealth {
-    bool down = false;
-    std::string error;  // why it last failed, or why the last try to reopen it did
-    std::uint64_t faults = 0, reopens = 0, requeued = 0;
-    int failed_reopens = 0;       // since it last failed
-    std::uint64_t catch_ups = 0;  // times the capture fell behind and the link caught up
-    ros::WallTime down_since;
-  };
   InputGuard::Verdict OnTx(const multirobot_audio::AudioPacket::ConstPtr& msg);
   void AudioLoop();
-  void ReportDevice();  // logs and records a failure, a reopen or a catch-up of the device
+  // Logs what changed between two of the link's states: a failure, a reopen, a catch-up, a cut
+  // packet, an overrun.
+  void Report(const nava_modem::LinkStatus& before, const nava_modem::LinkStatus& now);
   void DiagnoseDevice(diagnostic_updater::DiagnosticStatusWrapper& status);
   void Publish(const nava_modem::RxEvent& event, double ago);
   double RangingRateError(const nava_modem::RxEvent& e) const;
@@ -78,10 +65,10 @@ class NavaModemRos {
   InputGuard guard_;  // audio/tx's and the team's timings' checks and counts, on updater_
   std::unique_ptr<RangingRos> ranging_;
   ros::WallTimer diagnostics_timer_;
-  std::mutex mutex_;  // guards inbox_, counts_ and health_
+  std::mutex mutex_;  // guards inbox_, status_ and down_since_
   std::deque<std::vector<std::uint8_t>> inbox_;  // audio/tx for the audio thread; at most the MAC queue's capacity
-  Counts counts_;
-  DeviceHealth health_;
+  nava_modem::LinkStatus status_;  // as the audio thread last read it
+  ros::WallTime down_since_;       // when the device last failed
   std::atomic<bool> running_{true};
   std::thread audio_thread_;
 };

@@ -21,8 +21,8 @@ class ProfileOf : public ModemProfile {
   std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const override {
     return modulator_.ModulatePacket(data);
   }
+  // Each receiver validates its options before it builds anything from them.
   std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
-    ValidateReceiverOptions(options);
     return std::make_unique<Receiver>(options_, options);
   }
   double Airtime() const override { return ProfileAirtime(kKind, options_); }
@@ -41,6 +41,15 @@ std::optional<Profile> ParseProfile(const std::string& name) {
 }
 
 const char* ProfileName(Profile profile) { return profile == Profile::kNava ? "nava" : "room"; }
+
+void ValidateProfileOptions(Profile profile, const ModemOptions& options) {
+  if (profile == Profile::kNava) {
+    ValidateModemOptions(options);
+    return;
+  }
+  ValidateRoomRate(options.sample_rate);
+  ValidateAmplitude(options.amplitude);
+}
 
 std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& options) {
   if (profile == Profile::kNava) return std::make_unique<ProfileOf<Profile::kNava, FskModulator, FskReceiver>>(options);

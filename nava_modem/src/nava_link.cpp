@@ -76,12 +76,36 @@ bool NavaLink::Tick(std::vector<RxEvent>& events) {
     TryReopen();
     return true;
   }
+  const std::size_t first = events.size();
+  bool more = true;
   try {
-    return Run(events);
+    more = Run(events);
   } catch (const DeviceFault& e) {
     Fail(e.what(), events);
-    return true;
   }
+  for (std::size_t k = first; k < events.size(); ++k) heard_.Add(events[k]);
+  return more;
+}
+
+LinkStatus NavaLink::status() const {
+  LinkStatus s;
+  s.state = mac_.state();
+  s.threshold_db = mac_.threshold_db();
+  s.level_db = level_db();
+  s.sent = packets_sent();
+  s.queue_drops = mac_.dropped();
+  s.heard = heard_;
+  s.overruns = overruns();
+  s.underruns = underruns();
+  s.packets_cut = packets_cut();
+  s.catch_ups = catch_ups();
+  s.device_down = device_down_;
+  s.device_error = device_error_;
+  s.device_faults = device_faults_;
+  s.reopens = reopens_;
+  s.requeued = packets_requeued();
+  s.failed_reopens = failed_reopens();
+  return s;
 }
 
 bool NavaLink::Run(std::vector<RxEvent>& events) {

@@ -84,7 +84,7 @@ struct RoomReceiver::Fft {
 
 RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& options)
     : modem_(modem),
-      options_(options),
+      options_((ValidateReceiverOptions(options), options)),
       chirp_((ValidateRoomRate(modem.sample_rate), Chirp(modem.sample_rate))),
       detector_(chirp_, modem.sample_rate, ChirpDetectorOptions{}),
       arrival_timer_(chirp_, detector_.length() + static_cast<std::size_t>(std::lround((kArrivalBefore + kArrivalAfter) * modem.sample_rate)),
@@ -92,7 +92,6 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
       level_(modem.sample_rate, kChirpLowHz - 100.0, kHighestHz + 600.0, kLevelSeconds),
       busy_(kBusyRelease, kBusyMinimum),
       packet_length_(kPostChirpStart * modem.sample_rate) {
-  ValidateReceiverOptions(options_);
   if (kHighestHz * (1.0 + MaxStretchError()) >= modem.sample_rate / 2.0) {
     throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": a sender that fast would put " +
                                 "the room profile's highest tone above the Nyquist frequency at " +

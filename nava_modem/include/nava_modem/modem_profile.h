@@ -50,6 +50,11 @@ class ModemProfile {
   ModemOptions options_;
 };
 
+// Throws std::invalid_argument naming what of `options` the profile cannot use (what MakeProfile
+// refuses): for nava its tones and bit rate (ValidateModemOptions), for room a sample rate its
+// band fits (ValidateRoomRate); the amplitude for both.
+void ValidateProfileOptions(Profile profile, const ModemOptions& options);
+
 // A profile over the given options (sample rate, amplitude and CRC for every profile; tones
 // and bit rate for nava only). Throws std::invalid_argument naming what does not fit.
 std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& options);

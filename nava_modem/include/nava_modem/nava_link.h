@@ -10,6 +10,7 @@
 #include "nava_modem/csma_mac.h"
 #include "nava_modem/link_capture.h"
 #include "nava_modem/link_playback.h"
+#include "nava_modem/link_status.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/receive_chain.h"
 #include "nava_modem/reopen_schedule.h"
@@ -96,6 +97,10 @@ class NavaLink {
   // last call; at most ReceiveChain::kMaxOwnTimings wait, and the oldest beyond are dropped and counted.
   std::vector<OwnTiming> TakeOwnTimings() { return receive_.TakeOwnTimings(); }
   std::uint64_t own_timings_dropped() const { return receive_.own_timings_dropped(); }
+  // Receptions so far, by kind.
+  const ReceptionCounts& heard() const { return heard_; }
+  // All of the above at once.
+  LinkStatus status() const;
   // The sound card's capture rate over its nominal one, minus 1, against the host's steady
   // clock (card_rate.h); NaN until some 30 s after the device (re)opened.
   double card_rate_error() const { return capture_.card_rate_error(); }
@@ -122,6 +127,7 @@ class NavaLink {
   bool device_down_ = false;
   std::string device_error_;
   std::uint64_t device_faults_ = 0, reopens_ = 0;
+  ReceptionCounts heard_;
 };
 
 }  // namespace nava_modem
