@@ -109,7 +109,7 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
     ros::NodeHandle rnh(nh_, sim_.robots[k]);
     tx_subs_.push_back(guard_.Subscribe<multirobot_audio::AudioPacket>(
         lockstep_, rnh, "audio/tx", 10,
-        [packet_bytes](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, packet_bytes); },
+        [packet_bytes](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, packet_bytes, packet_bytes); },
         [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { return OnTx(k, m); }));
     // (What is already in the air is settled at the next update: sleeping through silence, the
     // node is called to a step by a packet, not by the robots' poses.)

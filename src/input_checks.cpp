@@ -163,9 +163,11 @@ std::string LockStateProblem(const multirobot_audio::LockState& msg) {
   return "";
 }
 
-std::string PacketProblem(const multirobot_audio::AudioPacket& msg, std::size_t bytes) {
-  if (msg.data.size() == bytes) return "";
-  return "data: " + std::to_string(msg.data.size()) + " bytes, the link carries " + std::to_string(bytes);
+std::string PacketProblem(const multirobot_audio::AudioPacket& msg, std::size_t min_bytes, std::size_t max_bytes) {
+  if (msg.data.size() >= min_bytes && msg.data.size() <= max_bytes) return "";
+  const std::string carried =
+      min_bytes == max_bytes ? std::to_string(min_bytes) : std::to_string(min_bytes) + " to " + std::to_string(max_bytes);
+  return "data: " + std::to_string(msg.data.size()) + " bytes, the link carries " + carried;
 }
 
 std::string JobProblem(const multirobot_audio::Job& msg) {

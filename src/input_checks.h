@@ -48,8 +48,9 @@ std::string BatteryProblem(const sensor_msgs::BatteryState& msg);
 std::string ReceptionProblem(const multirobot_audio::AudioReception& msg);
 // One of the LockState constants, a finite time in state.
 std::string LockStateProblem(const multirobot_audio::LockState& msg);
-// Exactly `bytes` of payload (the link's packet size).
-std::string PacketProblem(const multirobot_audio::AudioPacket& msg, std::size_t bytes);
+// From `min_bytes` to `max_bytes` of payload (the frames the link carries; one size for a link
+// of fixed packets).
+std::string PacketProblem(const multirobot_audio::AudioPacket& msg, std::size_t min_bytes, std::size_t max_bytes);
 // A job count of at least 1 (the first job is 1).
 std::string JobProblem(const multirobot_audio::Job& msg);
 

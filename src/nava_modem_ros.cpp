@@ -31,7 +31,9 @@ NavaModemRos::NavaModemRos(ros::NodeHandle nh, ros::NodeHandle pnh, const NavaMo
   }
   tx_sub_ = guard_.Subscribe<multirobot_audio::AudioPacket>(
       nh_, "audio/tx", 20,
-      [](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, nava_modem::kDataBytes); },
+      [format = link_->profile().Format()](const multirobot_audio::AudioPacket& m) {
+        return PacketProblem(m, format.min_bytes, format.max_bytes);
+      },
       [this](const multirobot_audio::AudioPacket::ConstPtr& m) { return OnTx(m); });
   rx_pub_ = nh_.advertise<multirobot_audio::AudioReception>("audio/rx", 50);
   carrier_pub_ = nh_.advertise<multirobot_audio::CarrierSense>("audio/carrier", 20);

@@ -150,9 +150,13 @@ TEST(InputChecksTest, LockStatePacketAndJob) {
 
   AudioPacket p;
   p.data = {1, 2, 3, 4};
-  EXPECT_EQ(PacketProblem(p, 4), "");
+  EXPECT_EQ(PacketProblem(p, 4, 4), "");
+  EXPECT_EQ(PacketProblem(p, 1, 255), "");
   p.data.resize(300);
-  EXPECT_EQ(PacketProblem(p, 4), "data: 300 bytes, the link carries 4");
+  EXPECT_EQ(PacketProblem(p, 4, 4), "data: 300 bytes, the link carries 4");
+  EXPECT_EQ(PacketProblem(p, 1, 255), "data: 300 bytes, the link carries 1 to 255");
+  p.data.clear();
+  EXPECT_EQ(PacketProblem(p, 1, 255), "data: 0 bytes, the link carries 1 to 255");
 
   Job j;
   j.count = 1;

@@ -1,6 +1,7 @@
 #include "nava_modem/modem_profile.h"
 
 #include <cmath>
+#include <string>
 
 #include "nava_modem/frame.h"
 #include "nava_modem/fsk_modulator.h"
@@ -18,14 +19,19 @@ class ProfileOf : public ModemProfile {
  public:
   explicit ProfileOf(const ModemOptions& options) : ModemProfile(options), modulator_(options) {}
   Profile profile() const override { return kKind; }
-  std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const override {
+  FrameFormat Format() const override { return ProfileFormat(kKind); }
+  std::vector<float> Modulate(const std::vector<std::uint8_t>& data, int rate) const override {
+    CheckFrame(data.size(), rate);
     return modulator_.ModulatePacket(data);
   }
   // Each receiver validates its options before it builds anything from them.
   std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
     return std::make_unique<Receiver>(options_, options);
   }
-  double Airtime() const override { return ProfileAirtime(kKind, options_); }
+  double Airtime(std::size_t data_bytes, int rate) const override {
+    CheckFrame(data_bytes, rate);
+    return ProfileAirtime(kKind, options_);
+  }
   MacTiming Timing() const override { return ProfileTiming(kKind, options_); }
 
  private:
@@ -39,6 +45,22 @@ std::optional<Profile> ParseProfile(const std::string& name) {
   if (name == "room") return Profile::kRoom;
   return std::nullopt;
 }
+
+void ModemProfile::CheckFrame(std::size_t data_bytes, int rate) const {
+  const FrameFormat f = Format();
+  if (data_bytes < f.min_bytes || data_bytes > f.max_bytes) {
+    const std::string carried = f.min_bytes == f.max_bytes ? std::to_string(f.min_bytes)
+                                                           : std::to_string(f.min_bytes) + " to " + std::to_string(f.max_bytes);
+    throw std::invalid_argument(std::string("a ") + ProfileName(profile()) + " frame carries " + carried + " data bytes, got " +
+                                std::to_string(data_bytes));
+  }
+  if (rate < 0 || rate >= f.rates) {
+    throw std::invalid_argument(std::string("rate ") + std::to_string(rate) + ": the " + ProfileName(profile()) +
+                                " profile has rates 0 to " + std::to_string(f.rates - 1));
+  }
+}
+
+FrameFormat ProfileFormat(Profile) { return FrameFormat{}; }
 
 const char* ProfileName(Profile profile) { return profile == Profile::kNava ? "nava" : "room"; }
 

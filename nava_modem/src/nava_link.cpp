@@ -1,6 +1,5 @@
 #include "nava_modem/nava_link.h"
 
-#include "nava_modem/frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,9 +64,7 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock
       reopen_(options_.reopen) {}
 
 bool NavaLink::Send(std::vector<std::uint8_t> data) {
-  if (data.size() != static_cast<std::size_t>(kDataBytes)) {
-    throw std::invalid_argument("a Nava packet carries 4 data bytes, got " + std::to_string(data.size()));
-  }
+  profile_->CheckFrame(data.size());
   return mac_.Enqueue(std::move(data));
 }
 

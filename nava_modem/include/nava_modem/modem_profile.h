@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nava_modem/csma_mac.h"
+#include "nava_modem/frame.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
 
@@ -31,17 +32,32 @@ struct MacTiming {
   int packet_bits = 110;
 };
 
+// The frames a profile carries: how many data bytes, and at how many rates. A rate is a step of
+// the profile's ladder, 0 the slowest and most robust; a receiver decodes every step without
+// being told which, and reports the one it found (RxEvent::rate). Both profiles carry today's
+// 4-byte packet at one rate; the frames-of-any-length work widens `room`'s.
+struct FrameFormat {
+  std::size_t min_bytes = kDataBytes, max_bytes = kDataBytes;
+  int rates = 1;
+};
+
 // One profile's modulator, receiver and timing behind one interface.
 class ModemProfile {
  public:
   virtual ~ModemProfile() = default;
   virtual Profile profile() const = 0;
-  // The samples of one packet carrying 4 data bytes.
-  virtual std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const = 0;
+  virtual FrameFormat Format() const = 0;
+  // Throws std::invalid_argument naming the length or rate and what the profile carries.
+  void CheckFrame(std::size_t data_bytes, int rate = 0) const;
+  // The samples of one frame carrying `data` at rate step `rate` (CheckFrame's errors).
+  virtual std::vector<float> Modulate(const std::vector<std::uint8_t>& data, int rate = 0) const = 0;
+  // Seconds a frame of `data_bytes` lasts on the air at `rate` (CheckFrame's errors).
+  virtual double Airtime(std::size_t data_bytes, int rate = 0) const = 0;
+  // Today's packet: 4 data bytes at the slowest rate.
+  std::vector<float> ModulatePacket(const std::vector<std::uint8_t>& data) const { return Modulate(data, 0); }
+  double Airtime() const { return Airtime(kDataBytes, 0); }
   // Throws std::invalid_argument for impossible options (ValidateReceiverOptions).
   virtual std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const = 0;
-  // Seconds one packet lasts on the air.
-  virtual double Airtime() const = 0;
   virtual MacTiming Timing() const = 0;
   const ModemOptions& options() const { return options_; }
 
@@ -59,9 +75,11 @@ void ValidateProfileOptions(Profile profile, const ModemOptions& options);
 // and bit rate for nava only). Throws std::invalid_argument naming what does not fit.
 std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& options);
 
-// Timing without a sample rate (for the simulated channel).
+// Timing without a sample rate (for the simulated channel); the airtime of today's packet.
 MacTiming ProfileTiming(Profile profile, const ModemOptions& options = {});
 double ProfileAirtime(Profile profile, const ModemOptions& options = {});
+// The frames a profile carries, without building it.
+FrameFormat ProfileFormat(Profile profile);
 // Sets the MAC's bit rate and packet length to the profile's.
 void UseProfileTiming(Profile profile, const ModemOptions& options, MacOptions& mac);
 

@@ -62,7 +62,8 @@ class NavaLink {
   // Throws std::invalid_argument on impossible options.
   NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock = SteadyClock::Instance());
 
-  // Queues 4 data bytes to send; false (counted by the MAC) when the queue is full.
+  // Queues a frame's data bytes (as many as the profile carries: ModemProfile::CheckFrame's
+  // error otherwise) to send; false (counted by the MAC) when the queue is full.
   bool Send(std::vector<std::uint8_t> data);
 
   // One tick of audio in and out; what was heard is appended to `events`. False at the end of

@@ -44,7 +44,8 @@ struct RxEvent {
   enum class Noise { kNone, kZeroByte, kOneByte, kBadCrc };
   Kind kind = Kind::kNoise;
   Noise noise = Noise::kNone;
-  std::vector<std::uint8_t> data;  // the 4 data bytes of a packet
+  std::vector<std::uint8_t> data;  // a packet's data bytes (ModemProfile::Format: 4 today)
+  int rate = 0;                    // the rate step it came at (FrameFormat::rates)
   double start = 0.0, end = 0.0;   // s since the first sample
   double level_db = 0.0;           // mean in-band level, dB of full scale
   double quality = 0.0;            // how clean the symbols were, 0 to 1 (see each receiver)
