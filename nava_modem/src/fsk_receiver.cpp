@@ -75,10 +75,13 @@ void FskReceiver::SetCarrierThreshold(std::optional<double> db) {
   busy_.SetThreshold(db);
 }
 
+TraceScale FskReceiver::Scale() const { return {static_cast<double>(filters_.step()), seconds_per_step_, per_bit_}; }
+
 double FskReceiver::level_db() const { return 10.0 * std::log10(ring_.sum(n_ - 1) + kTiny); }
 
 void FskReceiver::SetMuted(bool muted) {
   if (muted && !muted_) {
+    if (state_ == State::kCollecting) tracer_.Drop(BreakOutcome::kMuted);
     state_ = State::kSearching;
     busy_.Reset();
   }
@@ -132,11 +135,13 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         decode_at_ = DecodeAt(break_step_);
         break_settled_ = false;
         state_ = State::kCollecting;
+        tracer_.Begin(Scale(), break_step_, peak_);
       }
       break;
     case State::kCollecting:
       if (step > peak_ + kSupersede || (step > options_.detect_threshold && detector_.power() > kLouder * peak_power_)) {
         // A much clearer or louder break than the one being collected: that one was noise.
+        tracer_.Drop(BreakOutcome::kSuperseded);
         state_ = State::kPeaking;
         peak_ = step;
         peak_at_ = n;
@@ -155,6 +160,7 @@ void FskReceiver::Step(std::vector<RxEvent>& events) {
         events.push_back(DecodeFrame(break_step_));
         events.back().clarity = peak_;
         if (options_.time_arrivals && events.back().kind == RxEvent::Kind::kPacket) events.back().arrival = timer_.Time(events.back().start);
+        tracer_.Report(events.back());
         busy_.FrameFound();
         // No new break before the detector's windows have left this packet: its tail
         // followed by silence could pass for a step. Not after a faint step that decoded to
@@ -198,12 +204,15 @@ std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent
   // turn; the first whose frame checks is the packet.
   const std::vector<ClockFit> candidates =
       ClockCandidates(normalized_, break_step, per_bit_, kPhaseSpanBits * per_bit_, options_.max_rate_error, kClockHypotheses);
+  ClockSearchTrace* search = nullptr;
+  if (BreakTrace* trace = tracer_.current()) search = &trace->searches.emplace_back(ClockSearchTrace{break_step, model_, {}});
   ClockFit best{break_step, per_bit_, -1e300};
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ClockFit fine =
         BestClock(normalized_, candidates[k].start, candidates[k].period, per_bit_ / 16.0, per_bit_ / 64.0, kClockRateStep, 0.0005);
     const FrameReading reading = ReadFrame({ring_, model_, normalized_, filters_.window(), per_bit_, seconds_per_step_}, fine.start, fine.period);
     RxEvent ev = AcceptReading(reading, modem_.crc, options_.max_fixed_bits);
+    if (search != nullptr) search->clocks.push_back({candidates[k], fine, reading, ev});
     if (ev.kind == RxEvent::Kind::kPacket) {
       first = ev;
       return std::nullopt;
@@ -236,8 +245,15 @@ double FskReceiver::SettleBreak(double break_step) {
   const double span = (kWideEarlyBits + kWideLateBits) / 2.0 * per_bit_;
   const ClockFit wide = BestClock(normalized_, break_step + kWideLateBits * per_bit_ - span, per_bit_, span, per_bit_ / 4.0, 0.0, 1.0);
   const ClockFit near = BestClock(normalized_, break_step, per_bit_, kPhaseSpanBits * per_bit_, per_bit_ / 4.0, 0.0, 1.0);
-  return std::abs(wide.start - break_step) > kPhaseSpanBits * per_bit_ && wide.metric > kFarBreakGain * near.metric ? wide.start
-                                                                                                                   : break_step;
+  const double settled =
+      std::abs(wide.start - break_step) > kPhaseSpanBits * per_bit_ && wide.metric > kFarBreakGain * near.metric ? wide.start : break_step;
+  if (BreakTrace* trace = tracer_.current()) {
+    trace->settled = true;
+    trace->near = near;
+    trace->wide = wide;
+    trace->settled_step = settled;
+  }
+  return settled;
 }
 
 RxEvent FskReceiver::DecodeFrame(double break_step) {
@@ -245,17 +261,27 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   std::int64_t first_at[kPacketBits];
   std::uint8_t first_hard[kFrameBits];
   bool any_clock = false;
+  BreakTrace* const trace = tracer_.current();
+  const auto outcome = [trace](BreakOutcome o) {
+    if (trace != nullptr) trace->outcome = o;
+  };
   // The tone model is read at the settled break (SettleBreak); where the best clock puts the break a
   // quarter bit or more from it (a room's tail can move the detector's peak by a bit), the model
   // is read again there and the clocks searched again, once.
   for (int round = 0; round < 2; ++round) {
     const std::optional<ClockFit> best = ReadOnBestClocks(break_step, first, first_at, first_hard);
-    if (!best) return first;  // a packet
+    if (!best) {
+      outcome(BreakOutcome::kPacketOnClock);
+      return first;
+    }
     any_clock = any_clock || best->metric > -1e300;
     if (round == 1 || !(best->metric > -1e300) || std::abs(best->start - break_step) < per_bit_ / 4.0) break;
     break_step = best->start;
   }
-  if (!any_clock) return first;
+  if (!any_clock) {
+    outcome(BreakOutcome::kNoClock);
+    return first;
+  }
   // No clock read a frame: the room's echoes, perhaps. The equaliser models them on readings of
   // the packet at the nominal bit rate (sound cards are within a few tenths of a percent, and
   // the equaliser finds the sender's offset itself), from where the best clock put the break and
@@ -268,6 +294,8 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   struct Reading {
     std::int64_t at[kPacketBits];
     double rate_error;
+    int shift_bits;  // from where the best clock put the break, at the nominal rate
+    bool own_clock;  // or on the best clock itself
   };
   std::vector<Reading> readings;
   std::vector<int> shifts{0};  // bits
@@ -279,17 +307,22 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   for (const int shift : shifts) {
     Reading r;
     r.rate_error = 0.0;
+    r.shift_bits = shift;
+    r.own_clock = false;
     for (int k = 0; k < kPacketBits; ++k) r.at[k] = anchor + std::llround((shift + k - kBreakSpaceBits) * per_bit_);
     readings.push_back(r);
   }
   if (std::abs(first.rate_error) > kEqualizerOwnClockRate) {
     Reading r;
     r.rate_error = first.rate_error;
+    r.shift_bits = 0;
+    r.own_clock = true;
     std::copy(first_at, first_at + kPacketBits, r.at);
     readings.push_back(r);
   }
   for (const Reading& r : readings) {
     const std::optional<RepairedFrame> repaired = Equalize(r.at, r.rate_error, first_hard);
+    if (trace != nullptr) trace->equalizer.push_back({r.shift_bits, r.own_clock, r.rate_error, repaired.has_value(), repaired ? repaired->fixed_bits : 0});
     if (!repaired) continue;
     first.kind = RxEvent::Kind::kPacket;
     first.noise = RxEvent::Noise::kNone;
@@ -300,6 +333,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
     // the first arrival around it put two packets of a measured clap 8.5 ms late).
     break;
   }
+  outcome(first.kind == RxEvent::Kind::kPacket ? BreakOutcome::kPacketByEqualizer : BreakOutcome::kNotRead);
   return first;
 }
 

@@ -10,6 +10,7 @@
 #include "nava_modem/busy_air.h"
 #include "nava_modem/frame_reading.h"
 #include "nava_modem/frame_repair.h"
+#include "nava_modem/fsk_diagnostics.h"
 #include "nava_modem/fsk_equalizer.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/nava_packet_timer.h"
@@ -57,6 +58,10 @@ class FskReceiver : public PacketReceiver {
   // In-band level of the last bit, dB of full scale.
   double level_db() const override;
   double time() const override { return Seconds(static_cast<double>(n_)); }
+  // Appends a trace of each break examined from now on to `traces` (fsk_diagnostics.h), which
+  // must outlive the receiver or the next call; null (the default) records nothing. What is
+  // decoded is the same either way.
+  void SetDiagnostics(std::vector<BreakTrace>* traces) { tracer_.SetSink(traces); }
 
  private:
   enum class State { kSearching, kPeaking, kCollecting };
@@ -81,6 +86,7 @@ class FskReceiver : public PacketReceiver {
   // (kPacketBits steps, the break's first SPACE bit first), the sender's clock rate_error off.
   std::optional<RepairedFrame> Equalize(const std::int64_t* at_step, double rate_error, const std::uint8_t* first_hard) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
+  TraceScale Scale() const;
 
   ModemOptions modem_;
   ReceiverOptions options_;
@@ -104,6 +110,7 @@ class FskReceiver : public PacketReceiver {
   NormalizedTones normalized_;  // over the packet being decoded (Normalize)
   bool muted_ = false;
   BusyAir busy_{0.0, 0.0};  // for ZERO_BYTE reports
+  BreakTracer tracer_;  // the diagnostics, when asked for
 };
 
 }  // namespace nava_modem
