@@ -2,7 +2,8 @@
 # nava_room end to end: a modem WAV through mild rooms still decodes, a speech interferer made by
 # make_speech.sh is resampled and mixed, the summary line; a 4-microphone render; the room
 # profile through a room where the reverberation is louder than the direct sound; a render
-# through a measured response (--rir); then the tools' answers to bad input.
+# through a measured response (--rir); nava_decode's trace of each break (--diagnostics); then
+# the tools' answers to bad input.
 #   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH NAVA_BENCH
 # (nava_bench for its --arrival and --likeness modes: room packets timed through measured
 # responses; measured responses beside the renderer's)
@@ -30,6 +31,21 @@ decodes() {
 "$tool" --in "$out/clean.wav" --out "$out/mild.wav" --tilt -6 --clock 0.5 --noise white --snr 15 \
   --whine 600 --whine-sir 15 --seed 4 2>"$out/stderr" || { cat "$out/stderr"; fail "mild room failed"; }
 decodes "$out/mild.wav"
+
+# nava_decode --diagnostics: a trace of each break as one valid JSON array, the events on stdout
+# the same as without it, both packets' breaks traced as read on a clock; and a packet cut short
+# traced to the stage that lost it (clocks read, then the equaliser; not read).
+"$decode" --diagnostics "$out/trace.json" "$out/mild.wav" >"$out/traced" 2>"$out/stderr" \
+  || { cat "$out/stderr"; fail "nava_decode --diagnostics failed"; }
+cmp -s "$out/traced" "$out/decoded" || { diff "$out/decoded" "$out/traced"; fail "--diagnostics changed what nava_decode printed"; }
+/usr/bin/python3 -m json.tool "$out/trace.json" >/dev/null || { cat "$out/trace.json"; fail "--diagnostics wrote invalid JSON"; }
+[ "$(grep -c '"outcome": "packet_on_clock", "event": {"t": ' "$out/trace.json")" -eq 2 ] \
+  || { cat "$out/trace.json"; fail "--diagnostics: expected both packets traced as read on a clock"; }
+sox "$out/clean.wav" "$out/cut.wav" trim 0 0.75 pad 0 0.5 || fail "sox could not cut the packet"
+"$decode" --diagnostics "$out/cut.json" "$out/cut.wav" >"$out/decoded" || fail "nava_decode --diagnostics on a cut packet failed"
+/usr/bin/python3 -m json.tool "$out/cut.json" >/dev/null || { cat "$out/cut.json"; fail "--diagnostics wrote invalid JSON for a cut packet"; }
+grep -q '"equalizer": \[{"shift_bits": 0, .*"outcome": "not_read", "event": {"t": [0-9.]*, "kind": "noise"' "$out/cut.json" \
+  || { cat "$out/cut.json"; fail "--diagnostics: the cut packet was not traced as not read"; }
 "$tool" --in "$out/clean.wav" --out "$out/room.wav" --rt60 0.3 --drr 20 2>"$out/stderr" \
   || { cat "$out/stderr"; fail "reverberant room failed"; }
 grep -q "measured DRR 20.00 dB" "$out/stderr" || { cat "$out/stderr"; fail "summary line without the measured DRR"; }
@@ -189,6 +205,13 @@ expect_error "--mark sets the nava profile's FSK; the room profile has its own t
 expect_error "profile room: sample rate 8000 Hz cannot carry its band" --profile room --rate 8000 --out "$out/x.wav" 01020304
 tool=$decode
 expect_error "--profile: expected nava or room, got Room" --profile Room "$out/office.wav"
+expect_error "--diagnostics: only the nava profile's receiver keeps diagnostics, not the room profile's" \
+  --profile room --diagnostics "$out/x.json" "$out/office.wav"
+expect_error "--diagnostics: not with --mics" --mics "$mics" --diagnostics "$out/x.json" "$out/array.wav"
+expect_error "--diagnostics: expected a file to write the JSON to" --diagnostics "" "$out/clean.wav"
+expect_error "--diagnostics: expected --flag VALUE" "$out/clean.wav" --diagnostics
+expect_error "--diagnostics /proc/no_such_folder/x.json: cannot write it" --diagnostics /proc/no_such_folder/x.json "$out/clean.wav"
+[ ! -e "$out/x.json" ] || fail "a refused --diagnostics wrote its file"
 "$encode" --profile nava --rate 8000 --out "$out/narrow.wav" 01020304 || fail "nava_encode at 8000 Hz failed"
 expect_error "$out/narrow.wav: profile room: sample rate 8000 Hz cannot carry its band" --profile room "$out/narrow.wav"
 expect_error "--mics: microphone positions '1e9,0,0,0': (1e+09, 0): expected within 10 m" "${in[@]}" --mics 1e9,0,0,0

@@ -2,7 +2,8 @@
 //   {"t": 1.234, "kind": "packet", "noise": "none", "data": "01020304", "level_db": -20.5, "quality": 0.83, ...}
 // t is the end of the reception in seconds from the start of the file.
 //
-//   nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] [modem options] FILE.wav
+//   nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] [--diagnostics FILE.json]
+//               [modem options] FILE.wav
 // --rate, if given, must be the file's rate. --mics: the file is a microphone array's recording,
 // channel i from the microphone at (xi, yi) m in the robot's frame; each line then also gives
 // "direction" (rad, CCW from the robot's +x, null when the array cannot tell) and
@@ -10,14 +11,22 @@
 // "arrival": when the packet's first sample, as sent, reached the microphone by the shortest way
 // (s from the file's start, 6 decimals: the leading edge of its direct sound, first_arrival.h);
 // null for noise and where the profile does not time packets.
+// --diagnostics FILE.json (nava profile, one channel): FILE gets a JSON array with an object for
+// each break the receiver examined: where the detector found it and where the packet's known bits
+// settled it, the tone model, each clock tried with its reading and verdict, the equaliser's tries,
+// the outcome (packet_on_clock, packet_by_equalizer, no_clock, not_read, superseded) and the event
+// reported (as on stdout). What is decoded is the same with it or without.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <optional>
 
 #include "nava_decode_args.h"
+#include "nava_decode_json.h"
 #include "nava_modem/array_decode.h"
+#include "nava_modem/fsk_receiver.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/wav_file.h"
 
@@ -25,23 +34,13 @@ namespace {
 
 using namespace nava_modem;
 
-// JSON has no NaN: a direction the array cannot tell is null.
-std::string DirectionJson(const RxEvent& e) {
-  char text[80];
-  if (std::isnan(e.direction)) {
-    std::snprintf(text, sizeof text, ", \"direction\": null, \"direction_confidence\": %.2f", e.direction_confidence);
-  } else {
-    std::snprintf(text, sizeof text, ", \"direction\": %.4f, \"direction_confidence\": %.2f", e.direction, e.direction_confidence);
-  }
-  return text;
-}
-
-// The packet's first arrival, 6 decimals (a microsecond); null where it was not timed.
-std::string ArrivalJson(const RxEvent& e) {
-  if (std::isnan(e.arrival)) return ", \"arrival\": null";
-  char text[48];
-  std::snprintf(text, sizeof text, ", \"arrival\": %.6f", e.arrival);
-  return text;
+// --diagnostics: the receiver's traces as a JSON array, a break to a line.
+bool WriteTraces(const std::vector<BreakTrace>& traces, std::ostream& out) {
+  out << "[\n";
+  for (std::size_t k = 0; k < traces.size(); ++k) out << tools::BreakTraceJson(traces[k]) << (k + 1 < traces.size() ? ",\n" : "\n");
+  out << "]\n";
+  out.flush();
+  return static_cast<bool>(out);
 }
 
 }  // namespace
@@ -78,12 +77,29 @@ int main(int argc, char** argv) {
     rx.carrier_threshold_db = o.threshold_db;
     rx.max_fixed_bits = o.max_fixed_bits;
     std::vector<RxEvent> events;
+    std::vector<BreakTrace> traces;
+    std::ofstream diagnostics;
+    if (!o.diagnostics.empty()) {
+      // Opened before the decode, which can take a while, so that a path that cannot be written
+      // fails at once.
+      diagnostics.open(o.diagnostics);
+      if (!diagnostics) {
+        std::cerr << "nava_decode: --diagnostics " << o.diagnostics << ": cannot write it\n";
+        return 1;
+      }
+    }
     try {
       const auto profile = MakeProfile(o.modem.profile, options);
       if (o.mics) {
         events = DecodeArray(*profile, rx, array.channels, *o.mics);
       } else {
         const auto receiver = profile->MakeReceiver(rx);
+        if (!o.diagnostics.empty()) {
+          // The parser allows --diagnostics with the nava profile only, whose receiver this is.
+          auto* const fsk = dynamic_cast<FskReceiver*>(receiver.get());
+          if (fsk == nullptr) throw std::logic_error("--diagnostics: the receiver is not the nava profile's");
+          fsk->SetDiagnostics(&traces);
+        }
         receiver->Process(audio.samples.data(), audio.samples.size(), events);
         receiver->Flush(events);
       }
@@ -91,13 +107,10 @@ int main(int argc, char** argv) {
       std::cerr << "nava_decode: " << o.file << ": " << e.what() << "\n";
       return 1;
     }
-    for (std::size_t k = 0; k < events.size(); ++k) {
-      const RxEvent& e = events[k];
-      std::printf("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"level_db\": %.1f, "
-                  "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s%s}\n",
-                  e.end, e.kind == RxEvent::Kind::kPacket ? "packet" : "noise", NoiseName(e.noise),
-                  tools::HexBytes(e.data).c_str(), e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error,
-                  ArrivalJson(e).c_str(), o.mics ? DirectionJson(e).c_str() : "");
+    for (const RxEvent& e : events) std::printf("%s\n", tools::EventJson(e, o.mics.has_value()).c_str());
+    if (!o.diagnostics.empty() && !WriteTraces(traces, diagnostics)) {
+      std::cerr << "nava_decode: --diagnostics " << o.diagnostics << ": could not write all of it\n";
+      return 1;
     }
     return 0;
   });

@@ -6,7 +6,7 @@ namespace nava_modem::tools {
 
 NavaDecodeOptions ParseNavaDecodeArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string("nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] ") +
-                            kModemUsage + " FILE.wav";
+                            "[--diagnostics FILE.json] " + kModemUsage + " FILE.wav";
   const multirobot_audio::tools::ToolArgs args("nava_decode", usage, words);
   NavaDecodeOptions o;
   o.usage = args.tool_usage();
@@ -24,6 +24,16 @@ NavaDecodeOptions ParseNavaDecodeArgs(const std::vector<std::string>& words) {
   if (files.size() != 1) args.Fail("expected one audio file");
   o.file = files[0];
   o.modem = ProfileArgs(args);
+  // Only the nava profile's receiver keeps a trace of its stages, and only on one channel.
+  o.diagnostics = args.String("--diagnostics", "");
+  if (args.given().count("--diagnostics")) {
+    if (o.diagnostics.empty()) args.Fail("--diagnostics: expected a file to write the JSON to");
+    if (o.modem.profile != Profile::kNava) {
+      args.Fail(std::string("--diagnostics: only the nava profile's receiver keeps diagnostics, not the ") + ProfileName(o.modem.profile) +
+                " profile's");
+    }
+    if (o.mics) args.Fail("--diagnostics: not with --mics (diagnostics trace one channel's receiver)");
+  }
   args.CheckAllUsed();
   return o;
 }

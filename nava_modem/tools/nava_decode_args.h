@@ -16,6 +16,8 @@ struct NavaDecodeOptions {
   int max_fixed_bits = 2;
   std::string given_rate;  // --rate as given ("" when not): it must be the file's
   std::optional<std::vector<Microphone2D>> mics;  // --mics: the file is an array's recording
+  // --diagnostics: where to write the nava receiver's trace of each break, as JSON ("" for none).
+  std::string diagnostics;
   std::string file;
   ToolModem modem;  // the sample rate is --rate's (or 48000) until the file's is known
   multirobot_audio::tools::ToolUsage usage;  // to refuse a --rate the file contradicts

@@ -35,4 +35,13 @@ inline std::string JsonNumber(double value, int decimals) {
   return text;
 }
 
+// `value` to `digits` significant digits (for figures whose scale varies: tone powers from 1e-9
+// to 1), or null when it is not finite.
+inline std::string JsonSignificant(double value, int digits) {
+  if (!std::isfinite(value)) return "null";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return text;
+}
+
 }  // namespace multirobot_audio::tools
