@@ -57,7 +57,8 @@ target_link_libraries(navigation_ros PUBLIC multirobot_audio_ros local_navigatio
 add_library(sounds_good_ros STATIC src/sounds_good_explorer_ros.cpp src/task_monitor_ros.cpp)
 target_link_libraries(sounds_good_ros PUBLIC navigation_ros sounds_good_explorer)
 # The charging robots' bridges, apart so that only their nodes link the charging demo.
-add_library(charging_ros STATIC src/charging_conversions.cpp src/charging_demo_ros.cpp)
+add_library(charging_ros STATIC src/charging_conversions.cpp src/charging_lock.cpp src/charging_state_publisher.cpp
+            src/charging_demo_ros.cpp)
 target_link_libraries(charging_ros PUBLIC navigation_ros charging_demo)
 
 # Node executables keep their ROS names (rosrun multirobot_audio world_sim).

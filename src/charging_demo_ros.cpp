@@ -7,11 +7,8 @@
 #include <vector>
 
 #include <geometry_msgs/Twist.h>
-#include <multirobot_audio/ChargingState.h>
-#include <std_srvs/Trigger.h>
-#include <visualization_msgs/MarkerArray.h>
 
-#include "conversions.h"
+#include "charging_conversions.h"
 #include "input_checks.h"
 #include "navigation_conversions.h"
 #include "navigation_params.h"
@@ -20,13 +17,8 @@
 namespace multirobot_audio {
 namespace {
 
-using local_mutex::State;
-
 constexpr int kMaxInt = std::numeric_limits<int>::max();
 constexpr double kBig = 1e6;
-// s of ROS time between repeats of a lock command that has not shown its effect yet (a goal
-// for a lock that is still not HELD, a release for one that is still not RELEASED).
-constexpr double kLockRetry = 2.0;
 // s without odometry or battery before the node says what it waits for.
 constexpr double kInputsPatience = 5.0;
 
@@ -128,14 +120,13 @@ ChargingDemoNodeOptions ReadChargingDemoNodeOptions(const ros::NodeHandle& pnh, 
 
 ChargingDemoRos::ChargingDemoRos(ros::NodeHandle nh, ros::NodeHandle pnh, const ChargingDemoNodeOptions& options)
     : nh_(nh),
-      pnh_(pnh),
       lockstep_(nh),
       options_(options),
-      controller_(options.controller) {
-  release_ = nh_.serviceClient<std_srvs::Trigger>("local_mutex/release");
-  cmd_pub_ = lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10);
-  state_pub_ = lockstep_.Advertise<multirobot_audio::ChargingState>(pnh_, "state", 10);
-  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("charger", 1);
+      controller_(options.controller),
+      lock_(nh),
+      cmd_pub_(lockstep_.Advertise<geometry_msgs::Twist>(nh_, "cmd_vel", 10)),
+      state_publisher_(lockstep_, pnh, options.state_rate, options.controller.charging.wait_distance,
+                       nh.getNamespace()) {
   odom_sub_ = guard_.Subscribe<nav_msgs::Odometry>(lockstep_, nh_, "odom", 10, OdometryProblem,
                                                    [this](const nav_msgs::Odometry::ConstPtr& m) { OnOdometry(m); });
   scan_sub_ = guard_.Subscribe<sensor_msgs::LaserScan>(lockstep_, nh_, "scan", 10, ScanProblem,
@@ -163,18 +154,18 @@ ChargingDemoRos::ChargingDemoRos(ros::NodeHandle nh, ros::NodeHandle pnh, const 
 
 ChargingDemoRos::~ChargingDemoRos() {
   const charging_demo::ChargingBehaviour& b = controller_.behaviour();
+  const ChargingLock::Counts& lock = lock_.counts();
   // Printed directly: the node's logging is already shut down when it is destroyed.
   std::printf("charging_demo summary: %s phase %s, battery %.2f, charges %lu, give-ups %lu, redocks %lu, "
               "lock goals %lu (granted %lu, cancelled %lu), releases %lu, late updates %lu of %lu; %s\n",
-              nh_.getNamespace().c_str(), charging_demo::PhaseName(b.phase()), battery_, Count(b.charges()),
-              Count(b.give_ups()), Count(b.redocks()), Count(goals_), Count(grants_), Count(cancels_),
-              Count(releases_), Count(late_), Count(updates_), guard_.Summary().c_str());
+              nh_.getNamespace().c_str(), charging_demo::PhaseName(b.phase()), battery_ ? battery_->level : 0.0,
+              Count(b.charges()), Count(b.give_ups()), Count(b.redocks()), Count(lock.goals), Count(lock.grants),
+              Count(lock.cancels), Count(lock.releases), Count(late_), Count(updates_), guard_.Summary().c_str());
   std::fflush(stdout);
 }
 
 void ChargingDemoRos::OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
   odom_frame_ = msg->header.frame_id;
-  have_odom_ = true;
   controller_.OnOdometry(FromPose(msg->pose.pose), msg->header.stamp.toSec());
 }
 
@@ -195,114 +186,26 @@ void ChargingDemoRos::OnFiducials(const multirobot_audio::FiducialArray::ConstPt
 }
 
 void ChargingDemoRos::OnBattery(const sensor_msgs::BatteryState::ConstPtr& msg) {
-  const BatteryReading r = FromBatteryState(*msg);  // a finite level: BatteryProblem has seen to it
-  battery_ = r.level;
-  docked_ = r.docked;
-  have_battery_ = true;
-  controller_.OnBattery(r.level, r.docked);
-}
-
-void ChargingDemoRos::SetLock(State state, const ros::Time& stamp, bool own) {
-  // Reports arrive in order on each connection, but the state topic, the action and the service
-  // are separate connections: a report stamped no later than what the node learnt itself (a
-  // grant in a result, its own release) may have been sent before it, and is stale.
-  if (!own && stamp <= own_known_) return;
-  lock_ = state;
-  if (own) own_known_ = stamp;
+  battery_ = FromBatteryState(*msg);  // a finite level: BatteryProblem has seen to it
+  controller_.OnBattery(battery_->level, battery_->docked);
 }
 
 void ChargingDemoRos::OnLockState(const multirobot_audio::LockState::ConstPtr& msg) {
   // A known state: LockStateProblem has seen to it.
-  if (const std::optional<State> state = FromLockStateValue(msg->state)) SetLock(*state, msg->header.stamp, false);
-}
-
-void ChargingDemoRos::OnGoalFeedback(const multirobot_audio::AcquireLockFeedbackConstPtr& feedback) {
-  if (const std::optional<State> state = FromLockStateValue(feedback->state)) SetLock(*state, ros::Time::now(), false);
-}
-
-void ChargingDemoRos::OnGoalDone(const actionlib::SimpleClientGoalState& state,
-                                 const multirobot_audio::AcquireLockResultConstPtr& result) {
-  goal_active_ = false;
-  cancel_sent_ = false;
-  if (result && result->acquired) {
-    ++grants_;
-    SetLock(State::kHeld, ros::Time::now(), true);
-    ROS_INFO("charging_demo %s: lock granted after %.1f s", nh_.getNamespace().c_str(), result->waited);
-  } else if (state != actionlib::SimpleClientGoalState::PREEMPTED) {
-    // Not by our cancel: aborted (the local_mutex gave up or went away). FollowLock asks again
-    // if the lock is still wanted.
-    ROS_WARN("charging_demo %s: lock goal ended %s (%s)", nh_.getNamespace().c_str(), state.toString().c_str(),
-             state.getText().c_str());
+  if (const std::optional<local_mutex::State> state = FromLockStateValue(msg->state)) {
+    lock_.OnReport(*state, msg->header.stamp);
   }
-}
-
-void ChargingDemoRos::FollowLock(bool want, const ros::Time& now) {
-  if (want != want_lock_) {
-    want_lock_ = want;
-    // A fresh change of mind acts at once; only repeats wait kLockRetry.
-    last_goal_ = last_release_ = ros::Time();
-  }
-  if (want) {
-    if (lock_ == State::kHeld || goal_active_) return;
-    if (!last_goal_.isZero() && (now - last_goal_).toSec() < kLockRetry) return;
-    if (!acquire_ || !acquire_->isServerConnected()) {
-      ROS_WARN_THROTTLE(10.0, "charging_demo %s: the lock is wanted but %s is not up", nh_.getNamespace().c_str(),
-                        nh_.resolveName("local_mutex/acquire").c_str());
-      return;
-    }
-    multirobot_audio::AcquireLockGoal goal;
-    goal.timeout = 0.0;  // the behaviour decides when to give up (lock_timeout) and cancels
-    acquire_->sendGoal(
-        goal,
-        [this](const actionlib::SimpleClientGoalState& state, const multirobot_audio::AcquireLockResultConstPtr& result) {
-          OnGoalDone(state, result);
-        },
-        AcquireClient::SimpleActiveCallback(),
-        [this](const multirobot_audio::AcquireLockFeedbackConstPtr& feedback) { OnGoalFeedback(feedback); });
-    goal_active_ = true;
-    cancel_sent_ = false;
-    last_goal_ = now;
-    ++goals_;
-    return;
-  }
-  if (goal_active_) {
-    if (!cancel_sent_) {
-      acquire_->cancelGoal();  // withdraws the request; a grant that crossed it is released below
-      cancel_sent_ = true;
-      ++cancels_;
-    }
-    return;
-  }
-  if (lock_ == State::kReleased) return;
-  if (!last_release_.isZero() && (now - last_release_).toSec() < kLockRetry) return;
-  Release(now);
-}
-
-void ChargingDemoRos::Release(const ros::Time& now) {
-  last_release_ = now;
-  std_srvs::Trigger call;
-  if (!release_.call(call)) {
-    ROS_WARN_THROTTLE(10.0, "charging_demo %s: %s did not answer", nh_.getNamespace().c_str(),
-                      release_.getService().c_str());
-    return;
-  }
-  ++releases_;
-  // The local_mutex has let go when it answers; reports from before are stale.
-  SetLock(State::kReleased, ros::Time::now(), true);
 }
 
 void ChargingDemoRos::OnControl(const ros::TimerEvent& event) {
   const ros::Time now = ros::Time::now();
   if (started_.isZero()) started_ = now;
-  if (!acquire_ && ros::Time::isValid()) {
-    // No thread of its own: its callbacks run on the node's queue, beside the control loop.
-    acquire_ = std::make_unique<AcquireClient>(nh_, "local_mutex/acquire", false);
-  }
-  if (!have_odom_ || !have_battery_) {
+  lock_.MakeClientOnceTimeValid();
+  if (!odom_frame_ || !battery_) {
     if ((now - started_).toSec() > kInputsPatience) {
       std::string missing;
-      if (!have_odom_) missing += " " + odom_sub_.getTopic();
-      if (!have_battery_) missing += " " + battery_sub_.getTopic();
+      if (!odom_frame_) missing += " " + odom_sub_.getTopic();
+      if (!battery_) missing += " " + battery_sub_.getTopic();
       ROS_WARN_THROTTLE(10.0, "charging_demo %s: standing still, waiting for%s", nh_.getNamespace().c_str(),
                         missing.c_str());
     }
@@ -314,41 +217,22 @@ void ChargingDemoRos::OnControl(const ros::TimerEvent& event) {
   ++updates_;
 
   const charging_demo::Phase before = controller_.behaviour().phase();
-  const charging_demo::ControllerOutput out = controller_.Update(lock_, now.toSec());
+  const charging_demo::ControllerOutput out = controller_.Update(lock_.state(), now.toSec());
   geometry_msgs::Twist cmd;
   cmd.linear.x = out.v;
   cmd.angular.z = out.w;
   cmd_pub_.publish(cmd);
-  FollowLock(out.want_lock, now);
+  lock_.Follow(out.want_lock, now);
 
   const charging_demo::Phase phase = controller_.behaviour().phase();
   if (phase != before) {
     ROS_INFO("charging_demo %s: %s -> %s (battery %.2f, lock %s)", nh_.getNamespace().c_str(),
-             charging_demo::PhaseName(before), charging_demo::PhaseName(phase), battery_,
-             local_mutex::StateName(lock_));
+             charging_demo::PhaseName(before), charging_demo::PhaseName(phase), battery_->level,
+             local_mutex::StateName(lock_.state()));
   }
-  const bool changed = !state_published_ || phase != last_phase_ || lock_ != last_lock_ ||
-                       docked_ != last_docked_ || out.want_lock != last_want_;
-  const bool due = options_.state_rate > 0.0 && (now - last_state_).toSec() >= 1.0 / options_.state_rate;
-  if (changed || due) PublishState(now);
-}
-
-void ChargingDemoRos::PublishState(const ros::Time& now) {
-  const charging_demo::ChargingBehaviour& b = controller_.behaviour();
-  const ChargingStatus status{lock_, want_lock_, battery_, docked_, controller_.retracing(), controller_.retraces()};
-  state_pub_.publish(ToChargingState(b, status, now.toSec(), odom_frame_, now));
-  if (markers_pub_.getNumSubscribers() > 0) {
-    std::string label = nh_.getNamespace();
-    if (!label.empty() && label.front() == '/') label.erase(0, 1);
-    markers_pub_.publish(ToChargerMarkers(b, status, options_.controller.charging.wait_distance, label,
-                                          controller_.navigator().pose(), odom_frame_, now));
-  }
-  state_published_ = true;
-  last_state_ = now;
-  last_phase_ = b.phase();
-  last_lock_ = lock_;
-  last_docked_ = docked_;
-  last_want_ = want_lock_;
+  const ChargingStatus status{lock_.state(), lock_.wanted(), battery_->level, battery_->docked,
+                              controller_.retracing(), controller_.retraces()};
+  state_publisher_.Update(controller_, status, *odom_frame_, now);
 }
 
 }  // namespace multirobot_audio
