@@ -162,13 +162,12 @@ void Rotations(const ModemOptions& modem, Complex rot[2][2]) {
     for (int tone = 0; tone < 2; ++tone) rot[t][tone] = std::polar(1.0, 2.0 * kPi * (freq[tone] - freq[t]) / modem.baud);
 }
 
-// The packet's bits as far as known, the others from `first`.
-std::array<std::uint8_t, kPacketBits> KnownAndFirst(const std::uint8_t* first) {
+// The packet's bits as far as known, the others 0. Nothing reads those before it decides them:
+// the first fit takes only rows whose bits are all known, and the search sets each bit before a
+// prediction uses it.
+std::array<std::uint8_t, kPacketBits> KnownBits() {
   std::array<std::uint8_t, kPacketBits> bits;
-  for (int k = 0; k < kPacketBits; ++k) {
-    const int known = KnownPacketBit(k);
-    bits[k] = static_cast<std::uint8_t>(known >= 0 ? known : first[k - kBreakBits]);
-  }
+  for (int k = 0; k < kPacketBits; ++k) bits[k] = static_cast<std::uint8_t>(std::max(0, KnownPacketBit(k)));
   return bits;
 }
 
@@ -206,11 +205,11 @@ ErrorEvents EventsOf(const std::array<int, kPacketBits>& event, const std::array
 
 FskEqualizer::FskEqualizer(const ModemOptions& modem) : modem_(modem) {}
 
-bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
-                            double frequency_error, const Accept& accept) const {
+bool FskEqualizer::Equalize(const std::complex<double>* const heard[2], const double* at, double frequency_error,
+                            const Accept& accept) const {
   Complex rot[2][2];
   Rotations(modem_, rot);
-  std::array<std::uint8_t, kPacketBits> bits = KnownAndFirst(first);
+  std::array<std::uint8_t, kPacketBits> bits = KnownBits();
   const Turning turning{heard, at, {modem_.mark_hz, modem_.space_hz}, modem_.sample_rate};
   const int known_rows = KnownRows();
 

@@ -192,8 +192,7 @@ void FskReceiver::Normalize(double earliest_break, double latest_break) {
   normalized_ = NormalizedTones(ring_, model_, from, to, n_);
 }
 
-std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent& first,
-                                                                    std::int64_t* first_at, std::uint8_t* first_hard) {
+std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent& first, std::int64_t* first_at) {
   // Each tone on its own scale, so that a tone weaker than the other (the speaker's, the
   // room's and the microphone's responses tilt the spectrum) weighs as much in the clock fit.
   model_ = FitToneModel(ring_, break_step, per_bit_);
@@ -221,7 +220,6 @@ std::optional<ClockFit> FskReceiver::ReadOnBestClocks(double break_step, RxEvent
       best = fine;
       first = ev;
       std::copy(reading.at.begin(), reading.at.end(), first_at);
-      std::copy(reading.hard.begin(), reading.hard.end(), first_hard);
     }
   }
   return best;
@@ -259,7 +257,6 @@ double FskReceiver::SettleBreak(double break_step) {
 RxEvent FskReceiver::DecodeFrame(double break_step) {
   RxEvent first;
   std::int64_t first_at[kPacketBits];
-  std::uint8_t first_hard[kFrameBits];
   bool any_clock = false;
   BreakTrace* const trace = tracer_.current();
   const auto outcome = [trace](BreakOutcome o) {
@@ -269,7 +266,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
   // quarter bit or more from it (a room's tail can move the detector's peak by a bit), the model
   // is read again there and the clocks searched again, once.
   for (int round = 0; round < 2; ++round) {
-    const std::optional<ClockFit> best = ReadOnBestClocks(break_step, first, first_at, first_hard);
+    const std::optional<ClockFit> best = ReadOnBestClocks(break_step, first, first_at);
     if (!best) {
       outcome(BreakOutcome::kPacketOnClock);
       return first;
@@ -321,7 +318,7 @@ RxEvent FskReceiver::DecodeFrame(double break_step) {
     readings.push_back(r);
   }
   for (const Reading& r : readings) {
-    const std::optional<RepairedFrame> repaired = Equalize(r.at, r.rate_error, first_hard);
+    const std::optional<RepairedFrame> repaired = Equalize(r.at, r.rate_error);
     if (trace != nullptr) trace->equalizer.push_back({r.shift_bits, r.own_clock, r.rate_error, repaired.has_value(), repaired ? repaired->fixed_bits : 0});
     if (!repaired) continue;
     first.kind = RxEvent::Kind::kPacket;
@@ -345,13 +342,13 @@ void FskReceiver::Outputs(const std::int64_t* at_step, std::complex<double> hear
   }
 }
 
-std::optional<RepairedFrame> FskReceiver::Equalize(const std::int64_t* at_step, double rate_error, const std::uint8_t* first_hard) const {
+std::optional<RepairedFrame> FskReceiver::Equalize(const std::int64_t* at_step, double rate_error) const {
   std::complex<double> heard[2][kPacketBits];
   double at[kPacketBits];
   Outputs(at_step, heard, at);
   const std::complex<double>* const outputs[2] = {heard[0], heard[1]};
   std::optional<RepairedFrame> repaired;
-  equalizer_.Equalize(outputs, at, first_hard, rate_error, [&](const SoftFrame& soft, const ErrorEvents& events) {
+  equalizer_.Equalize(outputs, at, rate_error, [&](const SoftFrame& soft, const ErrorEvents& events) {
     repaired = RepairFrame(soft, modem_.crc, options_.max_fixed_bits);
     // A sequence search's errors come as events: a competitor path that changes a few bits
     // together (a transition moved by a bit or two), which one- and two-bit repairs miss.

@@ -46,14 +46,15 @@ class FskEqualizer {
 
   // heard[t][k], k = 0 .. kPacketBits - 1 (bit 0: the break's first SPACE bit): tone t's
   // (0 MARK, 1 SPACE) complex filter output at the end of bit k, taken at sample at[k].
-  // `first`: first decisions on the kFrameBits frame bits. `frequency_error`: the sender's
-  // estimated clock offset (fraction). Each pass of fitting and deciding whose start and stop
-  // bits all came out right offers its soft decisions on the frame to `accept`, until it
-  // returns true (later passes refit on the earlier decisions), with the pass's error events.
-  // True when one was accepted.
+  // `frequency_error`: the sender's estimated clock offset (fraction). The first fit is made on
+  // the packet's known bits alone (the break and the header), so no first decisions on the frame
+  // are asked for: where the room confuses the filters they would be wrong. Each pass of fitting
+  // and deciding whose start and stop bits all came out right offers its soft decisions on the
+  // frame to `accept`, until it returns true (later passes refit on the earlier decisions), with
+  // the pass's error events. True when one was accepted.
   using Accept = std::function<bool(const SoftFrame&, const ErrorEvents&)>;
-  bool Equalize(const std::complex<double>* const heard[2], const double* at, const std::uint8_t* first,
-                double frequency_error, const Accept& accept) const;
+  bool Equalize(const std::complex<double>* const heard[2], const double* at, double frequency_error,
+                const Accept& accept) const;
 
  private:
   ModemOptions modem_;

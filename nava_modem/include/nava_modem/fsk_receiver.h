@@ -77,14 +77,13 @@ class FskReceiver : public PacketReceiver {
   void Normalize(double earliest_break, double latest_break);
   // The tone model read at break_step, the clocks searched around it and read in turn: nullopt
   // when one reads a packet (then in `first`); else the best clock's fine fit (metric -1e300
-  // when there was none), its reading in `first`, where its bits were read and its first
-  // decisions on the frame.
-  std::optional<ClockFit> ReadOnBestClocks(double break_step, RxEvent& first, std::int64_t* first_at, std::uint8_t* first_hard);
+  // when there was none), its reading in `first` and where its bits were read.
+  std::optional<ClockFit> ReadOnBestClocks(double break_step, RxEvent& first, std::int64_t* first_at);
   // The tone filters' complex outputs at at_step (kPacketBits steps), and those steps in samples.
   void Outputs(const std::int64_t* at_step, std::complex<double> heard[2][kPacketBits], double* at) const;
   // The equaliser's reading of the packet with its bits' filter outputs taken at at_step
   // (kPacketBits steps, the break's first SPACE bit first), the sender's clock rate_error off.
-  std::optional<RepairedFrame> Equalize(const std::int64_t* at_step, double rate_error, const std::uint8_t* first_hard) const;
+  std::optional<RepairedFrame> Equalize(const std::int64_t* at_step, double rate_error) const;
   double Seconds(double step) const { return step * seconds_per_step_; }
   TraceScale Scale() const;
 
