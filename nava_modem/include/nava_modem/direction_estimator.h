@@ -3,7 +3,9 @@
 // Direction of arrival from a microphone array, so that a real reception carries a direction as a
 // simulated one does (audio_propagation's microphones).
 //
-// Method: GCC-PHAT per microphone pair, SRP-PHAT over bearing.
+// Method: GCC-PHAT per microphone pair, SRP-PHAT over bearing, in three stages: the band spectra
+// (WelchAnalyser, band_spectra.h), each pair's correlation (GccPhat, gcc_phat.h), and the bearing
+// search and confidence here.
 // - Each channel is cut into segments of about 20 ms (a power of two: 1024 samples at 48 kHz,
 //   512 at 16 kHz; Tukey-windowed, not overlapping), at most 8 of them: back to back when they
 //   fit, else spread evenly over the samples, which keeps a long signal's variety (the nava
@@ -52,10 +54,11 @@
 // given (the tests print the time per estimate; docs/audio_link.md compares it with decoding).
 #include <cstddef>
 #include <limits>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "nava_modem/band_spectra.h"
+#include "nava_modem/gcc_phat.h"
 #include "nava_modem/microphone2d.h"
 
 namespace nava_modem {
@@ -112,21 +115,12 @@ class DirectionEstimator {
   bool collinear() const { return collinear_; }
 
  private:
-  struct Fft;         // the FFTW plans, shared by copies (executing a plan is thread-safe)
-  struct Spectra;     // one call's band spectra, per channel and segment
-  struct Correlation;  // one pair's GCC-PHAT over lags, and what the confidence needs
-
-  Spectra Analyse(const std::vector<const float*>& channels, std::size_t count) const;
-  Correlation Correlate(const Spectra& spectra, std::size_t i, std::size_t j) const;
-
   DirectionOptions options_;
   bool collinear_ = false;
   double axis_x_ = 1.0, axis_y_ = 0.0;  // collinear arrays: the unit vector along the line
-  double max_delay_ = 0.0;              // s: the largest spacing over the speed of sound
-  std::size_t segment_ = 0;             // samples per Welch segment
-  std::size_t interpolation_ = 1;       // lag steps per sample
-  std::size_t low_bin_ = 0, high_bin_ = 0;  // the band, inclusive, in segment bins
-  std::shared_ptr<const Fft> fft_;
+  WelchAnalyser welch_;                 // the first stage: each channel's band spectra
+  GccPhat gcc_;                         // the second: each pair's correlation over lags
+  std::vector<double> grid_x_, grid_y_;  // the bearing grid's unit vectors
 };
 
 }  // namespace nava_modem
