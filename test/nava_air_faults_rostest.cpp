@@ -91,9 +91,11 @@ class Links {
   }
   int Receptions(const std::string& link) { return static_cast<int>(heard_[link].size()); }
   // Whether `link` heard packet k of round `round` garbled by the air after the fault was dealt
-  // with: it missed k, heard packets k-1 (ending after `restarted`, so sent after the reopen: the
-  // cut packet at the earliest) and k+1 (unless k is the last), and a garbled packet (BAD_CRC
-  // noise) between them (for the last, within 2 s of k-1).
+  // with: it missed k, heard packets k-1 and k+1 (unless k is the last), and a garbled packet
+  // (BAD_CRC noise) between them, after `restarted` (for the last, within 2 s of k-1). When k-1
+  // was heard before the restart, k is the packet the fault cut, sent again as the first after
+  // the reopen, when the server garbles most (the cut copy's own BAD_CRC, before the restart,
+  // does not count).
   bool GarbledLater(const std::string& link, int k, int round, const ros::Time& restarted) {
     if (Numbers(link, round).count(k)) return false;
     ros::Time before, after;
@@ -102,7 +104,8 @@ class Links {
       if (r.data[1] == k - 1) before = r.header.stamp;
       if (r.data[1] == k + 1) after = r.header.stamp;
     }
-    if (before.isZero() || before < restarted || (k < kPackets && after.isZero())) return false;
+    if ((before.isZero() && k > 1) || (k < kPackets && after.isZero())) return false;
+    if (before < restarted) before = restarted;
     // (A packet and the gap after it last about 1 s: the last one's garbling ends within 2 s.)
     const ros::Time until = after.isZero() ? before + ros::Duration(2.0) : after;
     for (const AudioReception& r : heard_[link]) {
