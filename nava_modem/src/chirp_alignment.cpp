@@ -16,14 +16,26 @@ constexpr double kSearchBackground = 0.3, kSearchGuard = 0.02;
 
 std::int64_t AlignmentLookahead(double sample_rate) { return std::llround((kAlignAfterS + kAlignReachS) * sample_rate) + 1; }
 
+ChirpShape ShapeOf(const ChirpDetector& detector, double sample_rate, const ChirpPeak& anchor) {
+  const std::int64_t before = std::llround(kAlignBeforeS * sample_rate), after = std::llround(kAlignAfterS * sample_rate);
+  const std::int64_t p = std::llround(anchor.sample);
+  ChirpShape shape{anchor.sample, std::vector<double>(static_cast<std::size_t>(before + after))};
+  for (std::int64_t i = -before; i < after; ++i) shape.envelope[static_cast<std::size_t>(i + before)] = std::sqrt(detector.Envelope(p + i));
+  return shape;
+}
+
 std::vector<double> LineUpChirp(const ChirpDetector& detector, double sample_rate, const ChirpPeak& anchor, double around,
+                                double reach_s, int picks) {
+  return LineUpShape(detector, sample_rate, ShapeOf(detector, sample_rate, anchor), around, reach_s, picks);
+}
+
+std::vector<double> LineUpShape(const ChirpDetector& detector, double sample_rate, const ChirpShape& shape, double around,
                                 double reach_s, int picks) {
   const double fs = sample_rate;
   const std::int64_t before = std::llround(kAlignBeforeS * fs), after = std::llround(kAlignAfterS * fs);
   const std::int64_t reach = std::max<std::int64_t>(1, std::llround(reach_s * fs));
-  const std::int64_t p = std::llround(anchor.sample), q = std::llround(around);
-  std::vector<double> a(static_cast<std::size_t>(before + after));
-  for (std::int64_t i = -before; i < after; ++i) a[static_cast<std::size_t>(i + before)] = std::sqrt(detector.Envelope(p + i));
+  const std::int64_t p = std::llround(shape.sample), q = std::llround(around);
+  const std::vector<double>& a = shape.envelope;
   std::vector<double> b(static_cast<std::size_t>(before + after + 2 * reach));
   for (std::int64_t i = -before - reach; i < after + reach; ++i) b[static_cast<std::size_t>(i + before + reach)] = std::sqrt(detector.Envelope(q + i));
   std::vector<double> score(static_cast<std::size_t>(2 * reach + 1));
@@ -53,7 +65,7 @@ std::vector<double> LineUpChirp(const ChirpDetector& detector, double sample_rat
     // (Not ParabolaOffset: a NaN curvature, from audio that is not finite, leaves the lag whole.)
     if (denom < 0.0) refined += std::clamp(0.5 * (l - r) / denom, -0.5, 0.5);
     // The anchor's fractional part carries over: the lag is between whole samples.
-    out.push_back(anchor.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach));
+    out.push_back(shape.sample + static_cast<double>(q - p) + refined - static_cast<double>(reach));
   }
   return out;
 }

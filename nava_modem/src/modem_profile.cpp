@@ -6,6 +6,7 @@
 #include "nava_modem/frame.h"
 #include "nava_modem/fsk_modulator.h"
 #include "nava_modem/fsk_receiver.h"
+#include "nava_modem/room_frame.h"
 #include "nava_modem/room_modulator.h"
 #include "nava_modem/room_phy.h"
 #include "nava_modem/room_receiver.h"
@@ -22,7 +23,11 @@ class ProfileOf : public ModemProfile {
   FrameFormat Format() const override { return ProfileFormat(kKind); }
   std::vector<float> Modulate(const std::vector<std::uint8_t>& data, int rate) const override {
     CheckFrame(data.size(), rate);
-    return modulator_.ModulatePacket(data);
+    if constexpr (kKind == Profile::kRoom) {
+      return modulator_.Modulate(data, rate);
+    } else {
+      return modulator_.ModulatePacket(data);
+    }
   }
   // Each receiver validates its options before it builds anything from them.
   std::unique_ptr<PacketReceiver> MakeReceiver(const ReceiverOptions& options) const override {
@@ -30,7 +35,7 @@ class ProfileOf : public ModemProfile {
   }
   double Airtime(std::size_t data_bytes, int rate) const override {
     CheckFrame(data_bytes, rate);
-    return ProfileAirtime(kKind, options_);
+    return FrameAirtime(kKind, options_, data_bytes, rate);
   }
   MacTiming Timing() const override { return ProfileTiming(kKind, options_); }
 
@@ -60,7 +65,10 @@ void ModemProfile::CheckFrame(std::size_t data_bytes, int rate) const {
   }
 }
 
-FrameFormat ProfileFormat(Profile) { return FrameFormat{}; }
+FrameFormat ProfileFormat(Profile profile) {
+  if (profile == Profile::kNava) return FrameFormat{};
+  return FrameFormat{room_frame::kMinBytes, room_frame::kMaxBytes, room_frame::kRates};
+}
 
 const char* ProfileName(Profile profile) { return profile == Profile::kNava ? "nava" : "room"; }
 
@@ -90,9 +98,11 @@ void UseProfileTiming(Profile profile, const ModemOptions& options, MacOptions& 
   mac.packet_bits = timing.packet_bits;
 }
 
-double ProfileAirtime(Profile profile, const ModemOptions& options) {
+double ProfileAirtime(Profile profile, const ModemOptions& options) { return FrameAirtime(profile, options, kDataBytes, 0); }
+
+double FrameAirtime(Profile profile, const ModemOptions& options, std::size_t data_bytes, int rate) {
   if (profile == Profile::kNava) return kPacketBits / options.baud;
-  return room_phy::kPacketSeconds;
+  return room_frame::FrameSeconds(static_cast<int>(data_bytes), rate);
 }
 
 }  // namespace nava_modem

@@ -47,7 +47,7 @@ std::vector<double> SearchByData(RoomSymbolReader& symbols, const SampleRing& he
   int index = 0;
   for (double d = shortest; d <= longest; d += step, ++index) {
     if (pre + d + static_cast<double>(chirp_length) > static_cast<double>(heard.count())) continue;
-    symbols.Read(heard, pre, d / nominal, energy, kScanStride);
+    symbols.Read(heard, pre, d / nominal, kSymbols, energy, kScanStride);
     const double contrast = HopContrast(energy, kScanStride);
     // (Audio that is not finite scores NaN, which no ordering can sort.)
     if (std::isfinite(contrast)) trials.push_back({contrast, d, index});
@@ -58,7 +58,7 @@ std::vector<double> SearchByData(RoomSymbolReader& symbols, const SampleRing& he
     if (finalists.size() == static_cast<std::size_t>(kScanFinalists)) break;
     const bool apart = std::none_of(finalists.begin(), finalists.end(), [&](const Trial& f) { return std::abs(f.index - t.index) < apart_steps; });
     if (!apart) continue;
-    symbols.Read(heard, pre, t.distance / nominal, energy, 1);
+    symbols.Read(heard, pre, t.distance / nominal, kSymbols, energy, 1);
     const double contrast = HopContrast(energy);
     if (std::isfinite(contrast)) finalists.push_back({contrast, t.distance, t.index});
   }

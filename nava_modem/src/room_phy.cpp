@@ -15,6 +15,8 @@ constexpr double kChirpTaperSeconds = 0.005;
 
 int Band(int symbol) { return kHops[static_cast<std::size_t>(symbol % kBands)]; }
 
+int BandOf(int symbol, int slot, int tones) { return Band(symbol * tones + slot); }
+
 std::vector<float> Chirp(double sample_rate) {
   const std::size_t n = static_cast<std::size_t>(std::lround(kChirpSeconds * sample_rate));
   const double rate = (kChirpHighHz - kChirpLowHz) / kChirpSeconds;  // Hz per s

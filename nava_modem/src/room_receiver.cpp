@@ -30,8 +30,9 @@ RoomReceiver::RoomReceiver(const ModemOptions& modem, const ReceiverOptions& opt
       symbols_(modem.sample_rate),
       decoder_(modem.sample_rate, detector_.length(), MaxStretchError(options_), modem.crc),
       lookahead_(AlignmentLookahead(modem.sample_rate)),
-      history_((kPacketSeconds * (1.0 + options_.max_rate_error) + 1.0) * modem.sample_rate + 4.0 * detector_.length() +
-               lookahead_) {
+      history_((room_frame::FrameSeconds(room_frame::kMaxBytes, 0) * (1.0 + options_.max_rate_error) + 1.0) *
+                   modem.sample_rate +
+               4.0 * detector_.length() + lookahead_) {
   if (kHighestHz * (1.0 + MaxStretchError(options_)) >= modem.sample_rate / 2.0) {
     throw std::invalid_argument("max_rate_error " + std::to_string(options_.max_rate_error) + ": a sender that fast would put " +
                                 "the room profile's highest tone above the Nyquist frequency at " +
@@ -44,6 +45,8 @@ void RoomReceiver::SetMuted(bool muted) {
   if (muted && !muted_) {
     heard_.clear();
     pending_.clear();
+    frames_.clear();
+    // (What waited for a frame is reported with the next samples.)
     carrier_.Reset();
   }
   muted_ = muted;
@@ -54,11 +57,22 @@ void RoomReceiver::Process(const float* samples, std::size_t count, std::vector<
   // long call still has its samples.
   const std::size_t piece = static_cast<std::size_t>(0.1 * modem_.sample_rate);
   while (count > piece) {
-    ProcessPiece(samples, piece, events);
+    ProcessPiece(samples, piece, held_);
+    Deliver(events);
     samples += piece;
     count -= piece;
   }
-  ProcessPiece(samples, count, events);
+  ProcessPiece(samples, count, held_);
+  Deliver(events);
+}
+
+void RoomReceiver::Deliver(std::vector<RxEvent>& events) {
+  // While a long frame waits for its last chirp, what was heard meanwhile waits with it: the
+  // chirps its hops pass for, its own chirps alone and the busy air are its to report if it
+  // decodes (OnFrameDecoded), and are reported as they were heard if it does not.
+  if (!frames_.empty()) return;
+  events.insert(events.end(), std::make_move_iterator(held_.begin()), std::make_move_iterator(held_.end()));
+  held_.clear();
 }
 
 void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::vector<RxEvent>& events) {
@@ -82,25 +96,33 @@ void RoomReceiver::ProcessPiece(const float* samples, std::size_t count, std::ve
     OnChirp(pending_.front(), events);
     pending_.pop_front();
   }
-  ExpireChirps(pending_.empty() ? detector_.computed() : static_cast<std::int64_t>(pending_.front().sample), events);
+  const std::int64_t now = pending_.empty() ? detector_.computed() : static_cast<std::int64_t>(pending_.front().sample);
+  ExpireChirps(now, events);
+  ExpireFrames(now, events);
 }
 
 void RoomReceiver::Flush(std::vector<RxEvent>& events) {
   const std::vector<float> silence(static_cast<std::size_t>(modem_.sample_rate * (kPacketSeconds + 1.0)), 0.0f);
   Process(silence.data(), silence.size(), events);
+  // Long frames still waiting for their last chirp: silence until its place has passed.
+  while (!frames_.empty()) Process(silence.data(), silence.size(), events);
 }
 
 void RoomReceiver::Emit(RxEvent packet, double post, std::vector<RxEvent>& events) {
   // The packet's chirps, their reflections and anything heard inside it begin nothing more.
   decoded_until_ = post + static_cast<double>(detector_.length());
   while (!heard_.empty() && heard_.front().peak.sample < decoded_until_) heard_.pop_front();
+  frames_.erase(std::remove_if(frames_.begin(), frames_.end(), [&](const LongFrame& f) { return f.b.sample < decoded_until_; }),
+                frames_.end());
   events.push_back(std::move(packet));
   carrier_.FrameFound();
 }
 
 void RoomReceiver::OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events) {
   ExpireChirps(static_cast<std::int64_t>(peak.sample), events);
+  ExpireFrames(static_cast<std::int64_t>(peak.sample), events);
   if (peak.sample < decoded_until_) return;
+  if (CompleteFrame(peak, events)) return;
   const double shortest = Shortest(), longest = Longest();
   bool failed_post = false;
   for (auto it = heard_.begin(); it != heard_.end(); ++it) {
@@ -128,6 +150,7 @@ void RoomReceiver::OnChirp(const ChirpPeak& peak, std::vector<RxEvent>& events) 
     }
   }
   heard_.push_back({peak, failed_post, std::nullopt});
+  BeginFrame(peak);
 }
 
 void RoomReceiver::ExpireChirps(std::int64_t now, std::vector<RxEvent>& events) {

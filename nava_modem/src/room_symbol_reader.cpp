@@ -9,10 +9,11 @@ namespace nava_modem {
 
 using namespace room_phy;
 
-void RoomSymbolReader::Read(const SampleRing& heard, double pre, double stretch, std::vector<double>& energy, int stride) {
+void RoomSymbolReader::Read(const SampleRing& heard, double pre, double stretch, int count, std::vector<double>& energy,
+                            int stride) {
   const double fs = sample_rate_;
   const int length = static_cast<int>(std::lround(kSymbolSeconds * fs * stretch));
-  for (int s = 0; s < kSymbols; s += stride) {
+  for (int s = 0; s < count; s += stride) {
     const std::int64_t first = std::llround(pre + (kDataStart + s * kSymbolSeconds) * fs * stretch);
     Window(heard, first, length, &energy[static_cast<std::size_t>(s) * kBins]);
   }

@@ -263,32 +263,36 @@ TEST(ModemOptions, ImpossibleValuesAreNamed) {
 
 // The profile interface for frames of any length and several rates carries today's packet as
 // it was: 4 data bytes at one rate, the same sound and airtime, anything else refused by name.
-TEST(ModemProfile, CarriesTodaysPacketAndNamesWhatItDoesNotCarry) {
+TEST(ModemProfile, CarriesItsFramesAndNamesWhatItDoesNotCarry) {
   for (Profile kind : {Profile::kNava, Profile::kRoom}) {
     ModemOptions o;
     o.sample_rate = 48000.0;
     const std::unique_ptr<ModemProfile> profile = MakeProfile(kind, o);
     const FrameFormat f = profile->Format();
-    EXPECT_EQ(f.min_bytes, 4u);
-    EXPECT_EQ(f.max_bytes, 4u);
-    EXPECT_EQ(f.rates, 1);
+    const bool room = kind == Profile::kRoom;
+    EXPECT_EQ(f.min_bytes, room ? 1u : 4u);
+    EXPECT_EQ(f.max_bytes, room ? 255u : 4u);
+    EXPECT_EQ(f.rates, room ? 3 : 1);
     const std::vector<std::uint8_t> data = {1, 2, 3, 4};
     const std::vector<float> sound = profile->Modulate(data, 0);
     EXPECT_EQ(sound, profile->ModulatePacket(data));
     EXPECT_NEAR(static_cast<double>(sound.size()) / o.sample_rate, profile->Airtime(4, 0), 2e-3);
     EXPECT_EQ(profile->Airtime(4, 0), profile->Airtime());
     const std::string name = ProfileName(kind);
+    const std::size_t too_long = room ? 256 : 5;
     try {
-      profile->Modulate({1, 2, 3, 4, 5});
-      ADD_FAILURE() << name << ": 5 bytes modulated";
+      profile->Modulate(std::vector<std::uint8_t>(too_long, 7));
+      ADD_FAILURE() << name << ": " << too_long << " bytes modulated";
     } catch (const std::invalid_argument& e) {
-      EXPECT_EQ(std::string(e.what()), "a " + name + " frame carries 4 data bytes, got 5");
+      EXPECT_EQ(std::string(e.what()), "a " + name + " frame carries " + (room ? "1 to 255" : "4") + " data bytes, got " +
+                                           std::to_string(too_long));
     }
     try {
-      profile->Airtime(4, 1);
-      ADD_FAILURE() << name << ": rate 1 timed";
+      profile->Airtime(4, f.rates);
+      ADD_FAILURE() << name << ": rate " << f.rates << " timed";
     } catch (const std::invalid_argument& e) {
-      EXPECT_EQ(std::string(e.what()), "rate 1: the " + name + " profile has rates 0 to 0");
+      EXPECT_EQ(std::string(e.what()), "rate " + std::to_string(f.rates) + ": the " + name + " profile has rates 0 to " +
+                                           std::to_string(f.rates - 1));
     }
     EXPECT_THROW(profile->Airtime(0), std::invalid_argument);
   }

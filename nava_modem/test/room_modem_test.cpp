@@ -12,47 +12,22 @@
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_code.h"
 #include "nava_modem/room_phy.h"
+#include "profile_signals.h"
 #include "test_signals.h"
 
 namespace nava_modem {
 namespace {
 
 using Payloads = std::vector<std::vector<std::uint8_t>>;
+using test_signals::ClockOffset;
+using test_signals::Hear;
+using test_signals::PacketsOf;
 using test_signals::RandomPayloads;
 
 // Packets with gaps between them, as a sender would play them.
 std::vector<float> Play(const ModemProfile& profile, const Payloads& payloads, double gap) {
   return test_signals::Train(payloads, static_cast<std::size_t>(gap * profile.options().sample_rate),
                              [&](const auto& p) { return profile.ModulatePacket(p); });
-}
-
-std::vector<RxEvent> Hear(const ModemProfile& profile, const std::vector<float>& audio) {
-  auto rx = profile.MakeReceiver({});
-  std::vector<RxEvent> events;
-  // In pieces, as a sound card delivers it.
-  for (std::size_t at = 0; at < audio.size(); at += 441) rx->Process(audio.data() + at, std::min<std::size_t>(441, audio.size() - at), events);
-  rx->Flush(events);
-  return events;
-}
-
-Payloads PacketsOf(const std::vector<RxEvent>& events) {
-  Payloads out;
-  for (const RxEvent& e : events) {
-    if (e.kind == RxEvent::Kind::kPacket) out.push_back(e.data);
-  }
-  return out;
-}
-
-// The sender's clock off by `offset` (+0.01: 1 % fast): linear interpolation is enough for a
-// test at these rates (the tones are far below Nyquist).
-std::vector<float> ClockOffset(const std::vector<float>& in, double offset) {
-  std::vector<float> out;
-  for (double t = 0.0; t + 1.0 < in.size(); t += 1.0 + offset) {
-    const std::size_t k = static_cast<std::size_t>(t);
-    const double f = t - k;
-    out.push_back(static_cast<float>((1.0 - f) * in[k] + f * in[k + 1]));
-  }
-  return out;
 }
 
 TEST(RoomProfile, FitsTheBudget) {
@@ -110,17 +85,7 @@ TEST(RoomProfile, DecodesInReverberantRooms) {
   hall.drr_db = -10.0;
   hall.noise = RoomOptions::Noise::kWhite;
   hall.snr_db = 30.0;
-  RoomOptions office = hall;  // "an office at 4 m" and a motor
-  office.rt60 = 0.5;
-  office.drr_db = -8.0;
-  office.noise = RoomOptions::Noise::kPink;
-  office.snr_db = 6.0;
-  office.clock_offset = 0.003;
-  office.whine_hz = 2500.0;
-  office.whine_sir_db = 0.0;
-  office.tilt_db = -10.0;
-  office.tilt_low_hz = 600.0;
-  office.tilt_high_hz = 5400.0;
+  const RoomOptions office = test_signals::NoisyOffice();
   int decoded = 0, sent = 0;
   for (const Condition& c : {Condition{"hall", hall}, Condition{"office", office}}) {
     for (unsigned room = 0; room < 3; ++room) {

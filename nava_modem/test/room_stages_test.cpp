@@ -75,7 +75,7 @@ TEST(RoomSymbolReader, ReadsEachSymbolsToneAndTheSoftBitsDecodeIt) {
   const SampleRing heard = Heard(PacketAt(lead));
   RoomSymbolReader symbols(kRate);
   std::vector<double> energy(static_cast<std::size_t>(kSymbols) * kBins, -1.0);
-  symbols.Read(heard, static_cast<double>(lead), 1.0, energy, 1);
+  symbols.Read(heard, static_cast<double>(lead), 1.0, kSymbols, energy, 1);
   // Each symbol's sent tone, full scale in its own window: the strongest of all 192.
   const Frame frame = MakeFrame(kData, CrcVariant::kCcittFalse);
   room_code::Payload payload{};
@@ -93,7 +93,7 @@ TEST(RoomSymbolReader, ReadsEachSymbolsToneAndTheSoftBitsDecodeIt) {
 
   // With a stride only every k-th row is read.
   std::vector<double> strided(energy.size(), -1.0);
-  symbols.Read(heard, static_cast<double>(lead), 1.0, strided, 3);
+  symbols.Read(heard, static_cast<double>(lead), 1.0, kSymbols, strided, 3);
   EXPECT_EQ(strided[0], energy[0]);
   EXPECT_EQ(strided[static_cast<std::size_t>(kBins)], -1.0);
   EXPECT_EQ(strided[static_cast<std::size_t>(3 * kBins)], energy[static_cast<std::size_t>(3 * kBins)]);
@@ -101,9 +101,9 @@ TEST(RoomSymbolReader, ReadsEachSymbolsToneAndTheSoftBitsDecodeIt) {
   std::vector<float> noisy = PacketAt(lead);
   test_signals::AddNoise(noisy, 0.1, 10.0, kRate, 9, 600.0, 5400.0);
   const SampleRing noisy_heard = Heard(noisy);
-  symbols.Read(noisy_heard, static_cast<double>(lead), 1.0, energy, 1);
+  symbols.Read(noisy_heard, static_cast<double>(lead), 1.0, kSymbols, energy, 1);
   const double right = HopContrast(energy);
-  symbols.Read(noisy_heard, static_cast<double>(lead), 1.03, energy, 1);
+  symbols.Read(noisy_heard, static_cast<double>(lead), 1.03, kSymbols, energy, 1);
   const double off = HopContrast(energy);
   EXPECT_GT(right, 2.5);
   EXPECT_LT(off, 0.5 * right);  // 2.1 against 7.8 when written

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # nava_room end to end: a modem WAV through mild rooms still decodes, a speech interferer made by
 # make_speech.sh is resampled and mixed, the summary line; a 4-microphone render; the room
-# profile through a room where the reverberation is louder than the direct sound; a render
+# profile through a room where the reverberation is louder than the direct sound; 64-byte room
+# frames at each rate and the ladder listed; a render
 # through a measured response (--rir); nava_decode's trace of each break (--diagnostics); then
 # the tools' answers to bad input.
 #   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH NAVA_BENCH
@@ -198,8 +199,29 @@ for p in 01020304 a0b0c0d0; do
   grep -q "\"kind\": \"packet\".*\"data\": \"$p\"" "$out/decoded" || { cat "$out/decoded"; fail "room profile: packet $p not decoded"; }
 done
 
+# Frames of any length on the room profile: a 64-byte frame at each rate through the office room,
+# its rate reported; the ladder listed.
+long=$(printf '%02x' $(seq 0 63))
+for speed in 0 1 2; do
+  "$encode" --profile room --rate 16000 --speed "$speed" --out "$out/frame$speed.wav" "$long" 0a || fail "nava_encode --speed $speed failed"
+  "$decode" --profile room "$out/frame$speed.wav" >"$out/decoded" || fail "nava_decode of rate $speed failed"
+  for p in "$long" 0a; do
+    grep -q "\"kind\": \"packet\", \"noise\": \"none\", \"data\": \"$p\", \"rate\": $speed," "$out/decoded" \
+      || { cat "$out/decoded"; fail "rate $speed: frame $p not decoded at its rate"; }
+  done
+done
+"$encode" --list-rates --profile room >"$out/rates" || fail "nava_encode --list-rates failed"
+[ "$(grep -c '"bit_rate"' "$out/rates")" -eq 3 ] || { cat "$out/rates"; fail "expected a line per rate"; }
+grep -q '"name": "robust", "bit_rate": 29.2, "airtime_4": 1.920' "$out/rates" || { cat "$out/rates"; fail "the robust rate's line"; }
+
 # The modem tools' profile errors.
 tool=$encode
+expect_error "frame 'abc': expected 2 to 510 hex digits (1 to 255 data bytes) on profile room" --profile room --out "$out/x.wav" abc
+expect_error "frame '${long}${long}${long}${long}00': expected 2 to 510 hex digits" --profile room --out "$out/x.wav" "$long$long$long$long"00
+expect_error "frame '0102030405': expected 8 hex digits (4 data bytes) on profile nava" --out "$out/x.wav" 0102030405
+expect_error "--speed: expected a whole number from 0 to 2, got 3" --profile room --speed 3 --out "$out/x.wav" 01
+expect_error "--speed: expected a whole number from 0 to 0, got 1" --speed 1 --out "$out/x.wav" 01020304
+expect_error "no frames: give one HEX argument" --profile room --out "$out/x.wav"
 expect_error "--profile: expected nava or room, got loud" --profile loud --out "$out/x.wav" 01020304
 expect_error "--mark sets the nava profile's FSK; the room profile has its own tones" --profile room --mark 2000 --out "$out/x.wav" 01020304
 expect_error "profile room: sample rate 8000 Hz cannot carry its band" --profile room --rate 8000 --out "$out/x.wav" 01020304

@@ -76,17 +76,11 @@ inline ModemOptions ModemArgs(const multirobot_audio::tools::ToolArgs& args) {
   return o;
 }
 
-// "0a0b0c0d" -> {0x0a, 0x0b, 0x0c, 0x0d}; empty when it is not 8 hex digits.
-inline std::vector<std::uint8_t> ParseHexPacket(const std::string& hex) {
-  if (hex.size() != 8) return {};
+// "0a0b0c" -> {0x0a, 0x0b, 0x0c}; empty when it is not a whole number of bytes in hex digits.
+inline std::vector<std::uint8_t> ParseHexBytes(const std::string& hex) {
+  if (hex.empty() || hex.size() % 2 || hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) return {};
   std::vector<std::uint8_t> out;
-  for (int k = 0; k < 4; ++k) {
-    const std::string pair = hex.substr(2 * k, 2);
-    char* end = nullptr;
-    const long v = std::strtol(pair.c_str(), &end, 16);
-    if (*end || pair.find_first_of("+- xX") != std::string::npos) return {};
-    out.push_back(static_cast<std::uint8_t>(v));
-  }
+  for (std::size_t k = 0; k < hex.size(); k += 2) out.push_back(static_cast<std::uint8_t>(std::stoi(hex.substr(k, 2), nullptr, 16)));
   return out;
 }
 

@@ -12,6 +12,8 @@
 //   nava_bench --likeness --rir-dir DIR [--like-rooms 5] [--seed 1] [--rate 48000]
 //   nava_bench --splice --early A.wav[:K] --late B.wav[:K] --at-ms T[,T...] --out DIR [--rate 48000]
 //   nava_bench --link-cost [--seconds 120] [--period 6] [--runs 3] [--profile room|nava]
+//   nava_bench --frames --rir-dir DIR [--bytes 64] [--speed all|R] [--count 20] [--snr 10] [--noise-file FILE]
+//              [--threads 2] [--profile room|nava]
 //
 // The decode tables of the simulated `acoustic` channel are measured with the same receivers by
 // audio_propagation's decode_table_bench, where the tables live.
@@ -37,7 +39,8 @@
 // room (arrival_table.h). With --likeness: each measured room's features beside the renderer's
 // measured-like rooms at its RT60 and DRR (likeness_table.h). With --splice: two responses
 // spliced at given times after their direct sounds, to decode through (splice_table.h). With
-// --link-cost: what that timing adds to a link's CPU (link_cost.h).
+// --link-cost: what that timing adds to a link's CPU (link_cost.h). With --frames: frames of any
+// length at each rate through each measured room (frame_table.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -60,6 +63,7 @@
 #include "nava_bench_support.h"
 #include "measured_rooms.h"
 #include "arrival_table.h"
+#include "frame_table.h"
 #include "likeness_table.h"
 #include "splice_table.h"
 #include "link_cost.h"
@@ -704,6 +708,8 @@ int main(int argc, char** argv) {
         return SpliceTable(o.splice, o.usage);
       case NavaBenchOptions::Mode::kLinkCost:
         return LinkCostTable(o.link_cost);
+      case NavaBenchOptions::Mode::kFrames:
+        return FrameTable(o.frames, o.usage);
       case NavaBenchOptions::Mode::kRooms:
         return RoomsTable(o.rooms, o.usage);
       case NavaBenchOptions::Mode::kWhiteNoise:

@@ -142,16 +142,43 @@ LinkCostRequest ParseLinkCost(const ToolArgs& args) {
   return r;
 }
 
+FramesRequest ParseFrames(const ToolArgs& args) {
+  FramesRequest r;
+  r.rir_dir = args.String("--rir-dir", "");
+  r.noise_file = args.String("--noise-file", "");
+  r.frames = static_cast<int>(args.Int("--count", r.frames, 1, 10000));
+  r.snr_db = args.Double("--snr", r.snr_db, -30.0, 80.0);
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.threads = static_cast<int>(args.Int("--threads", r.threads, 1, 64));
+  const ToolModem modem = ProfileArgs(args);
+  r.profile = args.Switch("--profile") ? modem.profile : Profile::kRoom;
+  r.options = modem.options;
+  const FrameFormat format = ProfileFormat(r.profile);
+  r.bytes = static_cast<int>(args.Int("--bytes", std::min<long>(64, static_cast<long>(format.max_bytes)),
+                                      static_cast<long>(format.min_bytes), static_cast<long>(format.max_bytes)));
+  const std::string speeds = args.String("--speed", "all");
+  if (speeds != "all") {
+    const long speed = args.Int("--speed", 0, 0, format.rates - 1);
+    r.speeds.push_back(static_cast<int>(speed));
+  }
+  args.CheckAllUsed();
+  if (r.rir_dir.empty()) args.Fail("--frames: expected --rir-dir DIR, a folder of measured impulse responses");
+  return r;
+}
+
 }  // namespace
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] [--curve-rt60 0.3,0.6,1] [--curve-drr-min -15] [--curve-snr 40] [--response statistical|measured-like] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] [--curve-rt60 0.3,0.6,1] [--curve-drr-min -15] [--curve-snr 40] [--response statistical|measured-like] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3] | --frames --rir-dir DIR [--bytes 64] [--speed all|R] [--count 20] [--snr 10] [--noise-file FILE] [--threads 2]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--splice", "--link-cost", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--splice", "--link-cost", "--frames", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
-  if (args.Switch("--link-cost")) {
+  if (args.Switch("--frames")) {
+    o.mode = NavaBenchOptions::Mode::kFrames;
+    o.frames = ParseFrames(args);
+  } else if (args.Switch("--link-cost")) {
     o.mode = NavaBenchOptions::Mode::kLinkCost;
     o.link_cost = ParseLinkCost(args);
   } else if (args.Switch("--likeness")) {

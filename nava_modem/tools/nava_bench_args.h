@@ -89,8 +89,22 @@ struct LinkCostRequest {
   ModemOptions options;
 };
 
+// nava_bench --frames --rir-dir DIR: frames of any length at each rate through measured responses.
+struct FramesRequest {
+  std::string rir_dir;
+  std::string noise_file;  // a recording heard at snr_db too ("" for white noise alone)
+  int bytes = 64;          // data bytes a frame
+  int frames = 20;         // per room-ear, condition and rate (--count)
+  double snr_db = 10.0;    // full band, of the white noise and the recording
+  std::vector<int> speeds;  // the rate steps to run (all of the profile's when empty)
+  unsigned seed = 1;
+  int threads = 2;
+  Profile profile = Profile::kRoom;
+  ModemOptions options;
+};
+
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kSplice, kLinkCost };
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kSplice, kLinkCost, kFrames };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
@@ -99,6 +113,7 @@ struct NavaBenchOptions {
   LikenessRequest likeness;
   SpliceRequest splice;
   LinkCostRequest link_cost;
+  FramesRequest frames;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };
 

@@ -1,5 +1,5 @@
 // nava_decode: decodes the Nava packets in an audio file; one JSON line per event, e.g.
-//   {"t": 1.234, "kind": "packet", "noise": "none", "data": "01020304", "level_db": -20.5, "quality": 0.83, ...}
+//   {"t": 1.234, "kind": "packet", "noise": "none", "data": "01020304", "rate": 0, "level_db": -20.5, "quality": 0.83, ...}
 // t is the end of the reception in seconds from the start of the file.
 //
 //   nava_decode [--threshold-db -40] [--max-fixed-bits 2] [--mics x1,y1,x2,y2,...] [--diagnostics FILE.json]

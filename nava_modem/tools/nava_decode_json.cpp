@@ -114,10 +114,10 @@ std::string EqualizerJson(const EqualizerTrial& t) {
 }  // namespace
 
 std::string EventJson(const RxEvent& e, bool direction) {
-  return Format("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"level_db\": %.1f, "
+  return Format("{\"t\": %.3f, \"kind\": \"%s\", \"noise\": \"%s\", \"data\": \"%s\", \"rate\": %d, \"level_db\": %.1f, "
                 "\"quality\": %.2f, \"start\": %.3f, \"fixed_bits\": %d, \"rate_error\": %.4f%s%s}",
                 e.end, e.kind == RxEvent::Kind::kPacket ? "packet" : "noise", NoiseName(e.noise), HexBytes(e.data).c_str(),
-                e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error, ArrivalJson(e).c_str(),
+                e.rate, e.level_db, e.quality, e.start, e.fixed_bits, e.rate_error, ArrivalJson(e).c_str(),
                 direction ? DirectionJson(e).c_str() : "");
 }
 

@@ -14,7 +14,9 @@ struct NavaEncodeOptions {
   std::string out;
   double gap = 0.5;  // s of silence before, between and after the packets
   ToolModem modem;
-  std::vector<std::vector<std::uint8_t>> packets;  // 4 data bytes each
+  int speed = 0;  // the profile's rate step (--speed; --rate is the sample rate)
+  bool list_rates = false;  // --list-rates: print the profile's rates instead
+  std::vector<std::vector<std::uint8_t>> packets;  // each a frame's data bytes (4 on nava, 1 to 255 on room)
 };
 
 // Throws multirobot_audio::tools::UsageError naming what it refuses, HelpRequested for -h.

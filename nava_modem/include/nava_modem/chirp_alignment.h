@@ -27,6 +27,18 @@ std::int64_t AlignmentLookahead(double sample_rate);
 std::vector<double> LineUpChirp(const ChirpDetector& detector, double sample_rate, const ChirpPeak& anchor, double around,
                                 double reach_s, int picks);
 
+// A chirp's envelope as LineUpChirp lines it up (from kAlignBeforeS before its start to
+// kAlignAfterS after), kept for lining up a chirp heard after the detector has forgotten this one
+// (a long frame's last chirp, a minute after the one before it).
+struct ChirpShape {
+  double sample = 0.0;  // the chirp's start, as found
+  std::vector<double> envelope;
+};
+ChirpShape ShapeOf(const ChirpDetector& detector, double sample_rate, const ChirpPeak& anchor);
+// LineUpChirp against a kept shape.
+std::vector<double> LineUpShape(const ChirpDetector& detector, double sample_rate, const ChirpShape& shape, double around,
+                                double reach_s, int picks);
+
 // Where a packet's second chirp starts, given its first: at the two best alignments of their
 // envelopes (LineUpChirp within kAlignReachS), then at the peaks' own distance. In a reverberant
 // room the strongest peak can be the direct sound in one chirp and a reflection in the other,

@@ -34,8 +34,9 @@ struct MacTiming {
 
 // The frames a profile carries: how many data bytes, and at how many rates. A rate is a step of
 // the profile's ladder, 0 the slowest and most robust; a receiver decodes every step without
-// being told which, and reports the one it found (RxEvent::rate). Both profiles carry today's
-// 4-byte packet at one rate; the frames-of-any-length work widens `room`'s.
+// being told which, and reports the one it found (RxEvent::rate). `nava` carries the thesis's
+// 4-byte packet; `room` frames of 1 to 255 bytes (room_frame.h), its 4-byte frame at rate 0 being
+// today's packet.
 struct FrameFormat {
   std::size_t min_bytes = kDataBytes, max_bytes = kDataBytes;
   int rates = 1;
@@ -78,6 +79,9 @@ std::unique_ptr<ModemProfile> MakeProfile(Profile profile, const ModemOptions& o
 // Timing without a sample rate (for the simulated channel); the airtime of today's packet.
 MacTiming ProfileTiming(Profile profile, const ModemOptions& options = {});
 double ProfileAirtime(Profile profile, const ModemOptions& options = {});
+// The airtime of a frame of `data_bytes` at `rate`, for lengths and rates the profile carries
+// (ModemProfile::CheckFrame judges them).
+double FrameAirtime(Profile profile, const ModemOptions& options, std::size_t data_bytes, int rate);
 // The frames a profile carries, without building it.
 FrameFormat ProfileFormat(Profile profile);
 // Sets the MAC's bit rate and packet length to the profile's.

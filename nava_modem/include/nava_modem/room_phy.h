@@ -51,6 +51,10 @@ constexpr double kPacketSeconds = kPostChirpStart + kChirpSeconds;           // 
 
 // The sub-band symbol s uses (0..kBands-1).
 int Band(int symbol);
+// The sub-band of the `slot`-th of the `tones` tones symbol s sounds at once (faster rates,
+// room_frame.h): the hop order walked `tones` steps a symbol, so that a symbol's tones lie far
+// apart and each sub-band rests kBands / tones - 1 symbols between uses. BandOf(s, 0, 1) is Band(s).
+int BandOf(int symbol, int slot, int tones);
 // Tone bin (in units of kToneSpacingHz) of tone `tone` of symbol s's sub-band.
 inline int Bin(int symbol, int tone) { return kLowestBin + Band(symbol) * kTonesPerBand + tone; }
 

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "nava_modem/chirp_alignment.h"
 #include "nava_modem/chirp_detector.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/packet_receiver.h"
@@ -36,6 +37,14 @@ namespace nava_modem {
 // chirp whose pairs all failed the CRC is BAD_CRC; a chirp with no partner at all is ONE_BYTE (a
 // packet begun and never ended, or a sound that looked like a chirp); busy air in which no chirp
 // was heard is ZERO_BYTE.
+//
+// Long frames (room_frame.h): a chirp heard the header's length after another (or with one
+// standing out there) begins one when the header between them decodes; the frame then waits
+// for its chirp C where the header's length and the sender's clock put it and decodes the
+// payload between B and C. Today's packets are looked for first, as before, and while a frame
+// waits, every report waits with it: a frame that decodes takes the place of the noise reports
+// within its span (its chirps alone, its hops passing for chirps, its busy air); one that does not
+// leaves them as they were, so a header read from noise changes no report but its timing.
 class RoomReceiver : public PacketReceiver {
  public:
   // Throws std::invalid_argument for a rate the room profile cannot use (ValidateRoomRate),
@@ -65,6 +74,17 @@ class RoomReceiver : public PacketReceiver {
   // A lone first chirp's partner found by the data after it: the packet and where its second
   // chirp starts, or nothing.
   std::optional<std::pair<RxEvent, double>> DecodeByData(const ChirpPeak& pre);
+  // A long frame's chirp B at `peak`: begins one when a header decodes between it and a chirp A
+  // the header's length before.
+  void BeginFrame(const ChirpPeak& peak);
+  // A long frame's chirp C at `peak`: whether it completed a frame waiting for it.
+  bool CompleteFrame(const ChirpPeak& peak, std::vector<RxEvent>& events);
+  // Reports the long frames whose chirp C can no longer come (after looking for it where it must be).
+  void ExpireFrames(std::int64_t now, std::vector<RxEvent>& events);
+  // Reports a decoded long frame, dropping the noise reports held within its span.
+  void OnFrameDecoded(RxEvent frame, double c, std::vector<RxEvent>& events);
+  // Moves what was heard to `events`, unless a long frame still waits (held_).
+  void Deliver(std::vector<RxEvent>& events);
   // The distances from a first chirp at which its second may begin, at the clocks looked for.
   double Shortest() const { return decoder_.packet_length() * (1.0 - options_.max_rate_error); }
   double Longest() const { return decoder_.packet_length() * (1.0 + options_.max_rate_error); }
@@ -91,6 +111,19 @@ class RoomReceiver : public PacketReceiver {
   // Chirps found, held until the matched filter's envelope is known far enough past them to
   // line them up (lookahead_).
   std::deque<ChirpPeak> pending_;
+  // A long frame whose header was read, waiting for its chirp C.
+  struct LongFrame {
+    ChirpPeak a, b;
+    double aligned_b = 0.0;  // B lined up against A: the header's clock, and the frame's arrival
+    RoomHeaderFound found;
+    ChirpShape b_shape;      // to line C up against B after the detector has forgotten B
+    double c_at = 0.0, c_reach = 0.0;  // where C should start, and how far from there it may (samples)
+    std::optional<RxEvent> failure;    // the best payload decode that failed its CRC-32
+  };
+  // The frame's payload against a chirp C at `c`: the best of its alignments.
+  RxEvent DecodeFrame(LongFrame& frame, const ChirpPeak& c);
+  std::deque<LongFrame> frames_;
+  std::vector<RxEvent> held_;  // reports waiting for the long frames (Deliver)
   double decoded_until_ = -1.0;  // the end of the last packet decoded, in samples
   std::vector<ChirpPeak> peaks_;  // scratch
 };
