@@ -58,6 +58,7 @@ FrameTrain RandomFrames(const ModemProfile& profile, int frames, int bytes, int 
 struct Cell {
   int right = 0, wrong = 0;
   double audio_s = 0.0, cpu_s = 0.0;
+  std::vector<std::string> wrong_frames;  // each wrong frame: when, its data, how far from the nearest sent
 };
 
 // The train through one room under one condition, decoded: frames right (each sent frame once)
@@ -79,7 +80,23 @@ Cell Decode(const ModemProfile& profile, const FrameTrain& train, const RoomOpti
     for (std::size_t k = 0; k < train.sent.size() && !found; ++k) {
       if (!matched[k] && train.sent[k] == e.data) matched[k] = found = true;
     }
-    (found ? cell.right : cell.wrong) += 1;
+    if (found) {
+      ++cell.right;
+      continue;
+    }
+    ++cell.wrong;
+    // The sent frame nearest to it, in bits (a frame decoded twice is 0 bits from one).
+    int nearest = 1 << 30;
+    for (const auto& sent : train.sent) {
+      if (sent.size() != e.data.size()) continue;
+      int bits = 0;
+      for (std::size_t k = 0; k < sent.size(); ++k) bits += __builtin_popcount(static_cast<unsigned>(sent[k] ^ e.data[k]));
+      nearest = std::min(nearest, bits);
+    }
+    char text[160];
+    std::snprintf(text, sizeof text, "at %.2f-%.2f s, %zu bytes at rate %d, %s from the nearest sent", e.start, e.end, e.data.size(),
+                  e.rate, nearest == (1 << 30) ? "no frame that long" : (std::to_string(nearest) + " bits").c_str());
+    cell.wrong_frames.push_back(text);
   }
   return cell;
 }
@@ -157,6 +174,15 @@ int FrameTable(const FramesRequest& request, const multirobot_audio::tools::Tool
     std::printf("\n");
   }
   std::printf("(* below %d of %d)\n", bar, request.frames);
+  for (std::size_t m = 0; m < rooms.size(); ++m) {
+    for (std::size_t c = 0; c < conditions.size(); ++c) {
+      for (std::size_t s = 0; s < speeds.size(); ++s) {
+        for (const std::string& w : cells[m][c][s].wrong_frames) {
+          std::printf("wrong frame: %s, %s, rate %d: %s\n", rooms[m].name.c_str(), conditions[c].c_str(), speeds[s], w.c_str());
+        }
+      }
+    }
+  }
   bool fast_met = false, every_met = false, speed_met = true, none_wrong = true;
   double fastest = 0.0;
   for (std::size_t s = 0; s < speeds.size(); ++s) {
