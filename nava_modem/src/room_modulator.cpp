@@ -78,28 +78,19 @@ void RoomModulator::PutSymbols(std::vector<float>& out, double start, const std:
   const double fs = options_.sample_rate;
   auto at = [fs](double seconds) { return static_cast<std::size_t>(std::lround(seconds * fs)); };
   const int symbols = static_cast<int>(tones.size()) / per_symbol;
-  if (per_symbol == 1) {
-    const float a = static_cast<float>(options_.amplitude);
-    for (int s = 0; s < symbols; ++s) {
-      const double symbol_start = start + s * room_phy::kSymbolSeconds;
-      const std::size_t first = at(symbol_start), last = at(symbol_start + room_phy::kSymbolSeconds);
-      // A whole number of cycles per symbol: every symbol starts and ends at zero, so the
-      // hops make no click.
-      const double w = 2.0 * M_PI * room_phy::Bin(s, tones[static_cast<std::size_t>(s)]) * room_phy::kToneSpacingHz / fs;
-      for (std::size_t n = first; n < last; ++n) out[n] = a * static_cast<float>(std::sin(w * (n - first)));
-    }
-    return;
-  }
   // Several tones at once: each at amplitude / sqrt(tones), so the symbol's power is one tone's.
-  const double a = options_.amplitude / std::sqrt(static_cast<double>(per_symbol));
+  // (In float, as one tone always was: today's packet stays the same to the sample.)
+  const float a = static_cast<float>(options_.amplitude / std::sqrt(static_cast<double>(per_symbol)));
   for (int s = 0; s < symbols; ++s) {
     const double symbol_start = start + s * room_phy::kSymbolSeconds;
     const std::size_t first = at(symbol_start), last = at(symbol_start + room_phy::kSymbolSeconds);
     for (int slot = 0; slot < per_symbol; ++slot) {
+      // A whole number of cycles per symbol: every symbol starts and ends at zero, so the hops
+      // make no click.
       const int tone = tones[static_cast<std::size_t>(s * per_symbol + slot)];
       const int bin = room_phy::kLowestBin + room_phy::BandOf(s, slot, per_symbol) * room_phy::kTonesPerBand + tone;
       const double w = 2.0 * M_PI * bin * room_phy::kToneSpacingHz / fs;
-      for (std::size_t n = first; n < last; ++n) out[n] += static_cast<float>(a * std::sin(w * (n - first)));
+      for (std::size_t n = first; n < last; ++n) out[n] += a * static_cast<float>(std::sin(w * (n - first)));
     }
   }
 }

@@ -24,6 +24,15 @@ double Median(std::vector<double>& v) {
 // that one burst of speech or a click in a wrong tone cannot outvote the other symbols.
 double Evidence(double ratio) { return std::log1p(ratio); }
 
+// Which sub-bands each of a block's symbols sounds ([symbol][band]).
+std::vector<std::vector<bool>> SoundingBands(int symbols, int tones) {
+  std::vector<std::vector<bool>> sounding(static_cast<std::size_t>(symbols), std::vector<bool>(kBands, false));
+  for (int s = 0; s < symbols; ++s) {
+    for (int j = 0; j < tones; ++j) sounding[static_cast<std::size_t>(s)][static_cast<std::size_t>(BandOf(s, j, tones))] = true;
+  }
+  return sounding;
+}
+
 // Sounding several sub-bands at once, each rests only a few symbols between uses, and the tone it
 // sounded last still rings when it sounds again. The symbol just before, where the sub-band
 // rested, hears that ring alone: what it heard, decayed by one more symbol, is taken off. The
@@ -32,10 +41,7 @@ double Evidence(double ratio) { return std::log1p(ratio); }
 // direct sound was strong, so the ring is never taken off more than it was).
 std::vector<double> WithoutTails(const std::vector<double>& energy, int symbols, int tones) {
   auto at = [&](int s, int b) { return energy[static_cast<std::size_t>(s) * kBins + static_cast<std::size_t>(b)]; };
-  std::vector<std::vector<bool>> sounding(static_cast<std::size_t>(symbols), std::vector<bool>(kBands, false));
-  for (int s = 0; s < symbols; ++s) {
-    for (int j = 0; j < tones; ++j) sounding[static_cast<std::size_t>(s)][static_cast<std::size_t>(BandOf(s, j, tones))] = true;
-  }
+  const std::vector<std::vector<bool>> sounding = SoundingBands(symbols, tones);
   std::vector<double> ratios;
   for (int s = 0; s + 1 < symbols; ++s) {
     for (int band = 0; band < kBands; ++band) {
@@ -83,10 +89,7 @@ std::vector<float> RoomSoftBits(const std::vector<double>& energy, int symbols, 
   const std::vector<double>& use = tones > 1 ? heard : energy;
   auto at = [&](int s, int b) { return use[static_cast<std::size_t>(s) * kBins + b]; };
   // Which sub-bands each symbol sounds.
-  std::vector<std::vector<bool>> sounding(static_cast<std::size_t>(symbols), std::vector<bool>(kBands, false));
-  for (int s = 0; s < symbols; ++s) {
-    for (int j = 0; j < tones; ++j) sounding[static_cast<std::size_t>(s)][static_cast<std::size_t>(BandOf(s, j, tones))] = true;
-  }
+  const std::vector<std::vector<bool>> sounding = SoundingBands(symbols, tones);
   auto active = [&](int s, int b) { return sounding[static_cast<std::size_t>(s)][static_cast<std::size_t>(b / kTonesPerBand)]; };
 
   // Each tone's floor: its median over the symbols that did not use its sub-band.
