@@ -78,7 +78,12 @@ InputGuard::Verdict TaskMonitorRos::OnJob(std::size_t robot, const multirobot_au
              start_.toSec());
   }
   if (msg->count != counts_[robot] + 1) {
-    ROS_WARN("task_monitor: %s reports job %u after job %u", name.c_str(), msg->count, counts_[robot]);
+    // A peer that floods counts would otherwise fill the log with one line a message; the totals say it all.
+    ++skips_;
+    jobs_unheard_ += msg->count - counts_[robot] - 1;
+    ROS_WARN_THROTTLE(5.0, "task_monitor: %s reports job %u after job %u (%lu jumps, %lu jobs not heard so far)",
+                      name.c_str(), msg->count, counts_[robot], static_cast<unsigned long>(skips_),
+                      static_cast<unsigned long>(jobs_unheard_));
   }
   // Each robot's own count is the truth: a lost message does not lose a job.
   counts_[robot] = msg->count;

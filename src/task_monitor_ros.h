@@ -46,6 +46,8 @@ class TaskMonitorRos {
   InputGuard guard_;  // before the subscriptions whose callbacks it checks
   std::vector<ros::Subscriber> subs_;
   std::vector<std::uint32_t> counts_;  // each robot's latest job count
+  std::uint64_t skips_ = 0;            // reports whose count jumped past the one expected
+  std::uint64_t jobs_unheard_ = 0;     // the jobs those jumps passed over
   ros::WallTimer up_timer_;
   ros::Time start_;  // zero until the team is up
   bool finished_ = false;
