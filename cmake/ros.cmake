@@ -197,6 +197,8 @@ if(MULTIROBOT_AUDIO_TESTS)
   # A broken peer against nava_modem's audio/tx over the air.
   multirobot_audio_air_test(hostile_nava_rostest hostile_nava.test test/hostile_nava_rostest.cpp test/hostile_peer.cpp)
   multirobot_audio_air_add_test(nava_air_room_rostest nava_air.test profile:=room)
+  # 64-byte frames at each rate of the room profile's ladder.
+  multirobot_audio_air_test(frames_air_rostest frames_air.test test/frames_air_rostest.cpp)
   # A stalled process and a sound server killed in the middle of a packet and restarted: every
   # packet is still heard exactly once.
   multirobot_audio_air_test(nava_air_faults_rostest nava_air_faults.test test/nava_air_faults_rostest.cpp)

@@ -42,6 +42,7 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   c.capture_margin_db = NumberParam(pnh, "capture_margin_db", c.capture_margin_db);
   c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise);
   c.seed = IntParam(pnh, "seed", c.seed);
+  c.rate = IntParam(pnh, "rate", c.rate);
   c.cache_size = IntParam(pnh, "cache_size", c.cache_size);
   c.link_fate = BoolParam(pnh, "link_fate", c.link_fate);
   c.fate_distance = NumberParam(pnh, "fate_distance", c.fate_distance);
@@ -65,7 +66,12 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   o.every_step = update == "every_step";
   o.carrier_refresh = NumberParam(pnh, "carrier_refresh", o.carrier_refresh, 0.01, 3600.0);
   o.path_display_time = NumberParam(pnh, "path_display_time", o.path_display_time, 0.0, 3600.0);
-  o.packet_bytes = IntParam(pnh, "packet_bytes", o.packet_bytes, 1, 1024);
+  if (pnh.hasParam("packet_bytes")) {
+    // It once let packets of any length through while they still sounded as long as 4 bytes.
+    throw ParamError(pnh.resolveName("packet_bytes") +
+                     ": no longer read: the profile sets the lengths a frame may have (nava 4 bytes; room 1 to 255, "
+                     "each lasting its own airtime at ~rate)");
+  }
   o.robot_poses = StringParam(pnh, "robot_poses", o.robot_poses);
   o.delivery_map_period = NumberParam(pnh, "delivery_map_period", o.delivery_map_period, 0.1, 1e6);
   o.delivery_map_resolution = NumberParam(pnh, "delivery_map_resolution", o.delivery_map_resolution, 0.01, 100.0);
@@ -104,12 +110,13 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
   have_pose_.assign(n, false);
   missing_poses_.assign(n, 0);
   pose_stamps_.assign(n, ros::Time());
-  const std::size_t packet_bytes = static_cast<std::size_t>(options_.packet_bytes);
   for (std::size_t k = 0; k < n; ++k) {
     ros::NodeHandle rnh(nh_, sim_.robots[k]);
     tx_subs_.push_back(guard_.Subscribe<multirobot_audio::AudioPacket>(
         lockstep_, rnh, "audio/tx", 10,
-        [packet_bytes](const multirobot_audio::AudioPacket& m) { return PacketProblem(m, packet_bytes, packet_bytes); },
+        [format = sim_.format](const multirobot_audio::AudioPacket& m) {
+          return PacketProblem(m, format.min_bytes, format.max_bytes);
+        },
         [this, k](const multirobot_audio::AudioPacket::ConstPtr& m) { return OnTx(k, m); }));
     // (What is already in the air is settled at the next update: sleeping through silence, the
     // node is called to a step by a packet, not by the robots' poses.)
@@ -172,7 +179,7 @@ InputGuard::Verdict AudioPropagationRos::OnTx(std::size_t robot, const multirobo
     UpdatePoses(ros::Time::now());
   }
   // Stamped with the time it came: in lockstep, the step it was sent in.
-  if (!sim_.channel->SendAt(robot, msg->data, ChannelTime(ros::Time::now()))) {
+  if (!sim_.channel->SendAt(robot, sim_.Frame(msg->data), ChannelTime(ros::Time::now()))) {
     return InputGuard::Verdict::Drop("the robot has too many packets waiting to enter its queue");
   }
   return InputGuard::Verdict::Accept();

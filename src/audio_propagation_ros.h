@@ -41,7 +41,6 @@ struct AudioPropagationOptions {
   // ~path_display_time: s (simulated) each sound path stays drawn, at least; 0 = the
   // transmission's own length (a 4-byte packet is about 0.4 s: a flicker in a sped-up run)
   double path_display_time = 0.0;
-  int packet_bytes = 4;          // ~packet_bytes: the payload every packet must have (Nava: 4)
   // ~robot_poses: in lockstep, world_sim's topic of every robot's true pose
   std::string robot_poses = "/world_sim/robot_poses";
   // With ~delivery_map_robot (acoustic model): publish ~delivery_map (nav_msgs/OccupancyGrid,

@@ -282,7 +282,7 @@ namespace {
 
 // What both links' receptions share: the stamp and frame, a packet's data or the noise's kind.
 multirobot_audio::AudioReception Heard(const std::string& frame, const ros::Time& stamp, bool packet,
-                                       const std::vector<std::uint8_t>& data, std::uint8_t noise) {
+                                       const std::vector<std::uint8_t>& data, int rate, std::uint8_t noise) {
   multirobot_audio::AudioReception msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = frame;
@@ -290,6 +290,7 @@ multirobot_audio::AudioReception Heard(const std::string& frame, const ros::Time
     msg.kind = multirobot_audio::AudioReception::PACKET;
     msg.noise = multirobot_audio::AudioReception::NONE;
     msg.data = data;
+    msg.rate = static_cast<std::uint8_t>(rate);
   } else {
     msg.kind = multirobot_audio::AudioReception::NOISE;
     msg.noise = noise;
@@ -310,7 +311,7 @@ std::uint8_t NoiseKind(nava_modem::RxEvent::Noise noise) {
 multirobot_audio::AudioReception ToAudioReception(const nava_modem::RxEvent& e, const std::string& frame,
                                                   const ros::Time& stamp) {
   multirobot_audio::AudioReception msg =
-      Heard(frame, stamp, e.kind == nava_modem::RxEvent::Kind::kPacket, e.data, NoiseKind(e.noise));
+      Heard(frame, stamp, e.kind == nava_modem::RxEvent::Kind::kPacket, e.data, e.rate, NoiseKind(e.noise));
   msg.level_db = static_cast<float>(e.level_db);
   msg.quality = static_cast<float>(e.quality);
   msg.direction = static_cast<float>(e.direction);
@@ -327,7 +328,7 @@ multirobot_audio::AudioReception ToAudioReception(const audio_propagation::Recep
   std::uint8_t noise = multirobot_audio::AudioReception::COLLISION;
   if (rx.noise != nava_modem::RxEvent::Noise::kNone) noise = NoiseKind(rx.noise);
   multirobot_audio::AudioReception msg =
-      Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket, rx.data, noise);
+      Heard(frame, stamp, rx.kind == audio_propagation::Reception::Kind::kPacket, rx.data, rx.rate, noise);
   msg.level_db = static_cast<float>(rx.level_db);
   msg.direction = static_cast<float>(rx.direction);
   msg.direction_confidence = static_cast<float>(rx.direction_confidence);

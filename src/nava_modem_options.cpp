@@ -116,6 +116,8 @@ NavaModemOptions ReadNavaModemOptions(const ros::NodeHandle& nh, const ros::Node
   o.link.profile = ReadProfileParam(pnh);
   o.link.modem = ReadModemParams(pnh, o.link.profile, o.alsa.sample_rate);
   o.link.mac = ReadMacParams(pnh, o.link.profile, o.link.modem);
+  // The rate step every frame goes at (nava_encode --list-rates names them).
+  o.link.rate = IntParam(pnh, "rate", o.link.rate, 0, nava_modem::ProfileFormat(o.link.profile).rates - 1);
   o.ranging_on = BoolParam(pnh, "ranging", true);
   o.link.receiver = ReadReceiverParams(pnh, o.ranging_on);
   o.link.seed = static_cast<std::uint32_t>(IntParam(pnh, "seed", 1, 0, 2147483647));

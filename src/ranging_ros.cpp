@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "nava_modem/room_frame.h"
 #include "params.h"
 
 namespace multirobot_audio {
@@ -185,10 +186,13 @@ visualization_msgs::MarkerArray ToTeammateMarkers(
   return out;
 }
 
-std::string PacketTimingProblem(const multirobot_audio::PacketTiming& m, std::size_t bytes) {
+std::string PacketTimingProblem(const multirobot_audio::PacketTiming& m, std::size_t min_bytes, std::size_t max_bytes) {
   if (m.sender.empty()) return "sender is empty";
   if (m.listener.empty()) return "listener is empty";
-  if (m.data.size() != bytes) return "data has " + std::to_string(m.data.size()) + " bytes, expected " + std::to_string(bytes);
+  if (m.data.size() < min_bytes || m.data.size() > max_bytes) {
+    return "data has " + std::to_string(m.data.size()) + " bytes, expected " + std::to_string(min_bytes) +
+           (min_bytes == max_bytes ? "" : " to " + std::to_string(max_bytes));
+  }
   if (std::isinf(m.arrival) || (std::isnan(m.arrival) && m.sender != m.listener)) {
     return "arrival = " + std::to_string(m.arrival) + " (NaN only in a sender's announcement)";
   }
@@ -202,7 +206,10 @@ RangingRos::RangingRos(ros::NodeHandle nh, const RangingRosOptions& options, Inp
   teammates_pub_ = nh.advertise<multirobot_audio::Teammates>("audio/teammates", 10, true);
   markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("audio/teammates_markers", 2);
   timings_sub_ = guard.Subscribe<multirobot_audio::PacketTiming>(
-      nh, options_.timings_topic, 200, [](const multirobot_audio::PacketTiming& m) { return PacketTimingProblem(m, 4); },
+      nh, options_.timings_topic, 200, [](const multirobot_audio::PacketTiming& m) {
+        // A timing names its frame by the frame's bytes: any length a profile carries.
+        return PacketTimingProblem(m, nava_modem::room_frame::kMinBytes, nava_modem::room_frame::kMaxBytes);
+      },
       [this](const multirobot_audio::PacketTiming::ConstPtr& m) { return OnTiming(m); });
   timer_ = nh.createWallTimer(ros::WallDuration(1.0 / options_.teammates_rate), [this](const ros::WallTimerEvent&) { PublishTeammates(); });
 }

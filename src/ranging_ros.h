@@ -91,7 +91,8 @@ class RangingRos {
 visualization_msgs::MarkerArray ToTeammateMarkers(const std::vector<std::pair<std::string, multirobot_audio::Teammates>>& robots);
 
 // A report whose numbers cannot be a timing: a NaN arrival from anyone but the sender itself,
-// an infinite arrival, a non-finite rate error, no names, or a payload not of `bytes`.
-std::string PacketTimingProblem(const multirobot_audio::PacketTiming& msg, std::size_t bytes);
+// an infinite arrival, a non-finite rate error, no names, or a payload of fewer than `min_bytes`
+// or more than `max_bytes`.
+std::string PacketTimingProblem(const multirobot_audio::PacketTiming& msg, std::size_t min_bytes, std::size_t max_bytes);
 
 }  // namespace multirobot_audio

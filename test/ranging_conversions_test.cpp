@@ -71,5 +71,30 @@ TEST(RangingConversions, MarkersShowEachEstimateInTheRobotsFrame) {
   EXPECT_TRUE(ToTeammateMarkers({}).markers.empty());
 }
 
+
+// A timing names its frame by the frame's bytes, of any length a profile carries; a payload of
+// no bytes or too many, a NaN arrival from a listener, or no names is refused, named.
+TEST(RangingConversions, TimingsOfFramesOfAnyLengthAreTakenAndBadOnesNamed) {
+  PacketTiming m;
+  m.sender = "robot_0";
+  m.listener = "robot_1";
+  m.arrival = 1.5;
+  m.data.assign(64, 7);
+  EXPECT_EQ(PacketTimingProblem(m, 1, 255), "");
+  m.data.assign(4, 7);
+  EXPECT_EQ(PacketTimingProblem(m, 1, 255), "");
+  EXPECT_EQ(PacketTimingProblem(m, 4, 4), "");
+  m.data.clear();
+  EXPECT_EQ(PacketTimingProblem(m, 1, 255), "data has 0 bytes, expected 1 to 255");
+  m.data.assign(256, 7);
+  EXPECT_EQ(PacketTimingProblem(m, 1, 255), "data has 256 bytes, expected 1 to 255");
+  EXPECT_EQ(PacketTimingProblem(m, 4, 4), "data has 256 bytes, expected 4");
+  m.data.assign(4, 7);
+  m.arrival = std::nan("");
+  EXPECT_NE(PacketTimingProblem(m, 1, 255).find("NaN only in a sender's announcement"), std::string::npos);
+  m.sender.clear();
+  EXPECT_EQ(PacketTimingProblem(m, 1, 255), "sender is empty");
+}
+
 }  // namespace
 }  // namespace multirobot_audio

@@ -96,6 +96,10 @@ std::int64_t AudioChannel::NextBackgroundTick() const {
   return background_ticks_ > 0 ? (ticks_ / background_ticks_ + 1) * background_ticks_ : std::numeric_limits<std::int64_t>::max();
 }
 
+bool AudioChannel::Send(std::size_t robot, nava_modem::MacFrame frame) {
+  return macs_.at(robot).Enqueue(std::move(frame));
+}
+
 bool AudioChannel::Send(std::size_t robot, std::vector<std::uint8_t> data) {
   return macs_.at(robot).Enqueue(std::move(data));
 }
@@ -113,14 +117,23 @@ void AudioChannel::SetPoseAt(std::size_t robot, const grid::Pose2D& pose, double
 }
 
 bool AudioChannel::SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time) {
+  return SendAt(robot, nava_modem::MacFrame{std::move(data), 0, macs_.at(robot).packet_ticks() * tick_}, time);
+}
+
+bool AudioChannel::SendAt(std::size_t robot, nava_modem::MacFrame frame, double time) {
   if (robot >= macs_.size()) throw std::out_of_range("audio channel: no robot " + std::to_string(robot));
+  // Refused now, not when it enters the queue in the middle of a later AdvanceTo().
+  if (!(frame.airtime > 0.0 && std::isfinite(frame.airtime))) {
+    throw std::invalid_argument("audio channel: a frame's airtime must be a positive number of seconds, got " +
+                                std::to_string(frame.airtime));
+  }
   // The queue's own limit is applied when the packet enters it (how full the queue is then does
   // not depend on how far the caller has advanced the channel); this one only bounds memory.
   if (pending_per_robot_[robot] >= kMaxPendingSends) {
     ++send_overflows_;
     return false;
   }
-  PendingSend p{TickAt(time), robot, std::move(data)};
+  PendingSend p{TickAt(time), robot, std::move(frame)};
   const auto at = std::upper_bound(pending_sends_.begin(), pending_sends_.end(), p.tick,
                                    [](std::int64_t t, const PendingSend& q) { return t < q.tick; });
   pending_sends_.insert(at, std::move(p));
@@ -137,7 +150,7 @@ void AudioChannel::ApplyPending() {
   while (!pending_sends_.empty() && pending_sends_.front().tick <= ticks_) {
     PendingSend& p = pending_sends_.front();
     --pending_per_robot_[p.robot];
-    if (!macs_[p.robot].Enqueue(std::move(p.data))) ++send_overflows_;
+    if (!macs_[p.robot].Enqueue(std::move(p.frame))) ++send_overflows_;
     pending_sends_.pop_front();
   }
 }
@@ -201,13 +214,15 @@ std::vector<SoundPath> AudioChannel::PathsFrom(std::size_t sender) {
   return paths;
 }
 
-void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events) {
+void AudioChannel::StartTransmission(std::size_t sender, nava_modem::MacFrame frame, Events& events) {
   const std::size_t n = macs_.size();
-  const std::int64_t duration = macs_[sender].packet_ticks();
+  const std::int64_t duration = std::max(1, macs_[sender].Ticks(frame.airtime));
+  longest_ticks_ = std::max(longest_ticks_, duration);
   std::vector<SoundPath> paths = PathsFrom(sender);
+  std::vector<std::uint8_t>& data = frame.data;
   // Its past sends, but for those that can no longer overlap anything still to come.
   auto& sent = sending_[sender];
-  const std::int64_t horizon = ticks_ - 4 * duration;
+  const std::int64_t horizon = ticks_ - 4 * longest_ticks_;
   sent.erase(std::remove_if(sent.begin(), sent.end(), [&](const auto& s) { return s.second < horizon; }), sent.end());
   sent.emplace_back(ticks_, ticks_ + duration);
   std::vector<double> probability;
@@ -220,10 +235,10 @@ void AudioChannel::StartTransmission(std::size_t sender, std::vector<std::uint8_
     if (!sound.level_db) continue;  // nothing this robot would notice
     const std::int64_t start = ticks_ + std::llround(paths[r].travel_time / tick_);
     arrivals_[r].push_back({sender, start, start + duration, *sound.level_db, std::pow(10.0, *sound.level_db / 10.0), data,
-                            paths[r]});
+                            frame.rate, paths[r]});
     NoteArrival(r, start, start + duration);
   }
-  events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), std::move(paths),
+  events.started.push_back({sender, ticks_ * tick_, duration * tick_, std::move(data), frame.rate, std::move(paths),
                             std::move(probability)});
 }
 
@@ -264,7 +279,10 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
     return;
   }
   rx.kind = d.packet ? Reception::Kind::kPacket : Reception::Kind::kNoise;
-  if (d.packet) rx.data = a.data;
+  if (d.packet) {
+    rx.data = a.data;
+    rx.rate = a.rate;
+  }
   rx.collision = d.collision;
   rx.noise = d.noise;
   rx.probability = d.probability;
@@ -347,7 +365,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
       }
       finish_edge_[r] = edge;
       // Forget what can no longer overlap anything still to come.
-      const std::int64_t horizon = ticks_ - 4 * macs_[r].packet_ticks();
+      const std::int64_t horizon = ticks_ - 4 * longest_ticks_;
       while (!arrivals_[r].empty() && arrivals_[r].front().done && arrivals_[r].front().end < horizon) {
         arrivals_[r].pop_front();
       }

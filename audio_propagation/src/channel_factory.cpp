@@ -32,6 +32,13 @@ void RequireWholeIn(const std::string& field, int value, int lo, int hi) {
                                       "], got " + std::to_string(value));
 }
 
+// The modem's timing: the profile's, with nava's bit rate if set.
+nava_modem::ModemOptions ModemFor(const SimulatedChannelOptions& o) {
+  nava_modem::ModemOptions modem;
+  if (o.bit_rate) modem.baud = *o.bit_rate;
+  return modem;
+}
+
 // The channel's options, the MAC's timing taken from the profile (and the nava bit rate).
 ChannelOptions ChannelFor(const SimulatedChannelOptions& o) {
   ChannelOptions c;
@@ -41,9 +48,7 @@ ChannelOptions ChannelFor(const SimulatedChannelOptions& o) {
   c.cache_size = static_cast<std::size_t>(o.cache_size);
   c.link_fate = o.link_fate;
   c.fate_distance = o.fate_distance;
-  nava_modem::ModemOptions modem;
-  if (o.bit_rate) modem.baud = *o.bit_rate;
-  nava_modem::UseProfileTiming(o.profile, modem, c.mac);
+  nava_modem::UseProfileTiming(o.profile, ModemFor(o), c.mac);
   return c;
 }
 
@@ -137,6 +142,12 @@ void CheckSimulatedChannelOptions(const SimulatedChannelOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw ChannelOptionError("bit_rate", e.what());
   }
+  const int rates = nava_modem::ProfileFormat(o.profile).rates;
+  RequireWholeIn("rate", o.rate, 0, rates - 1);
+  if (o.rate > 0 && o.channel_model == ChannelModel::kAcoustic) {
+    throw ChannelOptionError("rate", "the acoustic model's decode tables hold rate 0 only (today's 4-byte packet), got " +
+                                         std::to_string(o.rate) + "; use channel_model threshold for faster rates");
+  }
   RequireWholeIn("seed", o.seed, 0, 2147483647);
   RequireWholeIn("cache_size", o.cache_size, 0, 10000000);
   if (!(o.fate_distance > 0.0 && o.fate_distance <= 100.0)) {
@@ -212,7 +223,21 @@ SimulatedChannel BuildSimulatedChannel(const SimulatedChannelOptions& o, std::op
     }
   }
   out.channel = std::make_unique<AudioChannel>(*out.propagation, out.microphones, ChannelFor(o), out.acoustic.get());
+  out.profile = o.profile;
+  out.modem = ModemFor(o);
+  out.rate = o.rate;
+  out.format = nava_modem::ProfileFormat(o.profile);
+  if (out.acoustic) out.format = nava_modem::FrameFormat{};  // today's packet
   return out;
+}
+
+nava_modem::MacFrame SimulatedChannel::Frame(std::vector<std::uint8_t> data) const {
+  if (data.size() < format.min_bytes || data.size() > format.max_bytes) {
+    throw std::invalid_argument("a frame of " + std::to_string(data.size()) + " bytes: this channel carries " +
+                                std::to_string(format.min_bytes) + " to " + std::to_string(format.max_bytes));
+  }
+  const double airtime = nava_modem::FrameAirtime(profile, modem, data.size(), rate);
+  return nava_modem::MacFrame{std::move(data), rate, airtime};
 }
 
 }  // namespace audio_propagation

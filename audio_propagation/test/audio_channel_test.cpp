@@ -77,6 +77,48 @@ TEST(AudioChannel, APacketLastsItsProfilesAirtime) {
   EXPECT_EQ(noise_at_1, 2) << "both overlapping packets lost at the robot between the senders";
 }
 
+// A frame holds the air for its own airtime, by its length and rate: a 64-byte room frame at
+// rate 1 for its 4.7 s, arriving whole with its rate; and a packet sent 3 s into it, where a
+// 4-byte packet would long have ended, collides with it at the robot between.
+TEST(AudioChannel, AFrameLastsItsOwnAirtimeByLengthAndRate) {
+  ChannelOptions options;
+  const nava_modem::Profile room = nava_modem::Profile::kRoom;
+  nava_modem::UseProfileTiming(room, {}, options.mac);
+  options.mac.backoff_min_bits = options.mac.backoff_max_bits = 2.0;
+  Team team({2.0, 22.0, 42.0}, options);
+  std::vector<std::uint8_t> data(64);
+  for (std::size_t k = 0; k < data.size(); ++k) data[k] = static_cast<std::uint8_t>(7 * k);
+  const double airtime = nava_modem::FrameAirtime(room, {}, data.size(), 1);
+  ASSERT_GT(airtime, 2.0 * nava_modem::ProfileAirtime(room));
+  ASSERT_TRUE(team.channel->Send(0, nava_modem::MacFrame{data, 1, airtime}));
+  auto events = team.Run(airtime - 0.5);
+  ASSERT_EQ(events.started.size(), 1u);
+  EXPECT_NEAR(events.started[0].duration, airtime, team.channel->tick_seconds());
+  EXPECT_EQ(events.started[0].rate, 1);
+  EXPECT_TRUE(events.received.empty());
+  EXPECT_TRUE(team.channel->Carrier(1)) << "the frame still sounds half a second before its end";
+  events = team.Run(1.0);
+  ASSERT_EQ(events.received.size(), 1u);
+  EXPECT_EQ(events.received[0].kind, Reception::Kind::kPacket);
+  EXPECT_EQ(events.received[0].data, data);
+  EXPECT_EQ(events.received[0].rate, 1);
+
+  ASSERT_TRUE(team.channel->Send(0, nava_modem::MacFrame{data, 1, airtime}));
+  team.Run(3.0);
+  ASSERT_TRUE(team.channel->Send(2, {5, 6, 7, 8}));
+  events = team.Run(airtime + 3.0);
+  int noise_at_1 = 0;
+  for (const Reception& r : events.received) noise_at_1 += r.receiver == 1 && r.kind == Reception::Kind::kNoise;
+  EXPECT_EQ(noise_at_1, 2) << "the packet sent into the frame's fourth second lost both at the robot between";
+}
+
+// A frame with no airtime is a caller's mistake, named.
+TEST(AudioChannel, AFrameWithoutAirtimeIsRefused) {
+  Team team({2.0, 12.0});
+  EXPECT_THROW(team.channel->Send(0, nava_modem::MacFrame{{1, 2, 3, 4}, 0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(team.channel->SendAt(0, nava_modem::MacFrame{{1, 2, 3, 4}, 0, -1.0}, 0.0), std::invalid_argument);
+}
+
 TEST(AudioChannel, CarrierRisesWhileAPacketIsHeardAndFallsAfter) {
   Team team({2.0, 12.0});
   team.channel->Send(0, {1, 2, 3, 4});

@@ -85,6 +85,35 @@ TEST(ChannelFactory, BuildsTheAcousticChannelOfAShippedWorld) {
   EXPECT_DOUBLE_EQ(BuildSimulatedChannel(o).propagation->options().threshold_db, 35.0);
 }
 
+// The frames robots may send, and how long each sounds: the profile's lengths at the options'
+// rate with the threshold model; today's packet alone with the acoustic model, whose tables were
+// measured on it; a rate off the ladder, or a faster one with the acoustic model, named.
+TEST(ChannelFactory, FramesTakeTheProfilesLengthsAndTheOptionsRate) {
+  SimulatedChannelOptions o = ThresholdRoom();
+  o.profile = nava_modem::Profile::kRoom;
+  o.rate = 2;
+  const SimulatedChannel c = BuildSimulatedChannel(o);
+  EXPECT_EQ(c.format.min_bytes, 1u);
+  EXPECT_EQ(c.format.max_bytes, 255u);
+  const nava_modem::MacFrame f = c.Frame(std::vector<std::uint8_t>(64, 9));
+  EXPECT_EQ(f.rate, 2);
+  EXPECT_DOUBLE_EQ(f.airtime, nava_modem::FrameAirtime(nava_modem::Profile::kRoom, {}, 64, 2));
+  EXPECT_THROW(c.Frame(std::vector<std::uint8_t>(256)), std::invalid_argument);
+
+  o.rate = 3;
+  ExpectCheckError(o, "rate", {"[0, 2]", "3"});
+  SimulatedChannelOptions a = AcousticRoom();
+  a.profile = nava_modem::Profile::kRoom;
+  a.rate = 1;
+  ExpectCheckError(a, "rate", {"acoustic", "rate 0 only"});
+  a.rate = 0;
+  const SimulatedChannel acoustic = BuildSimulatedChannel(a);
+  EXPECT_EQ(acoustic.format.min_bytes, 4u);
+  EXPECT_EQ(acoustic.format.max_bytes, 4u);
+  EXPECT_THROW(acoustic.Frame(std::vector<std::uint8_t>(64)), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(acoustic.Frame({1, 2, 3, 4}).airtime, nava_modem::ProfileAirtime(nava_modem::Profile::kRoom));
+}
+
 TEST(ChannelFactory, ServesTheRobotsAndMicrophonesAsked) {
   SimulatedChannelOptions o = ThresholdRoom();
   o.robots = {"robot_1"};

@@ -65,16 +65,22 @@ int CsmaMac::Ticks(double seconds) const {
   return static_cast<int>(std::lround(seconds / tick_seconds_));
 }
 
-bool CsmaMac::Enqueue(Packet packet) {
+bool CsmaMac::Enqueue(MacFrame frame) {
+  Require(frame.airtime > 0.0 && std::isfinite(frame.airtime),
+          "a frame's airtime must be a positive number of seconds, got " + std::to_string(frame.airtime));
   if (queue_.size() >= options_.queue_capacity) {
     ++dropped_;
     return false;
   }
-  queue_.push_back(std::move(packet));
+  queue_.push_back(std::move(frame));
   return true;
 }
 
-void CsmaMac::Interrupt(std::vector<Packet> unsent, double hold_seconds) {
+bool CsmaMac::Enqueue(std::vector<std::uint8_t> data) {
+  return Enqueue(MacFrame{std::move(data), 0, options_.packet_bits / options_.bit_rate});
+}
+
+void CsmaMac::Interrupt(std::vector<MacFrame> unsent, double hold_seconds) {
   requeued_ += unsent.size();
   queue_.insert(queue_.begin(), std::make_move_iterator(unsent.begin()), std::make_move_iterator(unsent.end()));
   carrier_ = false;
@@ -111,7 +117,7 @@ std::optional<int> CsmaMac::TicksToNextChange(double level_db) const {
   return std::max(remaining_, 1);
 }
 
-std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db, bool may_send) {
+std::optional<MacFrame> CsmaMac::Tick(double level_db, bool may_send) {
   ++ticks_;
   switch (state_) {
     case MacState::kCalibrating:
@@ -133,10 +139,10 @@ std::optional<CsmaMac::Packet> CsmaMac::Tick(double level_db, bool may_send) {
       if (queue_.empty() || !may_send) return std::nullopt;
       if (--remaining_ > 0) return std::nullopt;
       {
-        Packet p = std::move(queue_.front());
+        MacFrame p = std::move(queue_.front());
         queue_.pop_front();
         state_ = MacState::kSending;
-        remaining_ = packet_ticks_;
+        remaining_ = std::max(1, Ticks(p.airtime));
         ++sent_;
         return p;
       }

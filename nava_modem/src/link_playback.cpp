@@ -6,7 +6,7 @@ namespace nava_modem {
 
 LinkPlayback::LinkPlayback(AudioDevice& device, std::size_t block) : device_(device), block_(block) {}
 
-void LinkPlayback::Start(CsmaMac::Packet packet, std::vector<float> sound) {
+void LinkPlayback::Start(MacFrame packet, std::vector<float> sound) {
   burst_ = std::move(sound);
   in_flight_.push_back({std::move(packet), queued_out_ + static_cast<std::int64_t>(burst_.size())});
   burst_at_ = 0;
@@ -53,9 +53,9 @@ void LinkPlayback::Write() {
   burst_pending_ = 0;
 }
 
-std::vector<CsmaMac::Packet> LinkPlayback::Abort() {
+std::vector<MacFrame> LinkPlayback::Abort() {
   // Listeners that lost the same sound server most likely missed a packet's end too.
-  std::vector<CsmaMac::Packet> unsent;
+  std::vector<MacFrame> unsent;
   for (InFlight& f : in_flight_) unsent.push_back(std::move(f.data));
   in_flight_.clear();
   burst_.clear();

@@ -47,6 +47,11 @@ void ValidateLinkOptions(const LinkOptions& o) {
   if (!(o.max_loop > 0.0 && o.max_loop <= 10.0)) {
     throw std::invalid_argument("max loop " + std::to_string(o.max_loop) + " s: expected above 0 and at most 10");
   }
+  const int rates = ProfileFormat(o.profile).rates;
+  if (o.rate < 0 || o.rate >= rates) {
+    throw std::invalid_argument("rate " + std::to_string(o.rate) + ": profile " + ProfileName(o.profile) +
+                                " has rates 0 to " + std::to_string(rates - 1));
+  }
 }
 
 NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock)
@@ -63,9 +68,11 @@ NavaLink::NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock
       samples_per_tick_(mac_.tick_seconds() * options_.modem.sample_rate),
       reopen_(options_.reopen) {}
 
-bool NavaLink::Send(std::vector<std::uint8_t> data) {
-  profile_->CheckFrame(data.size());
-  return mac_.Enqueue(std::move(data));
+bool NavaLink::Send(std::vector<std::uint8_t> data) { return Send(std::move(data), options_.rate); }
+
+bool NavaLink::Send(std::vector<std::uint8_t> data, int rate) {
+  const double airtime = profile_->Airtime(data.size(), rate);  // CheckFrame's errors
+  return mac_.Enqueue(MacFrame{std::move(data), rate, airtime});
 }
 
 bool NavaLink::Tick(std::vector<RxEvent>& events) {
@@ -121,11 +128,11 @@ bool NavaLink::Run(std::vector<RxEvent>& events) {
   // Behind real time, carrier sense is stale: no send starts (for a while).
   const bool may_send = !capture_.behind() ||
                         samples_done_ - capture_.behind_since() > std::llround(kLongestHoldSeconds * options_.modem.sample_rate);
-  if (std::optional<CsmaMac::Packet> packet = mac_.Tick(receive_.level_db(), may_send)) {
-    receive_.Sent(*packet, time());
+  if (std::optional<MacFrame> frame = mac_.Tick(receive_.level_db(), may_send)) {
+    receive_.Sent(frame->data, time());
     // It starts with this tick's playback.
-    std::vector<float> sound = profile_->ModulatePacket(*packet);
-    playback_.Start(std::move(*packet), std::move(sound));
+    std::vector<float> sound = profile_->Modulate(frame->data, frame->rate);
+    playback_.Start(std::move(*frame), std::move(sound));
   }
   // Playback runs in step with capture: this tick's share of the packet, or silence.
   playback_.Tick(count, capture_.behind());

@@ -84,6 +84,28 @@ TEST(CsmaMac, CarrierDefersSendingUntilTheMediumIsFree) {
   EXPECT_EQ(mac.receptions(), 1u);
 }
 
+// Each frame holds the air for its own airtime: a 2.5 s frame keeps the MAC sending 2.5 s, and
+// the packet queued behind it then goes for a packet's time; a frame without an airtime is refused.
+TEST(CsmaMac, EachFrameHoldsTheAirForItsOwnAirtime) {
+  CsmaMac mac(Fixed(), 3);
+  ASSERT_TRUE(mac.Enqueue(MacFrame{std::vector<std::uint8_t>(64, 1), 2, 2.5}));
+  ASSERT_TRUE(mac.Enqueue({1, 2, 3, 4}));
+  ASSERT_GT(TicksUntilSend(mac, kSilence), 0);
+  const auto sending_for = [&] {
+    int ticks = 1;
+    while (mac.state() == MacState::kSending) {
+      mac.Tick(kLoud);
+      ++ticks;
+    }
+    return ticks - 1;
+  };
+  EXPECT_EQ(sending_for(), mac.Ticks(2.5));
+  ASSERT_GT(TicksUntilSend(mac, kSilence), 0);
+  EXPECT_EQ(sending_for(), mac.packet_ticks());
+  EXPECT_THROW(mac.Enqueue(MacFrame{{1}, 0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(mac.Enqueue(MacFrame{{1}, 0, std::nan("")}), std::invalid_argument);
+}
+
 TEST(CsmaMac, QueueOverflowIsCountedNotSilent) {
   MacOptions o = Fixed();
   o.queue_capacity = 2;
@@ -97,7 +119,9 @@ TEST(CsmaMac, QueueOverflowIsCountedNotSilent) {
     for (;;)
       if (auto p = mac.Tick(kSilence)) return *p;
   }();
-  EXPECT_EQ(first, CsmaMac::Packet({1}));
+  EXPECT_EQ(first.data, std::vector<std::uint8_t>({1}));
+  EXPECT_EQ(first.rate, 0);
+  EXPECT_NEAR(first.airtime, o.packet_bits / o.bit_rate, 1e-12);
 }
 
 // A failed device cuts the packet being sent: it goes back to the front of the queue, before
@@ -115,20 +139,20 @@ TEST(CsmaMac, AnInterruptedSendGoesBackToTheFrontAfterAHold) {
   EXPECT_FALSE(mac.Enqueue({4, 4, 4, 4}));  // full
   for (int k = 0; k < 100; ++k) mac.Tick(kSilence);
   ASSERT_EQ(mac.state(), MacState::kSending);
-  mac.Interrupt({{1, 1, 1, 1}}, 0.5);
+  mac.Interrupt({MacFrame{{1, 1, 1, 1}, 0, o.packet_bits / o.bit_rate}}, 0.5);
   EXPECT_EQ(mac.state(), MacState::kWaiting);
   EXPECT_EQ(mac.queued(), 3u);
   EXPECT_EQ(mac.requeued(), 1u);
   const int hold = static_cast<int>(std::lround(0.5 / mac.tick_seconds())) + 32;
   EXPECT_EQ(TicksUntilSend(mac, kSilence), hold);
-  std::vector<CsmaMac::Packet> order;
+  std::vector<std::vector<std::uint8_t>> order;
   order.push_back({1, 1, 1, 1});
   for (int n = 0; n < 2; ++n) {
     for (int k = 0; k < mac.packet_ticks() + 2000; ++k) {
-      if (auto p = mac.Tick(kSilence)) order.push_back(*p);
+      if (auto p = mac.Tick(kSilence)) order.push_back(p->data);
     }
   }
-  EXPECT_EQ(order, (std::vector<CsmaMac::Packet>{{1, 1, 1, 1}, {2, 2, 2, 2}, {3, 3, 3, 3}}));
+  EXPECT_EQ(order, (std::vector<std::vector<std::uint8_t>>{{1, 1, 1, 1}, {2, 2, 2, 2}, {3, 3, 3, 3}}));
   EXPECT_EQ(mac.sent(), 4u);  // the first one twice
 }
 

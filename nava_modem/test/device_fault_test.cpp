@@ -29,7 +29,7 @@ LinkOptions Sender() {
   return o;
 }
 
-CsmaMac::Packet Numbered(int k) { return {0x40, static_cast<std::uint8_t>(k), 0x55, 0xAA}; }
+std::vector<std::uint8_t> Numbered(int k) { return {0x40, static_cast<std::uint8_t>(k), 0x55, 0xAA}; }
 
 std::size_t Samples(double seconds) { return static_cast<std::size_t>(std::lround(seconds * kRate)); }
 

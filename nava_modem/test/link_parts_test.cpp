@@ -95,17 +95,17 @@ TEST(LinkPlayback, PlaysAPacketInTicksAndGivesBackWhatHadNotPlayedWhenTheDeviceF
   LinkPlayback playback(device, 80);
   std::vector<float> in(100);
   const std::vector<float> sound(1000, 0.5f);
-  playback.Start({1, 2, 3, 4}, sound);
+  playback.Start(MacFrame{{1, 2, 3, 4}, 0, 0.5}, sound);
   for (int tick = 0; tick < 10; ++tick) {  // 1000 samples captured, 1000 of the packet written
     device.Read(in.data(), 100);
     playback.Tick(100, false);
   }
   // 400 samples of it wait in the device: its end has not played.
-  std::vector<CsmaMac::Packet> back = playback.Abort();
+  std::vector<MacFrame> back = playback.Abort();
   ASSERT_EQ(back.size(), 1u);
-  EXPECT_EQ(back[0], (CsmaMac::Packet{1, 2, 3, 4}));
+  EXPECT_EQ(back[0].data, (std::vector<std::uint8_t>{1, 2, 3, 4}));
 
-  playback.Start({5, 6, 7, 8}, sound);
+  playback.Start(MacFrame{{5, 6, 7, 8}, 0, 0.5}, sound);
   for (int tick = 0; tick < 16; ++tick) {
     device.Read(in.data(), 100);
     playback.Tick(100, false);

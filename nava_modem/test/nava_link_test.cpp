@@ -123,6 +123,55 @@ TEST(NavaLink, RunsTheRoomProfile) {
   EXPECT_EQ(events[0].data, std::vector<std::uint8_t>({9, 8, 7, 6}));
 }
 
+// Frames of any length on the room link: a 64-byte frame at the link's rate 1 and a 4-byte one
+// at rate 2 named by Send() play for their own airtimes, one after the other, and a listening
+// link hears both whole, each with its rate. A rate off the ladder is refused, named.
+TEST(NavaLink, SendsAndHearsFramesOfAnyLengthAtEachRate) {
+  LinkOptions o = Quick();
+  o.profile = Profile::kRoom;
+  o.modem.sample_rate = 16000.0;
+  o.mac.fixed_threshold_db = -40.0;
+  o.rate = 1;
+  std::vector<std::uint8_t> long_frame(64);
+  for (std::size_t k = 0; k < long_frame.size(); ++k) long_frame[k] = static_cast<std::uint8_t>(31 * k + 5);
+  const double airtimes = FrameAirtime(Profile::kRoom, o.modem, 64, 1) + FrameAirtime(Profile::kRoom, o.modem, 4, 2);
+  const std::string silent = TempWav("frames_silent.wav");
+  WriteWavFile(silent, std::vector<float>(static_cast<std::size_t>((airtimes + 2.0) * o.modem.sample_rate)),
+               o.modem.sample_rate);
+  WavDevice dry(silent, "");
+  NavaLink link(o, dry);
+  ASSERT_TRUE(link.Send(long_frame));
+  ASSERT_TRUE(link.Send({1, 2, 3, 4}, 2));
+  EXPECT_THROW(link.Send({1, 2, 3, 4}, 3), std::invalid_argument);
+  EXPECT_THROW(link.Send(std::vector<std::uint8_t>(256)), std::invalid_argument);
+  std::vector<RxEvent> events;
+  while (link.Tick(events)) {
+  }
+  std::remove(silent.c_str());
+  EXPECT_EQ(link.packets_sent(), 2u);
+
+  const std::string heard = TempWav("frames_heard.wav");
+  std::vector<float> played = dry.played();
+  played.resize(played.size() + static_cast<std::size_t>(2.0 * o.modem.sample_rate));
+  WriteWavFile(heard, played, o.modem.sample_rate);
+  WavDevice device(heard, "");
+  NavaLink listener(o, device);
+  events.clear();
+  while (listener.Tick(events)) {
+  }
+  std::remove(heard.c_str());
+  std::vector<std::pair<std::vector<std::uint8_t>, int>> frames;
+  for (const RxEvent& e : events) {
+    if (e.kind == RxEvent::Kind::kPacket) frames.emplace_back(e.data, e.rate);
+  }
+  const std::vector<std::pair<std::vector<std::uint8_t>, int>> sent = {{long_frame, 1}, {{1, 2, 3, 4}, 2}};
+  EXPECT_EQ(frames, sent);
+
+  LinkOptions bad = o;
+  bad.rate = 3;
+  EXPECT_THROW(ValidateLinkOptions(bad), std::invalid_argument);
+}
+
 // A microphone array on the link: each reception comes with its direction, from its own
 // samples on every channel (a four-microphone square hearing a room packet from 60 degrees in a
 // reverberant room, rendered by nava_room's array renderer).

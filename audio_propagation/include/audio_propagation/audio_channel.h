@@ -62,6 +62,7 @@ struct Reception {
   nava_modem::RxEvent::Noise noise = nava_modem::RxEvent::Noise::kNone;
   double probability = 1.0;         // acoustic model: the predicted chance of decoding it
   std::vector<std::uint8_t> data;   // empty for noise
+  int rate = 0;                     // the rate step the frame went at
   double level_db = 0.0;
   double direction = 0.0;           // rad in the receiver's frame, from its microphone (may be NaN)
   double direction_confidence = 0.0;  // 1 where the microphone gives a direction, 0 where not
@@ -73,6 +74,7 @@ struct Transmission {
   std::size_t sender = 0;
   double start = 0.0, duration = 0.0;  // s
   std::vector<std::uint8_t> data;
+  int rate = 0;                        // the profile's rate step it went at
   std::vector<SoundPath> paths;        // per robot; not reachable for the sender and the deaf
   // Acoustic model: per robot, the chance it decodes the packet as things stand at the start
   // (no other packet in the air); empty with the threshold model.
@@ -112,7 +114,9 @@ class AudioChannel {
     positions_stale_ = true;
   }
   const grid::Pose2D& pose(std::size_t robot) const { return poses_.at(robot); }
-  // Queues a packet to send; false (and counted by the MAC) when its queue is full.
+  // Queues a frame to send, lasting its own airtime; false (and counted by the MAC) when its
+  // queue is full. With bytes alone: today's packet (packet_bits at the MAC's bit rate).
+  bool Send(std::size_t robot, nava_modem::MacFrame frame);
   bool Send(std::size_t robot, std::vector<std::uint8_t> data);
 
   // The same, taking effect at simulated `time` (s), or at once if that has passed. A caller
@@ -121,7 +125,8 @@ class AudioChannel {
   void SetPoseAt(std::size_t robot, const grid::Pose2D& pose, double time);
   // A packet that finds the robot's queue full when it is to enter it is dropped and counted
   // in send_overflows(); false only when a robot has an absurd number waiting to enter.
-  bool SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time);
+  bool SendAt(std::size_t robot, nava_modem::MacFrame frame, double time);
+  bool SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time);  // today's packet
   // Nothing in the air or on its way, every MAC idle, nothing stamped still to take effect:
   // until a new SendAt() or Send(), AdvanceTo() produces no events (the acoustic model's noise
   // may still move a carrier, which AdvanceTo() then works out as it goes).
@@ -160,6 +165,7 @@ class AudioChannel {
     double level_db;
     double power;  // 10^(level_db / 10), summed every tick the arrival lasts
     std::vector<std::uint8_t> data;
+    int rate;
     SoundPath path;
     bool done = false;  // finished, kept a while to judge overlaps with later arrivals
   };
@@ -171,7 +177,7 @@ class AudioChannel {
   struct PendingSend {
     std::int64_t tick;
     std::size_t robot;
-    std::vector<std::uint8_t> data;
+    nava_modem::MacFrame frame;
   };
   // The first tick at or after `time`, never before the current one.
   std::int64_t TickAt(double time) const;
@@ -180,7 +186,7 @@ class AudioChannel {
   // The first tick after the current one at which something must be looked at even in quiet:
   // a stamped send, or the next update of the background.
   std::int64_t NextWake(std::int64_t target) const;
-  void StartTransmission(std::size_t sender, std::vector<std::uint8_t> data, Events& events);
+  void StartTransmission(std::size_t sender, nava_modem::MacFrame frame, Events& events);
   // A new arrival at `receiver`: its level and its finishing are looked at then.
   void NoteArrival(std::size_t receiver, std::int64_t start, std::int64_t end);
   void Finish(std::size_t receiver, const Arrival& a, Events& events);
@@ -230,6 +236,9 @@ class AudioChannel {
   double DecisionDraw(std::size_t sender, std::size_t listener, const std::vector<Eigen::Vector2d>& at);
   double tick_;
   std::int64_t ticks_ = 0;
+  // The longest transmission yet, in ticks: what has finished longer ago than a few of these can
+  // no longer overlap anything still to come.
+  std::int64_t longest_ticks_ = 0;
   std::uint64_t missed_while_sending_ = 0;
   std::uint64_t unheard_ = 0;
   std::uint64_t send_overflows_ = 0;

@@ -54,6 +54,7 @@ struct SimulatedChannelOptions {
   std::vector<std::string> microphones;  // one per robot (omni, bidirectional, none), overriding the world's
   nava_modem::Profile profile = nava_modem::Profile::kNava;  // how long a packet sounds; the MAC's unit of time
   std::optional<double> bit_rate;        // bits/s of the nava profile (unset: the profile's own)
+  int rate = 0;                          // the profile's rate step every frame goes at
   ChannelModel channel_model = ChannelModel::kThreshold;
   std::string decode_table;        // acoustic model: the table (empty: the profile's shipped one)
   std::string delivery_map_robot;  // acoustic model: the robot whose delivery is to be mapped, if any
@@ -77,9 +78,10 @@ struct SimulatedChannelOptions {
 // the threshold above the source level; max_range outside [0, 1e6] m; speed_of_sound outside
 // [1, 1e5] m/s; capture_margin_db outside [0, 1000] dB; direction_noise outside [0, 10] rad;
 // bit_rate outside [1, 100000] bits/s, given with a profile other than nava, or too fast for
-// the MAC; seed below 0; cache_size outside [0, 10^7]; fate_distance not in (0, 100] m; no
-// robots and no world file; decode_table, delivery_map_robot or link_fate with the threshold
-// model.
+// the MAC; a rate not on the profile's ladder, or above 0 with the acoustic model (its decode
+// tables are today's packet's); seed below 0; cache_size outside [0, 10^7]; fate_distance not in
+// (0, 100] m; no robots and no world file; decode_table, delivery_map_robot or link_fate with the
+// threshold model.
 void CheckSimulatedChannelOptions(const SimulatedChannelOptions& options);
 
 // Whether the options name neither a world file nor a map file, so that the caller must give
@@ -99,6 +101,17 @@ struct SimulatedChannel {
   std::unique_ptr<PropagationModel> propagation;
   std::unique_ptr<AcousticModel> acoustic;         // acoustic model only
   std::unique_ptr<AudioChannel> channel;           // last: it refers to the models
+  // The frames robots may send: the profile's lengths with the threshold model, which judges a
+  // frame by its level alone; with the acoustic model today's packet only, as its decode tables
+  // were measured on 4-byte packets at rate 0.
+  nava_modem::FrameFormat format;
+  // `data` as a frame at the options' rate, lasting its airtime on the profile (throws
+  // std::invalid_argument for a length outside `format`).
+  nava_modem::MacFrame Frame(std::vector<std::uint8_t> data) const;
+
+  nava_modem::Profile profile = nava_modem::Profile::kNava;
+  nava_modem::ModemOptions modem;  // the profile's timing (nava's bit rate)
+  int rate = 0;
 };
 
 // Checks the options (CheckSimulatedChannelOptions) and builds the channel from the world file

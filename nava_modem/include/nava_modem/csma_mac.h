@@ -29,6 +29,14 @@ const char* MacStateName(MacState s);
 // Throws std::invalid_argument naming the option when it is impossible.
 void ValidateMacOptions(const MacOptions& options);
 
+// A frame waiting for the air: its bytes, the rate step it goes at, and how long it holds the
+// air once sent (frames of one profile differ in length and rate, so each carries its own).
+struct MacFrame {
+  std::vector<std::uint8_t> data;
+  int rate = 0;
+  double airtime = 0.0;  // s, above 0
+};
+
 // The Nava state machine: Calibrating -> Waiting; Waiting -> Receiving on carrier, or ->
 // Sending after a random back-off on a free medium when a packet is queued; Sending -> Deaf
 // -> Waiting; Receiving -> Waiting when the carrier has gone. The caller owns time: it calls
@@ -36,24 +44,25 @@ void ValidateMacOptions(const MacOptions& options);
 // MAC then stays in Sending for one packet time). Deterministic for a seed.
 class CsmaMac {
  public:
-  using Packet = std::vector<std::uint8_t>;
-
   CsmaMac(const MacOptions& options, std::uint32_t seed);
 
-  // Queues a packet; false (and counted) when the queue is full.
-  bool Enqueue(Packet packet);
+  // Queues a frame; false (and counted) when the queue is full. Throws std::invalid_argument for
+  // an airtime that is not a positive number of seconds.
+  bool Enqueue(MacFrame frame);
+  // Today's packet: `data` at rate 0, lasting packet_bits at bit_rate.
+  bool Enqueue(std::vector<std::uint8_t> data);
 
-  // Advances one tick having heard `level_db`; returns the packet to start sending now, if any.
-  // With `may_send` false (the caller's carrier sense is stale) a send waits, its back-off
-  // held where it is.
-  std::optional<Packet> Tick(double level_db, bool may_send = true);
+  // Advances one tick having heard `level_db`; returns the frame to start sending now, if any
+  // (the MAC then stays in Sending for its airtime). With `may_send` false (the caller's carrier
+  // sense is stale) a send waits, its back-off held where it is.
+  std::optional<MacFrame> Tick(double level_db, bool may_send = true);
 
   // The audio stopped (the device failed): a send, deaf time or reception under way is over.
-  // `unsent` (packets whose sound did not all play, oldest first) go back to the front of the
+  // `unsent` (frames whose sound did not all play, oldest first) go back to the front of the
   // queue, even past its capacity (they were accepted once), and count in requeued(). The
   // MAC then waits at least `hold_seconds` and a fresh back-off (with something to send and the
   // air free) before it sends; a calibration under way goes on.
-  void Interrupt(std::vector<Packet> unsent, double hold_seconds);
+  void Interrupt(std::vector<MacFrame> unsent, double hold_seconds);
 
   // Waiting with nothing to send: a Tick() on a level below the threshold changes nothing but
   // the tick count, so a caller that knows the air is silent may skip such ticks.
@@ -69,7 +78,8 @@ class CsmaMac {
   double threshold_db() const { return threshold_db_; }
   bool carrier() const { return carrier_; }
   double tick_seconds() const { return tick_seconds_; }
-  int packet_ticks() const { return packet_ticks_; }
+  int packet_ticks() const { return packet_ticks_; }  // today's packet's airtime
+  int Ticks(double seconds) const;                     // rounded to the nearest tick
   std::uint64_t ticks() const { return ticks_; }
   std::size_t queued() const { return queue_.size(); }
   std::uint64_t sent() const { return sent_; }
@@ -79,7 +89,6 @@ class CsmaMac {
 
  private:
   void EnterWaiting();
-  int Ticks(double seconds) const;
 
   MacOptions options_;
   std::mt19937 rng_;
@@ -90,7 +99,7 @@ class CsmaMac {
   double loudest_silence_db_ = -1e300;
   bool carrier_ = false;
   int remaining_ = 0;  // ticks left in the current timed phase (calibration, back-off, send, deaf, release)
-  std::deque<Packet> queue_;
+  std::deque<MacFrame> queue_;
   std::uint64_t ticks_ = 0, sent_ = 0, dropped_ = 0, receptions_ = 0, requeued_ = 0;
 };
 

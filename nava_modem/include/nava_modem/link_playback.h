@@ -20,7 +20,7 @@ class LinkPlayback {
   LinkPlayback(AudioDevice& device, std::size_t block);
 
   // A packet's sound, to start with the next tick.
-  void Start(CsmaMac::Packet packet, std::vector<float> sound);
+  void Start(MacFrame packet, std::vector<float> sound);
   // Plays a tick of `count` samples: what is left of the packet, else silence. A link `behind`
   // its capture plays silence only where it needs no wait (the device kept what it captured
   // while the process stalled, so the link runs faster than real time until it has heard that
@@ -30,7 +30,7 @@ class LinkPlayback {
   std::uint64_t packets_cut() const { return packets_cut_; }
   // The device failed: the packets whose end had not played (as of the last write), in the
   // order sent, and playback starts anew.
-  std::vector<CsmaMac::Packet> Abort();
+  std::vector<MacFrame> Abort();
   // The device reopened: underruns counted until now are not this playback's.
   void Reopened() { underruns_seen_ = device_.underruns(); }
 
@@ -50,7 +50,7 @@ class LinkPlayback {
   // Since the device was last (re)opened, in samples: handed to Put(), written to the device,
   // and known to have played. A packet leaves `in_flight_` once its end has played.
   struct InFlight {
-    CsmaMac::Packet data;
+    MacFrame data;
     std::int64_t end;
   };
   std::deque<InFlight> in_flight_;

@@ -35,12 +35,16 @@ struct LinkOptions {
   // server's buffers): each packet it sends is looked for that long in what it captures, and
   // timed (OwnTiming), for two-way ranging (unless receiver.time_arrivals is off).
   double max_loop = 0.5;
+  // The rate step frames go at unless Send() names one (0: the profile's slowest, today's
+  // packet for 4 bytes); below the profile's FrameFormat::rates.
+  int rate = 0;
   std::uint32_t seed = 1;
 };
 
 // Throws std::invalid_argument naming the field, its value and what was expected, for what
 // can be judged without the device: the receiver (ValidateReceiverOptions), the reopen
-// schedule (ValidateReopenOptions), max_capture_lag and max_loop above 0 and at most 10 s. The profile
+// schedule (ValidateReopenOptions), max_capture_lag and max_loop above 0 and at most 10 s, a rate
+// on the profile's ladder. The profile
 // checks the modem, and the MAC its options once given the profile's timing.
 void ValidateLinkOptions(const LinkOptions& options);
 
@@ -63,8 +67,10 @@ class NavaLink {
   NavaLink(const LinkOptions& options, AudioDevice& device, Clock& clock = SteadyClock::Instance());
 
   // Queues a frame's data bytes (as many as the profile carries: ModemProfile::CheckFrame's
-  // error otherwise) to send; false (counted by the MAC) when the queue is full.
+  // error otherwise) to send at `rate` (options' rate unless given); it holds the MAC for its own
+  // airtime. False (counted by the MAC) when the queue is full.
   bool Send(std::vector<std::uint8_t> data);
+  bool Send(std::vector<std::uint8_t> data, int rate);
 
   // One tick of audio in and out; what was heard is appended to `events`. False at the end of
   // the device's input. While the device is down, a tick tries to reopen it when that is due
