@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <complex>
+#include <map>
 
+#include "nava_modem/fft_plan.h"
 #include "nava_modem/room_phy.h"
 
 namespace nava_modem {
@@ -20,8 +22,13 @@ void RoomSymbolReader::Read(const SampleRing& heard, double pre, double stretch,
 }
 
 void RoomSymbolReader::Window(const SampleRing& heard, std::int64_t first, int length, double* energies) {
-  auto it = plans_.find(length);
-  if (it == plans_.end()) it = plans_.emplace(length, FftPlan(FftKind::kRealToComplex, static_cast<std::size_t>(length))).first;
+  // One plan per window length (the length follows the sender's clock: some hundred of them),
+  // made when first needed and kept for the thread's life, by every reader: a receiver made
+  // anew for each recording or frame would otherwise plan them all again (FFTW's planning was a
+  // sixth of a long frame's decoding in nava_bench --frames).
+  thread_local std::map<int, FftPlan> plans;
+  auto it = plans.find(length);
+  if (it == plans.end()) it = plans.emplace(length, FftPlan(FftKind::kRealToComplex, static_cast<std::size_t>(length))).first;
   FftPlan& plan = it->second;
   double* in = plan.real_input();
   for (int k = 0; k < length; ++k) in[k] = heard[first + k];

@@ -4,10 +4,9 @@
 // windows, each window one FFT, laid where a sender whose clock runs `stretch` times
 // slower than ours put its symbols (the windows are that much longer and the tones that much
 // lower, so each tone still falls on a bin). No ROS.
-#include <map>
+#include <cstdint>
 #include <vector>
 
-#include "nava_modem/fft_plan.h"
 #include "nava_modem/sample_ring.h"
 
 namespace nava_modem {
@@ -29,8 +28,6 @@ class RoomSymbolReader {
   void Window(const SampleRing& heard, std::int64_t first, int length, double* energies);
 
   double sample_rate_;
-  // One plan per window length (the length follows the sender's clock), made when first needed.
-  std::map<int, FftPlan> plans_;
 };
 
 }  // namespace nava_modem
