@@ -1,5 +1,6 @@
 // rostest for the audio_propagation node (test/audio_propagation.test).
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <vector>
 
@@ -65,6 +66,28 @@ TEST(AudioPropagationNode, APacketReachesTheRobotsThatCanHearIt) {
   EXPECT_EQ(path_markers, 2u);  // one per heard path
 }
 
+// A frame of the length and rate the test is given (~frame_bytes, ~rate: 4 and 0 unless its
+// launch file runs the node on the room profile at a faster rate) reaches robot_1 whole, with its
+// rate, after its own airtime.
+TEST(AudioPropagationNode, AFrameArrivesWholeWithItsRate) {
+  ros::NodeHandle nh, pnh("~");
+  const int bytes = pnh.param("frame_bytes", 4), rate = pnh.param("rate", 0);
+  std::vector<AudioReception> heard;
+  auto sub = nh.subscribe<AudioReception>("/robot_1/audio/rx", 10, [&](const AudioReception::ConstPtr& m) { heard.push_back(*m); });
+  auto tx = nh.advertise<multirobot_audio::AudioPacket>("/robot_0/audio/tx", 10);
+  ASSERT_TRUE(WaitFor([&] { return tx.getNumSubscribers() > 0 && sub.getNumPublishers() > 0; }, 30.0));
+  multirobot_audio::AudioPacket frame;
+  for (int k = 0; k < bytes; ++k) frame.data.push_back(static_cast<std::uint8_t>(11 * k + 3));
+  const ros::Time sent = ros::Time::now();
+  tx.publish(frame);
+  ASSERT_TRUE(WaitFor([&] { return !heard.empty(); }, 60.0)) << "robot_1 heard nothing of a " << bytes << "-byte frame";
+  EXPECT_EQ(heard[0].kind, AudioReception::PACKET);
+  EXPECT_EQ(heard[0].data, frame.data);
+  EXPECT_EQ(static_cast<int>(heard[0].rate), rate);
+  std::printf("audio_propagation_rostest: a %d-byte frame at rate %d heard %.2f s (simulated) after it was sent\n", bytes,
+              rate, (heard[0].header.stamp - sent).toSec());
+}
+
 TEST(AudioPropagationNode, PacketsOfTheWrongSizeAreRejected) {
   ros::NodeHandle nh;
   std::size_t heard = 0;
@@ -72,7 +95,7 @@ TEST(AudioPropagationNode, PacketsOfTheWrongSizeAreRejected) {
   auto tx = nh.advertise<multirobot_audio::AudioPacket>("/robot_0/audio/tx", 10);
   ASSERT_TRUE(WaitFor([&] { return tx.getNumSubscribers() > 0; }, 30.0));
   multirobot_audio::AudioPacket empty, big;
-  big.data.assign(40, 7);
+  big.data.assign(300, 7);  // more than any profile carries
   tx.publish(empty);
   tx.publish(big);
   WaitFor([] { return false; }, 2.0);
