@@ -117,16 +117,13 @@ void AudioChannel::SetPoseAt(std::size_t robot, const grid::Pose2D& pose, double
 }
 
 bool AudioChannel::SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time) {
-  return SendAt(robot, nava_modem::MacFrame{std::move(data), 0, macs_.at(robot).packet_ticks() * tick_}, time);
+  return SendAt(robot, macs_.at(robot).Packet(std::move(data)), time);
 }
 
 bool AudioChannel::SendAt(std::size_t robot, nava_modem::MacFrame frame, double time) {
   if (robot >= macs_.size()) throw std::out_of_range("audio channel: no robot " + std::to_string(robot));
   // Refused now, not when it enters the queue in the middle of a later AdvanceTo().
-  if (!(frame.airtime > 0.0 && std::isfinite(frame.airtime))) {
-    throw std::invalid_argument("audio channel: a frame's airtime must be a positive number of seconds, got " +
-                                std::to_string(frame.airtime));
-  }
+  nava_modem::ValidateMacFrame(frame);
   // The queue's own limit is applied when the packet enters it (how full the queue is then does
   // not depend on how far the caller has advanced the channel); this one only bounds memory.
   if (pending_per_robot_[robot] >= kMaxPendingSends) {

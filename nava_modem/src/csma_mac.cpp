@@ -65,9 +65,13 @@ int CsmaMac::Ticks(double seconds) const {
   return static_cast<int>(std::lround(seconds / tick_seconds_));
 }
 
-bool CsmaMac::Enqueue(MacFrame frame) {
+void ValidateMacFrame(const MacFrame& frame) {
   Require(frame.airtime > 0.0 && std::isfinite(frame.airtime),
           "a frame's airtime must be a positive number of seconds, got " + std::to_string(frame.airtime));
+}
+
+bool CsmaMac::Enqueue(MacFrame frame) {
+  ValidateMacFrame(frame);
   if (queue_.size() >= options_.queue_capacity) {
     ++dropped_;
     return false;
@@ -76,8 +80,8 @@ bool CsmaMac::Enqueue(MacFrame frame) {
   return true;
 }
 
-bool CsmaMac::Enqueue(std::vector<std::uint8_t> data) {
-  return Enqueue(MacFrame{std::move(data), 0, options_.packet_bits / options_.bit_rate});
+MacFrame CsmaMac::Packet(std::vector<std::uint8_t> data) const {
+  return MacFrame{std::move(data), 0, options_.packet_bits / options_.bit_rate};
 }
 
 void CsmaMac::Interrupt(std::vector<MacFrame> unsent, double hold_seconds) {

@@ -4,6 +4,7 @@
 #include <deque>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace nava_modem {
@@ -36,6 +37,8 @@ struct MacFrame {
   int rate = 0;
   double airtime = 0.0;  // s, above 0
 };
+// Throws std::invalid_argument for an airtime that is not a positive number of seconds.
+void ValidateMacFrame(const MacFrame& frame);
 
 // The Nava state machine: Calibrating -> Waiting; Waiting -> Receiving on carrier, or ->
 // Sending after a random back-off on a free medium when a packet is queued; Sending -> Deaf
@@ -46,11 +49,11 @@ class CsmaMac {
  public:
   CsmaMac(const MacOptions& options, std::uint32_t seed);
 
-  // Queues a frame; false (and counted) when the queue is full. Throws std::invalid_argument for
-  // an airtime that is not a positive number of seconds.
+  // Queues a frame; false (and counted) when the queue is full. Throws as ValidateMacFrame.
   bool Enqueue(MacFrame frame);
   // Today's packet: `data` at rate 0, lasting packet_bits at bit_rate.
-  bool Enqueue(std::vector<std::uint8_t> data);
+  MacFrame Packet(std::vector<std::uint8_t> data) const;
+  bool Enqueue(std::vector<std::uint8_t> data) { return Enqueue(Packet(std::move(data))); }
 
   // Advances one tick having heard `level_db`; returns the frame to start sending now, if any
   // (the MAC then stays in Sending for its airtime). With `may_send` false (the caller's carrier
