@@ -5,7 +5,8 @@
 #
 #   scripts/fuzz.sh --list              the targets
 #   scripts/fuzz.sh TARGET SECONDS      runs one target for that long
-#   scripts/fuzz.sh all SECONDS         runs each target in turn for that long
+#   scripts/fuzz.sh all SECONDS         runs every target for that long, two at a time (the
+#                                       machine has two cores; each fuzzer uses one)
 #   scripts/fuzz.sh --build             only builds them (scripts/test.sh builds them early)
 #
 # Each run starts from a copy of the target's seeds (fuzz/corpus/TARGET/, never written to) in a
@@ -66,9 +67,14 @@ else
 fi
 
 "$here/scripts/setup.sh" --no-build
-if ! grep -q '^FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+# -O1 and line tables: what libFuzzer's and the sanitizers' documentation ask for, and an eighth
+# less compiling than -O2 -g (11.8 s against 13.7 s for fsk_equalizer.cpp; CI waits for this
+# tree). A tree configured otherwise is configured again.
+flags="-O1 -gline-tables-only -DNDEBUG"
+if ! grep -q '^FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null ||
+   ! grep -qx "CMAKE_CXX_FLAGS_RELWITHDEBINFO:STRING=$flags" "$build/CMakeCache.txt"; then
   cmake -S "$here" -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFUZZ=ON \
-    -DMULTIROBOT_AUDIO_ROS=OFF -DMULTIROBOT_AUDIO_TESTS=OFF >/dev/null
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$flags" -DMULTIROBOT_AUDIO_ROS=OFF -DMULTIROBOT_AUDIO_TESTS=OFF >/dev/null
 fi
 # Two jobs: the machine has two cores.
 cmake --build "$build" --target fuzz_targets -j 2 >"$build/build.log" 2>&1 || { tail -n 40 "$build/build.log"; echo "fuzz.sh: the build failed" >&2; exit 1; }
@@ -81,35 +87,53 @@ shm=/tmp
 scratch=$(mktemp -d "$shm/multirobot_fuzz_run.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
 mkdir -p "$build/logs"
-failed=0
-for target in "${run[@]}"; do
-  corpus="$scratch/$target"
-  artifacts="$build/artifacts/$target"
-  log="$build/logs/$target.log"
+
+# Runs one target for $seconds and prints its line; fails when it failed.
+fuzz_one() {
+  local target=$1
+  local corpus="$scratch/$target" artifacts="$build/artifacts/$target" log="$build/logs/$target.log"
   mkdir -p "$corpus" "$artifacts"
   cp -r "$here/fuzz/corpus/$target/." "$corpus/"
-  options=(-max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -print_final_stats=1
-           -artifact_prefix="$artifacts/")
+  local options=(-max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -print_final_stats=1
+                 -artifact_prefix="$artifacts/")
   [ "$(max_len "$target")" -gt 0 ] && options+=(-max_len="$(max_len "$target")")
   [ -f "$here/fuzz/dict/$target.dict" ] && options+=(-dict="$here/fuzz/dict/$target.dict")
-  marker="$scratch/$target.started"
+  local marker="$scratch/$target.started"
   touch "$marker"
-  start=$SECONDS
-  status=0
-  # The fuzzer's scratch files (the loaders' temporary maps and worlds) go to the scratch folder.
-  TMPDIR="$scratch" ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
+  local start=$SECONDS status=0
+  # The fuzzer's scratch files (the loaders' temporary maps and worlds) go to its own folder.
+  mkdir -p "$scratch/$target.tmp"
+  TMPDIR="$scratch/$target.tmp" ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     "$build/fuzz/fuzz_$target" "${options[@]}" "$corpus" >"$log" 2>&1 || status=$?
-  elapsed=$((SECONDS - start))
+  local elapsed=$((SECONDS - start))
+  local runs
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
   if [ "$status" -eq 0 ]; then
     echo "fuzz $target: ${runs:-0} executions in $elapsed s, no crash"
-    continue
+    return 0
   fi
-  failed=1
+  local artifact what
   artifact=$(find "$artifacts" -type f -newer "$marker" ! -name 'slow-unit-*' | head -n 1)
   what=$(grep -m 1 -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|==[0-9]+== ERROR: libFuzzer)' "$log" || true)
   echo "fuzz $target: FAILED after ${runs:-?} executions in $elapsed s (exit $status): ${what:-see the log}"
   echo "  input: ${artifact:-none saved}; log: $log"
+  return 1
+}
+
+# Two at a time; each line is printed when its target ends.
+failed=0
+running=0
+for target in "${run[@]}"; do
+  if [ "$running" -ge 2 ]; then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
+  fuzz_one "$target" &
+  running=$((running + 1))
+done
+while [ "$running" -gt 0 ]; do
+  wait -n || failed=1
+  running=$((running - 1))
 done
 exit "$failed"

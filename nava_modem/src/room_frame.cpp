@@ -2,11 +2,8 @@
 
 #include <boost/crc.hpp>
 
-
 namespace nava_modem::room_frame {
 namespace {
-
-constexpr int kFieldBits = 10;  // rate 2, length - 1 8
 
 // CRC-3 (x^3 + x + 1) over the header's 10 field bits.
 unsigned HeaderCheck(unsigned fields) {

@@ -273,7 +273,7 @@ TEST(FftPlanTest, OnePlanRunsOnSeveralThreadsAtOnceEachWithItsOwnBuffers) {
   std::atomic<int> wrong{0};
   std::vector<std::thread> threads;
   for (int th = 0; th < 4; ++th) {
-    threads.emplace_back([th, n, &plan, &wrong] {
+    threads.emplace_back([th, &plan, &wrong] {
       const std::vector<double> x = RandomReal(n, 50 + static_cast<unsigned>(th));
       const std::vector<Complex> expected = ForwardFft(x, n);
       FftBuffers buffers = plan.MakeBuffers();

@@ -21,8 +21,6 @@
 namespace nava_modem {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-
 // An asymmetric array (no two pairs with the same spacing), so the delays are fractional.
 std::vector<Microphone2D> TestArray() { return {{0.05, 0.0}, {0.0, 0.047}, {-0.05, 0.0}, {0.013, -0.031}}; }
 
