@@ -88,11 +88,13 @@ sanitized_suite() {
   sanitized_tests "$@"
 }
 
-# Runs a build in the background in a process group of its own (so that it can be stopped whole),
-# its output in LOG; its PID in background_pid. (Not through $(...): the build must be this
-# shell's child to be waited for.) It runs under SCHED_IDLE (chrt --idle) where the kernel allows
-# it: it then takes only processor time nothing else wants, and a test or the main build that
-# wakes up takes the processor back at once, which nice 19 does not promise; else at nice 19.
+# Runs a build in the background in a session of its own (so that it can be stopped whole), its
+# output in LOG; its PID in background_pid. (Not through $(...): the build must be this shell's
+# child to be waited for.) It takes only the processor time nothing else wants: SCHED_IDLE
+# (chrt --idle) where the kernel allows it, else nice 19, and, where the kernel groups each
+# session's processes to share the processor fairly between sessions (autogroup, on by default
+# in Debian's kernels, which would give the build half the machine whatever its own priority),
+# its session's group at nice 19 too.
 background_build() {
   local log=$1
   shift
@@ -100,6 +102,15 @@ background_build() {
   chrt --idle 0 true 2>/dev/null && idle=(chrt --idle 0)
   setsid "${idle[@]}" "$@" >"$log" 2>&1 &
   background_pid=$!
+  # Only once the build leads its own session: before, its group is still this script's.
+  local tries
+  for tries in $(seq 100); do
+    [ "$(ps -o sid= -p "$background_pid" | tr -d ' ')" = "$background_pid" ] && break
+    sleep 0.01
+  done
+  if [ "$(ps -o sid= -p "$background_pid" | tr -d ' ')" = "$background_pid" ] && [ -w "/proc/$background_pid/autogroup" ]; then
+    echo 19 >"/proc/$background_pid/autogroup" 2>/dev/null || true
+  fi
 }
 
 # Stops the background builds still running (when a part fails before they are waited for).
