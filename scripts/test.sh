@@ -67,7 +67,7 @@ sanitized_build() {
   "$here/scripts/setup.sh" --no-build
   # -O1 and line tables: what AddressSanitizer's own documentation asks for, and a third less
   # compiling than -O2 -g (4.4 s against 7.1 s for fsk_receiver.cpp); CI waits for this build.
-  # The test files compile without instrumentation (CMakeLists.txt says why).
+  # The test files compile at -O0, instrumented (CMakeLists.txt says why).
   cmake -S "$here" -B "$here/build-sanitize" -DMULTIROBOT_AUDIO_ROS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
     -DSANITIZE=address,undefined -DMULTIROBOT_AUDIO_WERROR=ON >/dev/null
@@ -103,14 +103,14 @@ background_build() {
   setsid "${idle[@]}" "$@" >"$log" 2>&1 &
   background_pid=$!
   # Only once the build leads its own session: before, its group is still this script's.
-  local tries
-  for tries in $(seq 100); do
-    [ "$(ps -o sid= -p "$background_pid" | tr -d ' ')" = "$background_pid" ] && break
+  local _
+  for _ in $(seq 100); do
+    if [ "$(ps -o sid= -p "$background_pid" | tr -d ' ')" = "$background_pid" ]; then
+      echo 19 >"/proc/$background_pid/autogroup" 2>/dev/null || true
+      break
+    fi
     sleep 0.01
   done
-  if [ "$(ps -o sid= -p "$background_pid" | tr -d ' ')" = "$background_pid" ] && [ -w "/proc/$background_pid/autogroup" ]; then
-    echo 19 >"/proc/$background_pid/autogroup" 2>/dev/null || true
-  fi
 }
 
 # Stops the background builds still running (when a part fails before they are waited for).
