@@ -97,6 +97,14 @@ AudioPropagationRos::AudioPropagationRos(ros::NodeHandle nh, ros::NodeHandle pnh
     throw OptionParamError(pnh_, e.field(), e.problem());
   }
   if (sim_.acoustic) ROS_INFO("audio_propagation: acoustic channel model, decode table %s", sim_.decode_table.c_str());
+  if (sim_.acoustic && sim_.acoustic->rooms()) {
+    // Latched: the rooms stand for as long as the map.
+    const audio_propagation::RoomCoupling& rooms = *sim_.acoustic->rooms();
+    rooms_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("rooms", 1, true);
+    rooms_pub_.publish(ToRoomMarkers(rooms, sim_.propagation->map(), options_.frame_id));
+    ROS_INFO("audio_propagation: coupled rooms, %zu rooms and %zu openings (~rooms)",
+             rooms.segmentation().rooms().size(), rooms.segmentation().openings().size());
+  }
   if (sim_.delivery_robot) delivery_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("delivery_map", 1, true);
   const audio_propagation::PropagationModel& model = *sim_.propagation;
   ROS_INFO("audio_propagation: %zu robots, %zu diffraction points (%s), %zu corners, %zu edges, built in %.0f ms",

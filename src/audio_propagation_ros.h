@@ -102,7 +102,7 @@ class AudioPropagationRos {
   std::vector<double> carrier_published_;     // channel time of each robot's last carrier message
   std::vector<std::uint64_t> missing_poses_;  // per robot
   std::vector<ros::Time> pose_stamps_;        // of each robot's latest pose
-  ros::Publisher paths_pub_, points_pub_, delivery_pub_;
+  ros::Publisher paths_pub_, points_pub_, delivery_pub_, rooms_pub_;
   double next_delivery_map_ = 0.0;  // s of channel time
   ros::Timer timer_;
   ros::Time start_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -415,6 +416,62 @@ visualization_msgs::MarkerArray ToDiffractionPointMarkers(const std::vector<Eige
   for (const Eigen::Vector2d& c : corners) m.points.push_back(ToPoint(c, 0.05));
   visualization_msgs::MarkerArray out;
   out.markers.push_back(m);
+  return out;
+}
+
+visualization_msgs::MarkerArray ToRoomMarkers(const audio_propagation::RoomCoupling& rooms,
+                                              const grid::OccupancyMap& map, const std::string& frame) {
+  using visualization_msgs::Marker;
+  visualization_msgs::MarkerArray out;
+  const grid::RoomSegmentation& cut = rooms.segmentation();
+  // A square per `stride` cells each way, coloured by the room of its first cell.
+  const int stride = std::max(1, static_cast<int>(std::ceil(0.25 / map.resolution() - 1e-9)));
+  Marker floors = BaseMarker(frame, ros::Time(), "room_floors", 0, Marker::CUBE_LIST);
+  floors.scale.x = floors.scale.y = stride * map.resolution();
+  floors.scale.z = 0.01;
+  const auto colour = [](int room) {
+    // Hues spread by the golden ratio, so that neighbours differ.
+    const double h = std::fmod(0.618033988749895 * room, 1.0) * 6.0;
+    const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
+    std_msgs::ColorRGBA c;
+    const int sector = static_cast<int>(h);
+    c.r = static_cast<float>(sector == 0 || sector == 5 ? 1.0 : sector == 1 || sector == 4 ? x : 0.0);
+    c.g = static_cast<float>(sector == 1 || sector == 2 ? 1.0 : sector == 0 || sector == 3 ? x : 0.0);
+    c.b = static_cast<float>(sector == 3 || sector == 4 ? 1.0 : sector == 2 || sector == 5 ? x : 0.0);
+    c.a = 0.35f;
+    return c;
+  };
+  for (int j = 0; j < map.height(); j += stride) {
+    for (int i = 0; i < map.width(); i += stride) {
+      const int room = cut.RoomOfCell(i, j);
+      if (room < 0) continue;
+      const Eigen::Vector2d centre =
+          map.CellCoordsToWorld(Eigen::Vector2d(i + 0.5 * stride, j + 0.5 * stride));
+      floors.points.push_back(ToPoint(centre, 0.01));
+      floors.colors.push_back(colour(room));
+    }
+  }
+  out.markers.push_back(floors);
+  for (std::size_t k = 0; k < cut.rooms().size(); ++k) {
+    Marker name = BaseMarker(frame, ros::Time(), "room_names", static_cast<int>(k), Marker::TEXT_VIEW_FACING);
+    name.pose.position = ToPoint(cut.rooms()[k].centroid, 0.5);
+    name.scale.z = 0.4;
+    SetColour(name, 0.1f, 0.1f, 0.1f);
+    char text[96];
+    std::snprintf(text, sizeof text, "room %zu\nRT60 %.2f s, r_c %.2f m", k, rooms.Acoustics(k).rt60,
+                  world_sim::CriticalDistance(rooms.Acoustics(k)));
+    name.text = text;
+    out.markers.push_back(name);
+  }
+  for (std::size_t k = 0; k < cut.openings().size(); ++k) {
+    const grid::SegmentedOpening& o = cut.openings()[k];
+    Marker door = BaseMarker(frame, ros::Time(), "openings", static_cast<int>(k), Marker::SPHERE);
+    door.pose.position = ToPoint(o.center, 0.05);
+    door.scale.x = door.scale.y = o.width;
+    door.scale.z = 0.1;
+    SetColour(door, 1.0f, 0.85f, 0.0f, 0.8f);
+    out.markers.push_back(door);
+  }
   return out;
 }
 

@@ -17,6 +17,7 @@
 
 #include "audio_propagation/audio_channel.h"
 #include "audio_propagation/delivery_map.h"
+#include "audio_propagation/room_coupling.h"
 #include "grid/occupancy_map.h"
 #include "nava_modem/packet_receiver.h"
 #include "grid/pose2d.h"
@@ -104,5 +105,13 @@ visualization_msgs::MarkerArray ToSoundPathMarkers(const std::vector<audio_propa
 // "corners") for rviz, unstamped: it stands for as long as the map.
 visualization_msgs::MarkerArray ToDiffractionPointMarkers(const std::vector<Eigen::Vector2d>& corners,
                                                           const std::string& frame);
+
+// A building's coupled rooms (audio_propagation's ~rooms) for rviz, unstamped: each room's floor
+// as a CUBE_LIST of squares at least 0.25 m across, a colour a room, 1 cm up (namespace
+// "room_floors"), its name, RT60 and critical distance over its centre ("room_names"), and the
+// openings between rooms as yellow spheres their width across ("openings"), so that a user
+// can check the cut against the map before trusting the levels.
+visualization_msgs::MarkerArray ToRoomMarkers(const audio_propagation::RoomCoupling& rooms,
+                                              const grid::OccupancyMap& map, const std::string& frame);
 
 }  // namespace multirobot_audio

@@ -238,6 +238,43 @@ TEST(Conversions, DiffractionPointsAsOneMarkerInTheFrameGiven) {
   EXPECT_TRUE(ToDiffractionPointMarkers({}, "map").markers[0].points.empty());
 }
 
+TEST(Conversions, RoomsAsFloorsNamesAndOpenings) {
+  // Two 4 x 3 m rooms joined by a 1 m door (x = 4.0 .. 4.1 wall, door y = 1 .. 2), 0.1 m cells.
+  grid::OccupancyMap map(81, 30, 0.1);
+  for (int j = 0; j < 30; ++j) {
+    if (j >= 10 && j < 20) continue;
+    map.set(40, j, grid::Cell::kOccupied);
+  }
+  world_sim::Acoustics acoustics;
+  acoustics.room.rt60 = 0.7;
+  acoustics.room.volume = 100.0;
+  acoustics.rooms = world_sim::CoupledRoomsSpec{};
+  const audio_propagation::RoomCoupling rooms(map, acoustics);
+  ASSERT_EQ(rooms.segmentation().rooms().size(), 2u);
+  const visualization_msgs::MarkerArray a = ToRoomMarkers(rooms, map, "world");
+  ASSERT_EQ(a.markers.size(), 1u + 2u + 1u);
+  const visualization_msgs::Marker& floors = a.markers[0];
+  EXPECT_EQ(floors.ns, "room_floors");
+  EXPECT_EQ(floors.header.frame_id, "world");
+  EXPECT_EQ(floors.type, visualization_msgs::Marker::CUBE_LIST);
+  EXPECT_DOUBLE_EQ(floors.scale.x, 0.3);  // three cells of 0.1 m: at least 0.25 m
+  ASSERT_EQ(floors.points.size(), floors.colors.size());
+  EXPECT_GT(floors.points.size(), 100u);
+  // The two rooms in different colours.
+  bool two_colours = false;
+  for (const std_msgs::ColorRGBA& c : floors.colors) {
+    two_colours |= c.r != floors.colors[0].r || c.g != floors.colors[0].g || c.b != floors.colors[0].b;
+  }
+  EXPECT_TRUE(two_colours);
+  EXPECT_EQ(a.markers[1].ns, "room_names");
+  EXPECT_NE(a.markers[1].text.find("RT60 0.70 s"), std::string::npos) << a.markers[1].text;
+  const visualization_msgs::Marker& door = a.markers[3];
+  EXPECT_EQ(door.ns, "openings");
+  EXPECT_NEAR(door.pose.position.x, 4.05, 0.2);
+  EXPECT_NEAR(door.pose.position.y, 1.5, 0.2);
+  EXPECT_NEAR(door.scale.x, 1.0, 0.25);
+}
+
 }  // namespace
 }  // namespace multirobot_audio
 

@@ -117,13 +117,13 @@ void UseAcousticPropagation(PropagationOptions& options, const world_sim::Acoust
 }
 
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
-                      const world_sim::RoomAcoustics& room) {
+                      const world_sim::RoomAcoustics& room, double coupling_db) {
   LinkLevels l;
   const double d = std::max(length, d0);
   l.rt60 = room.rt60;
   l.direct_db = source_db - 20.0 * std::log10(d / d0) - corner_loss_db * std::max(corners, 0);
   l.reverberant_db = source_db - 20.0 * std::log10(world_sim::CriticalDistance(room) / d0) -
-                     kReverberantDecay * length / room.rt60;
+                     kReverberantDecay * length / room.rt60 + coupling_db;
   l.total_db = Db(Power(l.direct_db) + Power(l.reverberant_db));
   l.drr_db = l.direct_db - l.reverberant_db;
   return l;
@@ -173,12 +173,36 @@ AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Aco
     }
     source_robot_.push_back(static_cast<int>(it - robot_names_.begin()));
   }
+  if (acoustics_.rooms) {
+    try {
+      rooms_ = std::make_unique<const RoomCoupling>(propagation_.map(), acoustics_);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("acoustic model: acoustics.rooms: ") + e.what());
+    }
+  }
+}
+
+AcousticModel::Field AcousticModel::FieldBetween(const Eigen::Vector2d& from, const Eigen::Vector2d& at) const {
+  if (rooms_) {
+    const int source = rooms_->RoomAt(from), listener = rooms_->RoomAt(at);
+    if (source >= 0 && listener >= 0) {
+      // The source's room sets how loud its field is (the critical distance), the listener's how
+      // it falls and how it decays at the receiver.
+      world_sim::RoomAcoustics room;
+      room.rt60 = rooms_->Acoustics(static_cast<std::size_t>(listener)).rt60;
+      room.critical_distance = world_sim::CriticalDistance(rooms_->Acoustics(static_cast<std::size_t>(source)));
+      return {room, rooms_->rooms().RelativeLevelDb(static_cast<std::size_t>(source),
+                                                    static_cast<std::size_t>(listener))};
+    }
+  }
+  return {acoustics_.RoomAt(at.x(), at.y()), 0.0};
 }
 
 LinkLevels AcousticModel::Levels(const SoundPath& path, const Eigen::Vector2d& listener) const {
   const PropagationOptions& o = propagation_.options();
+  const Field field = FieldBetween(path.polyline.empty() ? listener : path.polyline.front(), listener);
   return LinkBudget(o.source_level_db, o.reference_distance, path.length, path.bends, acoustics_.corner_loss_db,
-                    acoustics_.RoomAt(listener.x(), listener.y()));
+                    field.room, field.coupling_db);
 }
 
 std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, double t,
@@ -219,8 +243,9 @@ std::optional<double> AcousticModel::SourceLevelDb(std::size_t k, const Eigen::V
   const SoundPath p = PathBetween(k, *from, at);
   if (!p.reachable) return std::nullopt;
   const PropagationOptions& o = propagation_.options();
-  return LinkBudget(s.level_db, o.reference_distance, p.length, p.bends, acoustics_.corner_loss_db,
-                    acoustics_.RoomAt(at.x(), at.y()))
+  const Field field = FieldBetween(*from, at);
+  return LinkBudget(s.level_db, o.reference_distance, p.length, p.bends, acoustics_.corner_loss_db, field.room,
+                    field.coupling_db)
       .total_db;
 }
 

@@ -25,6 +25,10 @@
 //   static: K of N pairs deliver under 10 % or over 90 % of their packets in steady noise
 //   static, the sources on their duty cycles: K of N pairs deliver under 10 % or over 90 %
 //   moving: N pairs, mean delivery X % against the model's Y %
+// With --rooms: the rooms the world's acoustics.rooms cuts its map into (floor area, centre,
+// volume, RT60, critical distance, absorption) and the openings between them (width, centre); with
+// --from X,Y also each room's reverberant field from a source there, in dB against the field the
+// source would make in its own room shut in (coupled_rooms.h).
 // With --predict: one JSON line for a packet from (X1, Y1) to (X2, Y2) at time --time (the world's
 // robots where the world puts them), no rendering: path_length, corners, direct_db,
 // reverberant_db, noise_db, drr_db, snr_db, rt60, kind, probability (null figures without a path).
@@ -39,6 +43,7 @@
 #include "acoustic_world.h"
 #include "bench_support/child_process.h"
 #include "audio_propagation_args.h"
+#include "audio_propagation/room_coupling.h"
 #include "tool_args/line_chart.h"
 
 namespace {
@@ -80,6 +85,42 @@ int Predict(const tools::ValidateArgs& args, const tools::AcousticWorld& world, 
               Json(p.signal.reverberant_db).c_str(), Json(p.noise_db).c_str(), Json(p.signal.drr_db).c_str(),
               Json(p.snr_db).c_str(), Json(p.signal.rt60).c_str(), InterferenceName(p.kind),
               Json(p.probability).c_str());
+  return 0;
+}
+
+int Rooms(const tools::ValidateArgs& args, const tools::AcousticWorld& world) {
+  if (!world.acoustics.rooms) {
+    args.usage.Fail("--rooms: " + args.world_file + " has no acoustics.rooms section (one reverberant field fills it)");
+  }
+  const RoomCoupling rooms(world.loaded.map, world.acoustics);
+  const grid::RoomSegmentation& cut = rooms.segmentation();
+  int source = -1;
+  if (args.rooms_from) {
+    source = rooms.RoomAt(*args.rooms_from);
+    if (source < 0) {
+      std::ostringstream s;
+      s << "--from: (" << args.rooms_from->x() << ", " << args.rooms_from->y() << ") is not in the map's free space";
+      args.usage.Fail(s.str());
+    }
+    std::printf("a source at (%.2f, %.2f), in room %d\n", args.rooms_from->x(), args.rooms_from->y(), source);
+  }
+  std::printf("%zu rooms, %zu openings\n", cut.rooms().size(), cut.openings().size());
+  std::printf("room   centre (m)        area m^2  volume m^3  rt60 s  r_c m  absorption m^2%s\n",
+              source >= 0 ? "  field dB" : "");
+  for (std::size_t k = 0; k < cut.rooms().size(); ++k) {
+    const grid::SegmentedRoom& r = cut.rooms()[k];
+    const world_sim::RoomAcoustics& a = rooms.Acoustics(k);
+    const double volume = rooms.rooms().rooms()[k].volume;
+    std::printf("%4zu  (%6.2f, %6.2f)  %9.1f  %10.1f  %6.2f  %5.2f  %14.1f", k, r.centroid.x(), r.centroid.y(), r.area,
+                volume, a.rt60, world_sim::CriticalDistance(a), rooms.rooms().Absorption(k));
+    if (source >= 0) std::printf("  %+8.1f", rooms.rooms().RelativeLevelDb(static_cast<std::size_t>(source), k));
+    std::printf("\n");
+  }
+  std::printf("opening  rooms     width m  centre (m)\n");
+  for (std::size_t k = 0; k < cut.openings().size(); ++k) {
+    const grid::SegmentedOpening& o = cut.openings()[k];
+    std::printf("%7zu  %3d-%-3d  %8.2f  (%6.2f, %6.2f)\n", k, o.a, o.b, o.width, o.center.x(), o.center.y());
+  }
   return 0;
 }
 
@@ -155,6 +196,13 @@ int Run(const tools::ValidateArgs& args) {
   const double cpu_start = bench_support::CpuNow();
   const auto wall_start = std::chrono::steady_clock::now();
   const tools::AcousticWorld world = tools::LoadAcousticWorld(program, world_file, args.map_file);
+  if (args.rooms) {
+    try {
+      return Rooms(args, world);
+    } catch (const std::exception& e) {
+      tools::Fail(program, world_file + ": " + e.what());
+    }
+  }
   const DecodeTable table = tools::LoadTable(program, options.profile, table_file);
   if (args.predict) {
     try {

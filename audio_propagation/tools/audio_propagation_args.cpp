@@ -154,8 +154,8 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
       "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
       "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
       "--predict X1,Y1 X2,Y2 | --world W [--map M] [--profile P] [--table FILE] [--seed 1] --static-pairs N "
-      "[--pair-packets 30] [--fate-distance 0.075]",
-      words);
+      "[--pair-packets 30] [--fate-distance 0.075] | --world W [--map M] --rooms [--from X,Y]",
+      words, {"--rooms"});
   ValidateArgs v;
   v.usage = args.tool_usage();
   v.world_file = args.Required("--world");
@@ -175,6 +175,15 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   v.fate.packets = static_cast<int>(args.Int("--pair-packets", 30, 1, 10000));
   v.fate.fate_distance = args.Double("--fate-distance", v.fate.fate_distance, 0.001, 100.0);
   v.fate.seed = options.seed;
+  v.rooms = args.Switch("--rooms");
+  const std::string from = args.String("--from", "");
+  if (!from.empty()) {
+    if (!v.rooms) args.Fail("--from: expected with --rooms");
+    v.rooms_from = ParsePoint(args, from);
+  }
+  if (v.rooms && (!predict.empty() || v.static_pairs > 0)) {
+    args.Fail("--rooms: expected without --predict and --static-pairs");
+  }
   if (predict.empty()) args.CheckAllUsed();
   options.profile = Profile(args, v.profile_name);
   v.fate.profile = options.profile;

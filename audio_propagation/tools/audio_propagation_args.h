@@ -67,6 +67,10 @@ struct ValidateArgs {
   // --fate-distance, --seed, --profile.
   int static_pairs = 0;
   FateCheckOptions fate;
+  // --rooms: the world's coupled rooms (acoustics.rooms) instead of the validation; with
+  // --from X,Y, the reverberant field in each room from a source there.
+  bool rooms = false;
+  std::optional<Eigen::Vector2d> rooms_from;
   double time = 0.0;
   multirobot_audio::tools::ToolUsage usage;  // to refuse points outside the world's free space
 };

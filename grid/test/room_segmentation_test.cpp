@@ -5,37 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include "floor_plan.h"
+
 namespace grid {
 namespace {
 
-constexpr double kResolution = 0.05;  // m a cell
-
-// A floor plan drawn in metres: everything starts free, walls are filled boxes.
-class Floor {
- public:
-  Floor(double width, double height)
-      : map_(static_cast<int>(width / kResolution + 0.5), static_cast<int>(height / kResolution + 0.5), kResolution) {
-    Wall(0, 0, width, 0.1);
-    Wall(0, height - 0.1, width, height);
-    Wall(0, 0, 0.1, height);
-    Wall(width - 0.1, 0, width, height);
-  }
-  Floor& Wall(double x0, double y0, double x1, double y1) { return Fill(x0, y0, x1, y1, Cell::kOccupied); }
-  Floor& Door(double x0, double y0, double x1, double y1) { return Fill(x0, y0, x1, y1, Cell::kFree); }
-  const OccupancyMap& map() const { return map_; }
-
- private:
-  Floor& Fill(double x0, double y0, double x1, double y1, Cell c) {
-    for (int j = 0; j < map_.height(); ++j) {
-      for (int i = 0; i < map_.width(); ++i) {
-        const Eigen::Vector2d p = map_.CellCenter(i, j);
-        if (p.x() >= x0 && p.x() <= x1 && p.y() >= y0 && p.y() <= y1) map_.set(i, j, c);
-      }
-    }
-    return *this;
-  }
-  OccupancyMap map_;
-};
+using test::Floor;
+constexpr double kResolution = 0.05;  // m a cell, the floors' default
 
 TEST(RoomSegmentationTest, OneRoomWithNoDoorsIsOneRoomWithNoOpenings) {
   const Floor floor(6.0, 4.0);
@@ -118,6 +94,32 @@ TEST(RoomSegmentationTest, ARoomSmallerThanTheSmallestJoinsItsNeighbour) {
   EXPECT_TRUE(joined.openings().empty());
 }
 
+TEST(RoomSegmentationTest, APillarInACorridorDividesNothingButAWallBetweenTwoDoorsDoes) {
+  // A 2.5 m corridor (y 0.1 .. 2.6) with a 0.6 x 0.1 m pillar leaving gaps of 0.8 and 1.1 m, both
+  // under two door half-widths from a wall; two rooms north of it (y 2.7 .. 6), each with a door,
+  // the wall between the doors 4 m of thin wall standing free of the map's edges only through
+  // the doors.
+  Floor floor(12.0, 6.0);
+  floor.Wall(5.95, 0.9, 6.05, 1.5);               // the pillar
+  floor.Wall(0, 2.6, 12.0, 2.7).Wall(5.95, 2.6, 6.05, 6.0);
+  floor.Door(1.0, 2.55, 2.0, 2.75).Door(10.0, 2.55, 11.0, 2.75);
+  floor.Door(5.9, 5.85, 6.1, 5.95);                // the dividing wall leaves the outer wall
+  const RoomSegmentation rooms(floor.map(), {});
+  EXPECT_EQ(rooms.rooms().size(), 3u);
+  const int corridor = rooms.RoomAt({6.0, 0.5});
+  EXPECT_EQ(rooms.RoomAt({3.0, 1.8}), corridor);
+  EXPECT_EQ(rooms.RoomAt({9.0, 0.5}), corridor);
+  EXPECT_EQ(rooms.RoomAt({6.0, 1.15}), -1);        // the pillar is still no floor
+  EXPECT_NE(rooms.RoomAt({3.0, 4.0}), corridor);
+  EXPECT_NE(rooms.RoomAt({9.0, 4.0}), corridor);
+  EXPECT_NE(rooms.RoomAt({3.0, 4.0}), rooms.RoomAt({9.0, 4.0}));
+  // With free-standing obstacles dividing too, the pillar cuts the corridor in two.
+  RoomSegmentationOptions pillars_divide;
+  pillars_divide.max_obstacle_size = 0.0;
+  const RoomSegmentation cut(floor.map(), pillars_divide);
+  EXPECT_NE(cut.RoomAt({3.0, 1.8}), cut.RoomAt({9.0, 0.5}));
+}
+
 TEST(RoomSegmentationTest, ImpossibleOptionsAndEmptyMapsAreRefusedByName) {
   const Floor floor(4.0, 4.0);
   const auto message = [&](const OccupancyMap& map, RoomSegmentationOptions o) {
@@ -134,6 +136,9 @@ TEST(RoomSegmentationTest, ImpossibleOptionsAndEmptyMapsAreRefusedByName) {
   o = {};
   o.min_room_area = -1.0;
   EXPECT_NE(message(floor.map(), o).find("min_room_area"), std::string::npos);
+  o = {};
+  o.max_obstacle_size = -1.0;
+  EXPECT_NE(message(floor.map(), o).find("max_obstacle_size"), std::string::npos);
   OccupancyMap walls(10, 10, kResolution);
   for (int j = 0; j < 10; ++j)
     for (int i = 0; i < 10; ++i) walls.set(i, j, Cell::kOccupied);

@@ -103,7 +103,7 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
   if (!root.Has("acoustics")) return std::nullopt;
   const YamlFields f = root.Child("acoustics");
   f.ExpectOnlyKeys({"rt60", "volume", "critical_distance", "ambient_db", "ambient_kind", "corner_loss_db",
-                    "regions", "noise_sources"});
+                    "regions", "noise_sources", "rooms"});
   Acoustics a;
   a.room = ParseRoom(f, a.room);
   a.ambient_db = Bounded(f, "ambient_db", a.ambient_db, -50.0, 150.0, false, "a level in [-50, 150] dB");
@@ -125,6 +125,22 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
     blank.rt60 = a.room.rt60;
     region.room = ParseRoom(r, blank);
     a.regions.push_back(region);
+  }
+  if (f.Has("rooms")) {
+    const YamlFields r = f.Child("rooms");
+    r.ExpectOnlyKeys({"ceiling_height", "door_height", "door_half_width", "min_room_area", "max_obstacle_size"});
+    CoupledRoomsSpec rooms;
+    rooms.ceiling_height =
+        Bounded(r, "ceiling_height", rooms.ceiling_height, 0.0, 100.0, true, "a height in (0, 100] m");
+    rooms.door_height = Bounded(r, "door_height", rooms.door_height, 0.0, rooms.ceiling_height, true,
+                                "a height in (0, ceiling_height] m");
+    rooms.door_half_width =
+        Bounded(r, "door_half_width", rooms.door_half_width, 0.0, 50.0, true, "a half-width in (0, 50] m");
+    rooms.min_room_area =
+        Bounded(r, "min_room_area", rooms.min_room_area, 0.0, kBig, false, "an area in m^2 (>= 0)");
+    rooms.max_obstacle_size =
+        Bounded(r, "max_obstacle_size", rooms.max_obstacle_size, 0.0, kBig, false, "a length in m (>= 0)");
+    a.rooms = rooms;
   }
   std::size_t k = 0;
   for (const YamlFields& n : f.Elements("noise_sources")) {
@@ -205,6 +221,11 @@ void ValidateWorld(const std::string& file, const WorldConfig& config, const gri
   }
   if (config.acoustics) {
     const Acoustics& a = *config.acoustics;
+    if (a.rooms && a.rooms->door_half_width < map.resolution()) {
+      throw grid::InputError(file, "acoustics.rooms.door_half_width",
+                             "expected at least one cell of the map (" + std::to_string(map.resolution()) +
+                                 " m), got " + std::to_string(a.rooms->door_half_width));
+    }
     for (std::size_t k = 0; k < a.noise_sources.size(); ++k) {
       const NoiseSourceSpec& s = a.noise_sources[k];
       const std::string field = "acoustics.noise_sources[" + std::to_string(k) + "]";
@@ -335,7 +356,15 @@ void EmitAcoustics(YAML::Emitter& out, const Acoustics& a) {
     EmitRoom(out, r.room);
     out << YAML::EndMap;
   }
-  out << YAML::EndSeq << YAML::Key << "noise_sources" << YAML::Value << YAML::BeginSeq;
+  out << YAML::EndSeq;
+  if (a.rooms) {
+    out << YAML::Key << "rooms" << YAML::Value << YAML::BeginMap << YAML::Key << "ceiling_height" << YAML::Value
+        << a.rooms->ceiling_height << YAML::Key << "door_height" << YAML::Value << a.rooms->door_height << YAML::Key
+        << "door_half_width" << YAML::Value << a.rooms->door_half_width << YAML::Key << "min_room_area"
+        << YAML::Value << a.rooms->min_room_area << YAML::Key << "max_obstacle_size" << YAML::Value
+        << a.rooms->max_obstacle_size << YAML::EndMap;
+  }
+  out << YAML::Key << "noise_sources" << YAML::Value << YAML::BeginSeq;
   for (const NoiseSourceSpec& s : a.noise_sources) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << s.name;
     if (s.robot.empty()) {

@@ -238,6 +238,31 @@ TEST_F(WorldFileTest, BadAcoustics) {
               "regions[0].box: expected min_x < max_x");
 }
 
+TEST_F(WorldFileTest, CoupledRoomsLoadSaveBackAndRefuseImpossibleSizes) {
+  const std::string world = "robots: [{name: a, pose: [1.0, 1.0, 0]}]\nacoustics:\n  rt60: 0.5\n  volume: 60\n";
+  EXPECT_FALSE(LoadWorldFile(Write(world)).config.acoustics->rooms.has_value());
+  const LoadedWorld w = LoadWorldFile(Write(world + "  rooms: {ceiling_height: 3.0, door_height: 2.0}\n"));
+  ASSERT_TRUE(w.config.acoustics->rooms.has_value());
+  EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->ceiling_height, 3.0);
+  EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->door_height, 2.0);
+  EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->door_half_width, 0.6);  // the defaults
+  EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->min_room_area, 1.0);
+  const std::string saved = (dir_ / "rooms.yaml").string();
+  SaveWorldFile(saved, w.config);
+  const LoadedWorld back = LoadWorldFile(saved);
+  ASSERT_TRUE(back.config.acoustics->rooms.has_value());
+  EXPECT_DOUBLE_EQ(back.config.acoustics->rooms->ceiling_height, 3.0);
+  EXPECT_DOUBLE_EQ(back.config.acoustics->rooms->door_height, 2.0);
+
+  ExpectError(world + "  rooms: {ceiling_height: 0}\n", "acoustics.rooms.ceiling_height: expected a height in (0, 100] m");
+  ExpectError(world + "  rooms: {ceiling_height: 2.5, door_height: 3}\n",
+              "acoustics.rooms.door_height: expected a height in (0, ceiling_height] m, got 3");
+  ExpectError(world + "  rooms: {door_half_width: 0.001}\n",
+              "acoustics.rooms.door_half_width: expected at least one cell of the map");
+  ExpectError(world + "  rooms: {min_room_area: -1}\n", "acoustics.rooms.min_room_area: expected an area in m^2 (>= 0)");
+  ExpectError(world + "  rooms: {windows: 3}\n", "acoustics.rooms.windows: unknown key");
+}
+
 TEST_F(WorldFileTest, MissingFile) {
   try {
     LoadWorldFile((dir_ / "absent.yaml").string());

@@ -30,6 +30,7 @@
 
 #include "audio_propagation/decode_table.h"
 #include "audio_propagation/propagation_model.h"
+#include "audio_propagation/room_coupling.h"
 #include "world_sim/acoustics.h"
 #include "world_sim/world_config.h"
 
@@ -48,9 +49,11 @@ struct LinkLevels {
   double rt60 = 0.0;      // s, of the listener's room
 };
 // Pure: a source of `source_db` at `d0` m heard over a path of `length` m round `corners`
-// corners, in `room`.
+// corners, in `room` (its critical distance sets the reverberant field, its RT60 the field's fall
+// along the path), the reverberant field moved by `coupling_db` (RoomCoupling: the field reaching
+// another room through its doorways; 0 in a building of one field).
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
-                      const world_sim::RoomAcoustics& room);
+                      const world_sim::RoomAcoustics& room, double coupling_db = 0.0);
 // Pure: the critical distance (m) of a room of `rt60` s in which a listener `distance` m from a
 // speaker (a straight path) hears the direct-to-reverberant ratio `drr_db`: LinkBudget inverted,
 // so that a surveyed room (nava_survey) gives back its DRR in the model.
@@ -132,8 +135,11 @@ class AcousticModel {
   std::optional<double> SourceLevelDb(std::size_t k, const Eigen::Vector2d& at,
                                       const std::vector<Eigen::Vector2d>& robots) const;
 
-  // The levels of a packet arriving along `path` at `listener`.
+  // The levels of a packet arriving along `path` (from its first point) at `listener`.
   LinkLevels Levels(const SoundPath& path, const Eigen::Vector2d& listener) const;
+
+  // The building's rooms when the world asks for coupled rooms (acoustics.rooms), else null.
+  const RoomCoupling* rooms() const { return rooms_.get(); }
 
   // Finds, in one search per noise source, the paths from every source to every listener at
   // `listeners` that are not kept yet, so that the NoiseAt calls for those listeners that follow
@@ -159,6 +165,7 @@ class AcousticModel {
  private:
   const PropagationModel& propagation_;
   world_sim::Acoustics acoustics_;
+  std::unique_ptr<const RoomCoupling> rooms_;
   DecodeTable table_;
   std::vector<std::string> robot_names_;
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
@@ -167,6 +174,14 @@ class AcousticModel {
   std::vector<std::shared_ptr<const nava_modem::RecordingWeight>> source_recording_;  // null but for recordings
   double ambient_heard_ = 1.0;           // the ambient noise's Disturbance::heard
   std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band
+  // The room whose field a listener at `at` hears from a source at `from` (the listener's RT60,
+  // the source room's critical distance) and how much of that field comes through the doorways
+  // between them (dB, 0 without rooms).
+  struct Field {
+    world_sim::RoomAcoustics room;
+    double coupling_db = 0.0;
+  };
+  Field FieldBetween(const Eigen::Vector2d& from, const Eigen::Vector2d& at) const;
   // The path from noise source `source` at `from` to `to`.
   SoundPath PathBetween(std::size_t source, const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
   std::optional<Eigen::Vector2d> SourcePosition(std::size_t k, const std::vector<Eigen::Vector2d>& robots) const;

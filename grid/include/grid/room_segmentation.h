@@ -20,6 +20,7 @@ namespace grid {
 struct RoomSegmentationOptions {
   double door_half_width = 0.6;  // m: openings up to twice this wide (a 1.2 m double door) divide rooms
   double min_room_area = 1.0;    // m^2: the smallest core kept as a room
+  double max_obstacle_size = 1.0;  // m: free-standing obstacles no longer than this (pillars, tables) divide no room
 };
 
 struct SegmentedRoom {

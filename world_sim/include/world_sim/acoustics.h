@@ -62,9 +62,26 @@ bool Sounding(const NoiseSourceSpec& source, double t);
 // The fraction of [t0, t1] during which it sounds (whether it sounds at t0 when t1 <= t0).
 double SoundingFraction(const NoiseSourceSpec& source, double t0, double t1);
 
+// A building of coupled rooms (the world file's `acoustics.rooms`): the map is cut into rooms at
+// its narrow places (grid/room_segmentation.h), each room keeps its own reverberant field, and the
+// fields are coupled through the openings between rooms (audio_propagation/coupled_rooms.h), so
+// that a room's reverberation reaches the next room weakened by the doorway. Without it one
+// reverberant field fills the whole map, as in the thesis.
+struct CoupledRoomsSpec {
+  double ceiling_height = 2.7;   // m: a room's volume is its floor area times this
+  double door_height = 2.1;      // m: an opening's area is its width times this
+  double door_half_width = 0.6;  // m: passages up to twice this wide divide rooms
+  double min_room_area = 1.0;    // m^2: smaller pieces join their neighbour
+  double max_obstacle_size = 1.0;  // m: free-standing obstacles no longer than this divide no room
+};
+
 struct Acoustics {
   RoomAcoustics room;                 // everywhere no region covers
   std::vector<AcousticRegion> regions;
+  // Coupled rooms, when the world asks for them. A room takes the RT60, volume and critical
+  // distance of the region covering most of its floor; a room no region covers takes `room`'s
+  // RT60 and its own volume (floor area x ceiling_height).
+  std::optional<CoupledRoomsSpec> rooms;
   double ambient_db = 30.0;           // the building's background noise at every listener
   NoiseKind ambient_kind = NoiseKind::kPink;
   double corner_loss_db = 6.0;        // lost by the direct sound at each corner it bends round

@@ -1,0 +1,103 @@
+#include "audio_propagation/room_coupling.h"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace audio_propagation {
+namespace {
+
+const world_sim::CoupledRoomsSpec& RequireRooms(const world_sim::Acoustics& acoustics) {
+  if (!acoustics.rooms) throw std::invalid_argument("room coupling: the acoustics have no rooms section");
+  return *acoustics.rooms;
+}
+
+grid::RoomSegmentationOptions SegmentationOptions(const world_sim::CoupledRoomsSpec& spec) {
+  grid::RoomSegmentationOptions o;
+  o.door_half_width = spec.door_half_width;
+  o.min_room_area = spec.min_room_area;
+  o.max_obstacle_size = spec.max_obstacle_size;
+  return o;
+}
+
+// Each room's acoustics: the region (or the world's room) whose box holds most of its cells'
+// centres. A region names its room's volume or critical distance itself; elsewhere the room's
+// volume is its own floor times the ceiling, so that a small office is as reverberant as its
+// size makes it rather than as the whole floor's volume would.
+std::vector<world_sim::RoomAcoustics> RoomsAcoustics(const grid::OccupancyMap& map,
+                                                     const grid::RoomSegmentation& segmentation,
+                                                     const world_sim::Acoustics& acoustics) {
+  const std::size_t n = segmentation.rooms().size();
+  // Votes per room: region index, or -1 for the world's room.
+  std::vector<std::map<int, int>> votes(n);
+  for (int j = 0; j < map.height(); ++j) {
+    for (int i = 0; i < map.width(); ++i) {
+      const int room = segmentation.RoomOfCell(i, j);
+      if (room < 0) continue;
+      const Eigen::Vector2d c = map.CellCenter(i, j);
+      int region = -1;
+      for (std::size_t r = 0; r < acoustics.regions.size(); ++r) {
+        if (acoustics.regions[r].Contains(c.x(), c.y())) {
+          region = static_cast<int>(r);
+          break;
+        }
+      }
+      ++votes[static_cast<std::size_t>(room)][region];
+    }
+  }
+  std::vector<world_sim::RoomAcoustics> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    int best = -1, most = -1;
+    for (const auto& [region, count] : votes[k]) {
+      if (count > most) best = region, most = count;
+    }
+    if (best >= 0) {
+      out[k] = acoustics.regions[static_cast<std::size_t>(best)].room;
+      continue;
+    }
+    out[k].rt60 = acoustics.room.rt60;
+    out[k].volume = segmentation.rooms()[k].area * acoustics.rooms->ceiling_height;
+    out[k].critical_distance = 0.0;
+  }
+  return out;
+}
+
+std::vector<CoupledRoomSpec> Specs(const std::vector<world_sim::RoomAcoustics>& acoustics) {
+  std::vector<CoupledRoomSpec> specs;
+  for (std::size_t k = 0; k < acoustics.size(); ++k) {
+    // The energy balance wants a room's absorption, from its volume and RT60 (Sabine); a room
+    // known by its critical distance instead gives it as r_c^2 = A / (16 pi).
+    const world_sim::RoomAcoustics& a = acoustics[k];
+    double volume = a.volume;
+    if (a.critical_distance > 0.0) {
+      const double absorption = 16.0 * M_PI * a.critical_distance * a.critical_distance;
+      volume = absorption * kSoundSpeed * a.rt60 / (24.0 * std::log(10.0));
+    }
+    specs.push_back({"room " + std::to_string(k), volume, a.rt60});
+  }
+  return specs;
+}
+
+std::vector<RoomOpening> Openings(const grid::RoomSegmentation& segmentation, double door_height) {
+  std::vector<RoomOpening> out;
+  for (const grid::SegmentedOpening& o : segmentation.openings()) {
+    out.push_back({static_cast<std::size_t>(o.a), static_cast<std::size_t>(o.b), o.width * door_height});
+  }
+  return out;
+}
+
+}  // namespace
+
+RoomCoupling::RoomCoupling(const grid::OccupancyMap& map, const world_sim::Acoustics& acoustics)
+    : segmentation_(map, SegmentationOptions(RequireRooms(acoustics))),
+      acoustics_(RoomsAcoustics(map, segmentation_, acoustics)),
+      rooms_(Specs(acoustics_), Openings(segmentation_, acoustics.rooms->door_height)) {}
+
+double RoomCoupling::RelativeLevelDb(const Eigen::Vector2d& source, const Eigen::Vector2d& listener) const {
+  const int s = segmentation_.RoomAt(source), l = segmentation_.RoomAt(listener);
+  if (s < 0 || l < 0) return 0.0;
+  return rooms_.RelativeLevelDb(static_cast<std::size_t>(s), static_cast<std::size_t>(l));
+}
+
+}  // namespace audio_propagation
