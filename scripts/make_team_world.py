@@ -124,6 +124,9 @@ def main():
         "  ambient_db: 35         # ventilation and distant traffic",
         "  ambient_kind: pink",
         "  corner_loss_db: 6      # per corner the direct sound bends round",
+        "  rooms:                 # each room its own reverberant field, coupled through the doors",
+        "    ceiling_height: 2.7",
+        "    door_height: 2.1",
         "",
     ]
     with open(output, "w") as f:

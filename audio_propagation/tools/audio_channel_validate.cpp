@@ -28,7 +28,9 @@
 // With --rooms: the rooms the world's acoustics.rooms cuts its map into (floor area, centre,
 // volume, RT60, critical distance, absorption) and the openings between them (width, centre); with
 // --from X,Y also each room's reverberant field from a source there, in dB against the field the
-// source would make in its own room shut in (coupled_rooms.h).
+// source would make in its own room shut in (coupled_rooms.h); with --plot FILE.png also the level
+// a microphone hears from that source across the map (direct and reverberant, 0.25 m squares),
+// with one reverberant field and with the rooms, side by side.
 // With --predict: one JSON line for a packet from (X1, Y1) to (X2, Y2) at time --time (the world's
 // robots where the world puts them), no rendering: path_length, corners, direct_db,
 // reverberant_db, noise_db, drr_db, snr_db, rt60, kind, probability (null figures without a path).
@@ -44,6 +46,7 @@
 #include "bench_support/child_process.h"
 #include "audio_propagation_args.h"
 #include "audio_propagation/room_coupling.h"
+#include "tool_args/heat_map.h"
 #include "tool_args/line_chart.h"
 
 namespace {
@@ -88,6 +91,36 @@ int Predict(const tools::ValidateArgs& args, const tools::AcousticWorld& world, 
   return 0;
 }
 
+// The level a microphone hears across the map from a source at `from` (AcousticModel::Levels,
+// total), on squares of at least 0.25 m; NaN off the free space or where no path reaches.
+multirobot_audio::tools::HeatPanel LevelPanel(const tools::AcousticWorld& world, const world_sim::Acoustics& acoustics,
+                                              const DecodeTable& table, const Eigen::Vector2d& from,
+                                              const std::string& title) {
+  const AcousticModel model(*world.propagation, acoustics, table, world.robots);
+  const grid::OccupancyMap& map = world.loaded.map;
+  const int stride = std::max(1, static_cast<int>(std::ceil(0.25 / map.resolution() - 1e-9)));
+  multirobot_audio::tools::HeatPanel panel;
+  panel.title = title;
+  panel.width = map.width() / stride;
+  panel.height = map.height() / stride;
+  panel.values.assign(static_cast<std::size_t>(panel.width) * panel.height, std::nan(""));
+  std::vector<Eigen::Vector2d> listeners;
+  std::vector<std::size_t> index;
+  for (int j = 0; j < panel.height; ++j) {
+    for (int i = 0; i < panel.width; ++i) {
+      const Eigen::Vector2d centre = map.CellCoordsToWorld(Eigen::Vector2d((i + 0.5) * stride, (j + 0.5) * stride));
+      if (!map.IsFreeAt(centre)) continue;
+      listeners.push_back(centre);
+      index.push_back(static_cast<std::size_t>(j) * panel.width + i);
+    }
+  }
+  const std::vector<SoundPath> paths = world.propagation->From(from, listeners);
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    if (paths[k].reachable) panel.values[index[k]] = model.Levels(paths[k], listeners[k]).total_db;
+  }
+  return panel;
+}
+
 int Rooms(const tools::ValidateArgs& args, const tools::AcousticWorld& world) {
   if (!world.acoustics.rooms) {
     args.usage.Fail("--rooms: " + args.world_file + " has no acoustics.rooms section (one reverberant field fills it)");
@@ -120,6 +153,22 @@ int Rooms(const tools::ValidateArgs& args, const tools::AcousticWorld& world) {
   for (std::size_t k = 0; k < cut.openings().size(); ++k) {
     const grid::SegmentedOpening& o = cut.openings()[k];
     std::printf("%7zu  %3d-%-3d  %8.2f  (%6.2f, %6.2f)\n", k, o.a, o.b, o.width, o.center.x(), o.center.y());
+  }
+  if (!args.rooms_plot.empty()) {
+    // The model needs a table to be built; the levels do not depend on it.
+    const DecodeTable table = tools::LoadTable("audio_channel_validate", args.validation.profile, args.table_file);
+    world_sim::Acoustics single = world.acoustics;
+    single.rooms.reset();
+    multirobot_audio::tools::HeatMaps maps;
+    maps.unit = "dB";
+    maps.low = 20.0;
+    maps.high = 75.0;
+    maps.pixels_per_cell = 6;
+    maps.panels = {LevelPanel(world, single, table, *args.rooms_from, "one reverberant field"),
+                   LevelPanel(world, world.acoustics, table, *args.rooms_from, "coupled rooms")};
+    multirobot_audio::tools::WriteHeatMaps(args.rooms_plot, maps);
+    std::printf("plot: %s (the level heard from (%.2f, %.2f), dB)\n", args.rooms_plot.c_str(), args.rooms_from->x(),
+                args.rooms_from->y());
   }
   return 0;
 }

@@ -154,7 +154,7 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
       "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
       "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
       "--predict X1,Y1 X2,Y2 | --world W [--map M] [--profile P] [--table FILE] [--seed 1] --static-pairs N "
-      "[--pair-packets 30] [--fate-distance 0.075] | --world W [--map M] --rooms [--from X,Y]",
+      "[--pair-packets 30] [--fate-distance 0.075] | --world W [--map M] --rooms [--from X,Y [--plot FILE.png]]",
       words, {"--rooms"});
   ValidateArgs v;
   v.usage = args.tool_usage();
@@ -181,6 +181,8 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
     if (!v.rooms) args.Fail("--from: expected with --rooms");
     v.rooms_from = ParsePoint(args, from);
   }
+  v.rooms_plot = args.String("--plot", "");
+  if (!v.rooms_plot.empty() && !v.rooms_from) args.Fail("--plot: expected with --rooms --from X,Y");
   if (v.rooms && (!predict.empty() || v.static_pairs > 0)) {
     args.Fail("--rooms: expected without --predict and --static-pairs");
   }

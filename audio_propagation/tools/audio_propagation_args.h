@@ -71,6 +71,7 @@ struct ValidateArgs {
   // --from X,Y, the reverberant field in each room from a source there.
   bool rooms = false;
   std::optional<Eigen::Vector2d> rooms_from;
+  std::string rooms_plot;  // --plot FILE.png (with --from): the level across the map, one field and rooms
   double time = 0.0;
   multirobot_audio::tools::ToolUsage usage;  // to refuse points outside the world's free space
 };
