@@ -35,18 +35,54 @@ near "$(field drr_db "$line")" "$(field drr_db "$truth")" 2.0 ||
 echo "$line" | grep -q '"noise_kind": "white"' || fail "white noise not told as white"
 [ -s "$out/estimate.wav" ] || fail "--response-out wrote nothing"
 
-# The section in a world: two robots 1.5 m apart (the surveyed distance) in the test room.
+# predict_in SECTION X,Y: the model's prediction from (1, 1) to X,Y in a world of the test room
+# with the surveyed SECTION and two robots 1.5 m apart (the surveyed distance).
+predict_in() {
+  { printf 'map: %s/test_room.yaml\nrobots:\n' "$maps"
+    printf '  - {name: robot_0, pose: [1.0, 1.0, 0.0]}\n  - {name: robot_1, pose: [2.5, 1.0, 0.0]}\n'
+    cat "$1"; } >"$out/world.yaml"
+  "$validate" --world "$out/world.yaml" --profile room --predict 1,1 "$2" ||
+    { cat "$out/world.yaml" >&2; fail "the surveyed section $1 does not load in a world"; }
+}
+
 grep -q "^acoustics:" "$out/section.yaml" || fail "--world-out wrote no acoustics section"
-{ printf 'map: %s/test_room.yaml\nrobots:\n' "$maps"
-  printf '  - {name: robot_0, pose: [1.0, 1.0, 0.0]}\n  - {name: robot_1, pose: [2.5, 1.0, 0.0]}\n'
-  cat "$out/section.yaml"; } >"$out/world.yaml"
-model=$("$validate" --world "$out/world.yaml" --profile room --predict 1,1 2.5,1) ||
-  { cat "$out/world.yaml"; fail "the surveyed section does not load in a world"; }
+model=$(predict_in "$out/section.yaml" 2.5,1) || exit 1
 echo "$model"
 near "$(field drr_db "$model")" "$(field drr_db "$line")" 0.05 || fail "the world's DRR at 1.5 m: $(field drr_db "$model")"
 near "$(field rt60 "$model")" "$(field rt60_s "$line")" 0.001 || fail "the world's RT60: $(field rt60 "$model")"
 # nava_room's SNR is over the recording's whole band, as the model's is.
 near "$(field snr_db "$model")" 10 2.0 || fail "the world gives SNR $(field snr_db "$model") dB where the recording had 10"
+
+# A building surveyed room by room: the room above and a longer one, each its own region.
+wav "$out/hall.wav" room 1.2 -6
+"$room" --in "$out/clean.wav" --out "$out/hall_recording.wav" --rir "$out/hall.wav" --noise white --snr 10 --seed 4 \
+  >/dev/null 2>&1 || fail "nava_room (hall)"
+hall_truth=$("$predict" --profile room --rir "$out/hall.wav" --noise white --snr-db 10) || fail "audio_channel_predict (hall)"
+cat >"$out/building.yaml" <<EOT
+rooms:
+  - {name: office, box: [0, 0, 2, 4], distance: 1.5, recordings: [recording.wav]}
+  - {name: hall, box: [2, 0, 6, 4], distance: 1.5, recordings: [hall_recording.wav]}
+EOT
+lines=$("$tool" --building "$out/building.yaml" --world-out "$out/building_section.yaml") || fail "the building survey"
+echo "$lines"
+[ "$(echo "$lines" | grep -c '"room": "office"')" = 1 ] && [ "$(echo "$lines" | grep -c '"room": "hall"')" = 1 ] ||
+  fail "a line per recording, each naming its room"
+hall_line=$(echo "$lines" | grep '"room": "hall"')
+hall_rt60=$(field rt60_s "$hall_truth")
+near "$(field rt60_s "$hall_line")" "$hall_rt60" "$(awk -v r="$hall_rt60" 'BEGIN { print 0.1 * r }')" ||
+  fail "the hall's RT60 surveyed at $(field rt60_s "$hall_line") s, its response gives $hall_rt60"
+cat "$out/building_section.yaml"
+grep -q "^    - {name: hall, box: \[2, 0, 6, 4\], rt60: " "$out/building_section.yaml" || fail "no region for the hall"
+grep -q "^  rooms:" "$out/building_section.yaml" || fail "no rooms section"
+model=$(predict_in "$out/building_section.yaml" 3.5,1) || exit 1
+echo "$model"
+near "$(field rt60 "$model")" "$(field rt60_s "$hall_line")" 0.001 || fail "the world's RT60 in the hall: $(field rt60 "$model")"
+printf 'rooms:\n  - {name: a, box: [0, 0, 1, 1], distance: 2, recordings: [gone.wav]}\n' >"$out/bad_building.yaml"
+expect_error "rooms.0.\.recordings: no such file: $out/gone.wav" --building "$out/bad_building.yaml" --world-out "$out/x.yaml"
+printf 'rooms:\n  - {name: a, box: [1, 0, 0, 1], distance: 2, recordings: [recording.wav]}\n' >"$out/bad_building.yaml"
+expect_error "rooms.0.\.box: expected min_x < max_x" --building "$out/bad_building.yaml" --world-out "$out/x.yaml"
+expect_error "--building needs --world-out" --building "$out/building.yaml"
+expect_error "--building names the recordings room by room" --building "$out/building.yaml" --world-out "$out/x.yaml" "$out/recording.wav"
 
 if [ -n "$bench" ] && [ -n "$realrooms" ] && [ -f "$realrooms/rir_clap.wav" ]; then
   mkdir -p "$out/rooms" && ln -s "$realrooms/rir_clap.wav" "$out/rooms/"

@@ -114,6 +114,7 @@ SurveyArgs ParseSurveyArgs(const std::vector<std::string>& words) {
   const ToolArgs args("nava_survey",
                       "nava_survey [--profile room] [--channel K] [--distance M [--source-level-db 70] "
                       "[--world-out FILE.yaml]] [--response-out FILE.wav] RECORDING.wav... | "
+                      "nava_survey [--channel K] --building SURVEY.yaml --world-out FILE.yaml | "
                       "nava_survey --write-train FILE.wav [--packets 10] [--gap 0.5] [--rate 48000] [--seed 1]",
                       words);
   SurveyArgs s;
@@ -137,6 +138,17 @@ SurveyArgs ParseSurveyArgs(const std::vector<std::string>& words) {
   s.world_out = args.String("--world-out", "");
   s.response_out = args.String("--response-out", "");
   s.files = args.positional();
+  s.building = args.String("--building", "");
+  if (!s.building.empty()) {
+    if (!s.files.empty()) args.Fail("--building names the recordings room by room; it takes none besides");
+    if (s.distance || !args.String("--source-level-db", "").empty()) {
+      args.Fail("--building: the survey file gives each room's distance and the source level");
+    }
+    if (s.world_out.empty()) args.Fail("--building needs --world-out: the world's acoustics, a region a room");
+    if (!s.response_out.empty()) args.Fail("--response-out takes one recording");
+    args.CheckAllUsed();
+    return s;
+  }
   if (s.files.empty()) args.Fail("expected at least one recording");
   if (!s.world_out.empty() && !s.distance) {
     args.Fail("--world-out needs --distance: the robots' distance turns the DRR into a critical distance and the "

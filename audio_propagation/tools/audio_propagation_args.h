@@ -96,6 +96,9 @@ struct SurveyArgs {
   double source_level_db = 70.0;   // the sender's level at 1 m, in the worlds' dB scale
   std::string world_out;           // --world-out: the acoustics section, "" for none
   std::string response_out;        // --response-out: the estimated response (one recording)
+  // --building FILE.yaml: a survey room by room (survey_building.h) instead of `files`; needs
+  // --world-out, which then gets a region per room.
+  std::string building;
   // --write-train FILE.wav: write what the sending robot plays (no recordings then).
   std::string train_out;
   int train_packets = 10;

@@ -4,7 +4,14 @@
 //
 //   nava_survey [--profile room] [--channel K] [--distance M [--source-level-db 70]
 //               [--world-out FILE.yaml]] [--response-out FILE.wav] RECORDING.wav...
+//   nava_survey [--channel K] --building SURVEY.yaml --world-out FILE.yaml
 //   nava_survey --write-train FILE.wav [--packets 10] [--gap 0.5] [--rate 48000] [--seed 1]
+//
+// --building surveys a building room by room (survey_building.h: each room's box on the map,
+// the robots' distance and its recordings): a JSON line per recording with its "room", and
+// --world-out writes an acoustics section with the building's mean figures, a region per room
+// (its RT60 and critical distance; its ambient level in a comment) and a rooms section, so that
+// the acoustic model couples the rooms (audio_link.md, coupled rooms).
 //
 // --write-train writes what the sending robot plays: room packets of random data with silences
 // drawn from 0.5 to 1.5 times --gap between them (a train at a fixed period would let the
@@ -32,6 +39,7 @@
 #include "audio_propagation_args.h"
 #include "nava_modem/response_survey.h"
 #include "nava_modem/wav_file.h"
+#include "survey_building.h"
 #include "tool_args/json_text.h"
 
 namespace {
@@ -64,7 +72,8 @@ struct Survey {
   bool pink = false;
 };
 
-Survey SurveyOne(const audio_propagation::tools::SurveyArgs& a, const std::string& file) {
+// `room`: the building survey's room the recording was made in ("" outside one).
+Survey SurveyOne(const audio_propagation::tools::SurveyArgs& a, const std::string& file, const std::string& room = "") {
   using audio_propagation::tools::Fail;
   nava_modem::Audio audio;
   try {
@@ -111,6 +120,7 @@ Survey SurveyOne(const audio_propagation::tools::SurveyArgs& a, const std::strin
     placed = ", \"distance_m\": " + JsonNumber(*a.distance, 2) + ", \"critical_distance_m\": " +
              JsonNumber(s.critical_distance, 2) + ", \"ambient_db\": " + JsonNumber(s.ambient, 1);
   }
+  if (!room.empty()) placed += ", \"room\": " + JsonString(room);
   std::printf("{\"file\": %s, \"packets\": %zu, \"undecoded\": %zu, \"rt60_s\": %s, \"drr_db\": %s, \"noise_db\": %s, "
               "\"noise_bands_db\": [%s], \"noise_slope_db_per_octave\": %s, \"noise_kind\": \"%s\", "
               "\"signal_db\": %s, \"snr_db\": %s%s}\n",
@@ -121,26 +131,41 @@ Survey SurveyOne(const audio_propagation::tools::SurveyArgs& a, const std::strin
   return s;
 }
 
-void WriteWorldSection(const std::string& path, const std::vector<Survey>& surveys,
-                       const std::vector<std::string>& files) {
+// The mean of surveys: RT60 and critical distance as numbers, the ambient as power, the noise's
+// kind by the majority.
+Survey Mean(const std::vector<Survey>& surveys) {
   Survey mean;
   int pink = 0;
+  double power = 0.0;
   for (const Survey& s : surveys) {
     mean.rt60 += s.rt60 / surveys.size();
     mean.critical_distance += s.critical_distance / surveys.size();
-    mean.ambient += s.ambient / surveys.size();
+    power += std::pow(10.0, s.ambient / 10.0) / surveys.size();
     pink += s.pink ? 1 : 0;
   }
-  // What a world file takes (world_file.cpp): a survey outside it has no section to give.
+  mean.ambient = 10.0 * std::log10(power);
+  mean.pink = 2 * pink > static_cast<int>(surveys.size());
+  return mean;
+}
+
+// What a world file takes (world_file.cpp): a survey outside it has no section to give. `what`
+// names the figures ("the surveyed", "room 'kitchen': the surveyed").
+void RequireWorldFigures(const std::string& path, const std::string& what, const Survey& s) {
   const auto refuse = [&](const std::string& field, double value, const std::string& expected) {
-    audio_propagation::tools::Fail(kProgram, "--world-out " + path + ": the surveyed " + field + " " +
+    audio_propagation::tools::Fail(kProgram, "--world-out " + path + ": " + what + " " + field + " " +
                                                  JsonNumber(value, 3) + " is not " + expected);
   };
-  if (!(mean.rt60 > 0.0 && mean.rt60 <= 10.0)) refuse("rt60", mean.rt60, "a reverberation time in (0, 10] s");
-  if (!(mean.critical_distance > 0.0 && mean.critical_distance <= 1000.0)) {
-    refuse("critical_distance", mean.critical_distance, "a distance in (0, 1000] m (a DRR that high leaves no room)");
+  if (!(s.rt60 > 0.0 && s.rt60 <= 10.0)) refuse("rt60", s.rt60, "a reverberation time in (0, 10] s");
+  if (!(s.critical_distance > 0.0 && s.critical_distance <= 1000.0)) {
+    refuse("critical_distance", s.critical_distance, "a distance in (0, 1000] m (a DRR that high leaves no room)");
   }
-  if (!(mean.ambient >= -50.0 && mean.ambient <= 150.0)) refuse("ambient_db", mean.ambient, "a level in [-50, 150] dB");
+  if (!(s.ambient >= -50.0 && s.ambient <= 150.0)) refuse("ambient_db", s.ambient, "a level in [-50, 150] dB");
+}
+
+void WriteWorldSection(const std::string& path, const std::vector<Survey>& surveys,
+                       const std::vector<std::string>& files) {
+  const Survey mean = Mean(surveys);
+  RequireWorldFigures(path, "the surveyed", mean);
   std::ofstream out(path);
   if (!out) audio_propagation::tools::Fail(kProgram, path + ": cannot write (--world-out)");
   out << "# The acoustics section of a world file, surveyed by nava_survey from";
@@ -149,9 +174,60 @@ void WriteWorldSection(const std::string& path, const std::vector<Survey>& surve
   char text[400];
   std::snprintf(text, sizeof text,
                 "acoustics:\n  rt60: %.3f\n  critical_distance: %.2f\n  ambient_db: %.1f\n  ambient_kind: %s\n",
-                mean.rt60, mean.critical_distance, mean.ambient, 2 * pink > static_cast<int>(surveys.size()) ? "pink" : "white");
+                mean.rt60, mean.critical_distance, mean.ambient, mean.pink ? "pink" : "white");
   out << text;
   if (!out) audio_propagation::tools::Fail(kProgram, path + ": write failed (--world-out)");
+}
+
+// The building's section: its mean figures over the rooms, a region a room, coupled rooms.
+void WriteBuildingSection(const std::string& path, const audio_propagation::tools::BuildingSurvey& building,
+                          const std::vector<Survey>& rooms) {
+  for (std::size_t k = 0; k < rooms.size(); ++k) {
+    RequireWorldFigures(path, "room '" + building.rooms[k].name + "': the surveyed", rooms[k]);
+  }
+  const Survey mean = Mean(rooms);
+  std::ofstream out(path);
+  if (!out) audio_propagation::tools::Fail(kProgram, path + ": cannot write (--world-out)");
+  out << "# The acoustics section of a world file, surveyed by nava_survey room by room. Paste it into\n"
+         "# a world file, set the rooms' ceiling and door heights, add noise sources by hand.\n";
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "acoustics:\n  rt60: %.3f              # s, the rooms' mean\n  critical_distance: %.2f  # m, the "
+                "rooms' mean\n  ambient_db: %.1f         # the rooms' mean power\n  ambient_kind: %s\n  regions:\n",
+                mean.rt60, mean.critical_distance, mean.ambient, mean.pink ? "pink" : "white");
+  out << text;
+  for (std::size_t k = 0; k < rooms.size(); ++k) {
+    const audio_propagation::tools::SurveyedRoom& r = building.rooms[k];
+    std::snprintf(text, sizeof text,
+                  "    - {name: %s, box: [%g, %g, %g, %g], rt60: %.3f, critical_distance: %.2f}  # ambient %.1f dB, "
+                  "recordings: %zu\n",
+                  r.name.c_str(), r.box[0], r.box[1], r.box[2], r.box[3], rooms[k].rt60, rooms[k].critical_distance,
+                  rooms[k].ambient, r.recordings.size());
+    out << text;
+  }
+  out << "  rooms:                   # each room its own reverberant field, coupled through the doors\n"
+         "    ceiling_height: 2.7\n    door_height: 2.1\n";
+  if (!out) audio_propagation::tools::Fail(kProgram, path + ": write failed (--world-out)");
+}
+
+int SurveyBuilding(const audio_propagation::tools::SurveyArgs& a) {
+  audio_propagation::tools::BuildingSurvey building;
+  try {
+    building = audio_propagation::tools::ReadBuildingSurvey(a.building);
+  } catch (const std::exception& e) {
+    audio_propagation::tools::Fail(kProgram, e.what());
+  }
+  std::vector<Survey> rooms;
+  for (const audio_propagation::tools::SurveyedRoom& room : building.rooms) {
+    audio_propagation::tools::SurveyArgs one = a;
+    one.distance = room.distance;
+    one.source_level_db = building.source_level_db;
+    std::vector<Survey> heard;
+    for (const std::string& file : room.recordings) heard.push_back(SurveyOne(one, file, room.name));
+    rooms.push_back(Mean(heard));
+  }
+  WriteBuildingSection(a.world_out, building, rooms);
+  return 0;
 }
 
 // What the sending robot plays: room packets of random data, silences drawn around --gap.
@@ -181,6 +257,7 @@ int main(int argc, char** argv) {
       WriteTrain(a);
       return 0;
     }
+    if (!a.building.empty()) return SurveyBuilding(a);
     std::vector<Survey> surveys;
     for (const std::string& file : a.files) surveys.push_back(SurveyOne(a, file));
     if (!a.world_out.empty()) WriteWorldSection(a.world_out, surveys, a.files);
