@@ -1,5 +1,6 @@
 #include "world_sim/world_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -179,6 +180,30 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
   return a;
 }
 
+// Whether a region's box holds the centre of a free cell of `map`.
+bool CoversFreeSpace(const AcousticRegion& region, const grid::OccupancyMap& map) {
+  // The box's corners in cells, clamped to the map before any conversion to int (a box far off
+  // the map, or NaN, must not overflow the index); a rotated map's box is searched whole.
+  int lo[2] = {map.width(), map.height()}, hi[2] = {-1, -1};
+  for (const double x : {region.min_x, region.max_x}) {
+    for (const double y : {region.min_y, region.max_y}) {
+      const Eigen::Vector2d c = map.WorldToCellCoords({x, y});
+      for (int d = 0; d < 2; ++d) {
+        const double limit = d == 0 ? map.width() - 1 : map.height() - 1;
+        const int v = std::isfinite(c[d]) ? static_cast<int>(std::clamp(std::floor(c[d]), 0.0, limit)) : 0;
+        lo[d] = std::min(lo[d], v), hi[d] = std::max(hi[d], v);
+      }
+    }
+  }
+  for (int j = lo[1]; j <= hi[1]; ++j) {
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      const Eigen::Vector2d c = map.CellCenter(i, j);
+      if (!map.Blocks(i, j) && region.Contains(c.x(), c.y())) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 void ValidateWorld(const std::string& file, const WorldConfig& config, const grid::OccupancyMap& map) {
@@ -221,6 +246,12 @@ void ValidateWorld(const std::string& file, const WorldConfig& config, const gri
   }
   if (config.acoustics) {
     const Acoustics& a = *config.acoustics;
+    for (std::size_t k = 0; k < a.regions.size(); ++k) {
+      if (!CoversFreeSpace(a.regions[k], map)) {
+        throw grid::InputError(file, "acoustics.regions[" + std::to_string(k) + "].box",
+                               "region '" + a.regions[k].name + "' covers none of the map's free space");
+      }
+    }
     if (a.rooms && a.rooms->door_half_width < map.resolution()) {
       throw grid::InputError(file, "acoustics.rooms.door_half_width",
                              "expected at least one cell of the map (" + std::to_string(map.resolution()) +

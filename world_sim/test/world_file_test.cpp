@@ -236,6 +236,8 @@ TEST_F(WorldFileTest, BadAcoustics) {
   ExpectError(robot + "acoustics: {volume: 50, noise_sources: [{position: [1, 3], duty: 0}]}\n", "duty: expected a duty cycle in (0, 1]");
   ExpectError(robot + "acoustics: {volume: 50, regions: [{name: r, box: [3, 0, 1, 4], volume: 5}]}\n",
               "regions[0].box: expected min_x < max_x");
+  ExpectError(robot + "acoustics: {volume: 50, regions: [{name: far, box: [100, 100, 120, 110], volume: 5}]}\n",
+              "acoustics.regions[0].box: region 'far' covers none of the map's free space");
 }
 
 TEST_F(WorldFileTest, CoupledRoomsLoadSaveBackAndRefuseImpossibleSizes) {
