@@ -76,7 +76,10 @@ CoupledRooms::CoupledRooms(std::vector<CoupledRoomSpec> rooms, std::vector<RoomO
 double CoupledRooms::RelativeLevelDb(std::size_t source, std::size_t listener) const {
   if (openings_.empty() && source == listener) return 0.0;  // exactly the single diffuse room
   const auto s = static_cast<Eigen::Index>(source), l = static_cast<Eigen::Index>(listener);
-  return 10.0 * std::log10(absorption_[source] * inverse_(l, s));
+  // Rooms no chain of openings joins share no energy: the entry is 0 (or a rounding error's
+  // worth), which is held at kNoCouplingDb rather than -inf, whose arithmetic downstream (a DRR
+  // of +inf against a table) would be NaN.
+  return std::max(kNoCouplingDb, 10.0 * std::log10(std::max(absorption_[source] * inverse_(l, s), 0.0)));
 }
 
 double CoupledRooms::DecayDb(std::size_t source, std::size_t listener, double t) const {

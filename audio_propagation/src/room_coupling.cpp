@@ -22,15 +22,18 @@ grid::RoomSegmentationOptions SegmentationOptions(const world_sim::CoupledRoomsS
 }
 
 // Each room's acoustics: the region (or the world's room) whose box holds most of its cells'
-// centres. A region names its room's volume or critical distance itself; elsewhere the room's
-// volume is its own floor times the ceiling, so that a small office is as reverberant as its
-// size makes it rather than as the whole floor's volume would.
-std::vector<world_sim::RoomAcoustics> RoomsAcoustics(const grid::OccupancyMap& map,
-                                                     const grid::RoomSegmentation& segmentation,
-                                                     const world_sim::Acoustics& acoustics) {
+// centres. A region names its rooms' RT60, and their volume or critical distance for the whole
+// region: a room gets its share, by its cells among the region's free ones (the absorption
+// area, and so r_c^2 and the volume, shares out with the floor). Elsewhere a room's volume is
+// its own floor times the ceiling, so that a small office is as reverberant as its size makes it
+// rather than as the whole floor's volume would. A region that is the largest share of no room
+// names nothing, which is refused: it would be silently overruled.
+RoomCoupling::Rooms RoomsAcoustics(const grid::OccupancyMap& map, const grid::RoomSegmentation& segmentation,
+                                   const world_sim::Acoustics& acoustics) {
   const std::size_t n = segmentation.rooms().size();
-  // Votes per room: region index, or -1 for the world's room.
+  // Cells per room and region (region index, or -1 for the world's room), and per region.
   std::vector<std::map<int, int>> votes(n);
+  std::vector<int> region_cells(acoustics.regions.size(), 0);
   for (int j = 0; j < map.height(); ++j) {
     for (int i = 0; i < map.width(); ++i) {
       const int room = segmentation.RoomOfCell(i, j);
@@ -40,25 +43,43 @@ std::vector<world_sim::RoomAcoustics> RoomsAcoustics(const grid::OccupancyMap& m
       for (std::size_t r = 0; r < acoustics.regions.size(); ++r) {
         if (acoustics.regions[r].Contains(c.x(), c.y())) {
           region = static_cast<int>(r);
+          ++region_cells[r];
           break;
         }
       }
       ++votes[static_cast<std::size_t>(room)][region];
     }
   }
-  std::vector<world_sim::RoomAcoustics> out(n);
+  RoomCoupling::Rooms out;
+  out.acoustics.resize(n);
+  out.region.assign(n, -1);
+  std::vector<char> named(acoustics.regions.size(), 0);
   for (std::size_t k = 0; k < n; ++k) {
     int best = -1, most = -1;
     for (const auto& [region, count] : votes[k]) {
       if (count > most) best = region, most = count;
     }
+    out.region[k] = best;
     if (best >= 0) {
-      out[k] = acoustics.regions[static_cast<std::size_t>(best)].room;
+      const auto r = static_cast<std::size_t>(best);
+      named[r] = 1;
+      const double share = static_cast<double>(most) / region_cells[r];
+      out.acoustics[k] = acoustics.regions[r].room;
+      out.acoustics[k].volume *= share;
+      out.acoustics[k].critical_distance *= std::sqrt(share);
       continue;
     }
-    out[k].rt60 = acoustics.room.rt60;
-    out[k].volume = segmentation.rooms()[k].area * acoustics.rooms->ceiling_height;
-    out[k].critical_distance = 0.0;
+    out.acoustics[k].rt60 = acoustics.room.rt60;
+    out.acoustics[k].volume = segmentation.rooms()[k].area * acoustics.rooms->ceiling_height;
+    out.acoustics[k].critical_distance = 0.0;
+  }
+  for (std::size_t r = 0; r < named.size(); ++r) {
+    if (!named[r]) {
+      throw std::invalid_argument("region '" + acoustics.regions[r].name +
+                                  "' is the larger part of none of the rooms the map is cut into, so it names "
+                                  "none (audio_channel_validate --rooms shows the cut; a door_half_width that "
+                                  "divides it from its neighbours, or a box over its room, is expected)");
+    }
   }
   return out;
 }
@@ -74,7 +95,7 @@ std::vector<CoupledRoomSpec> Specs(const std::vector<world_sim::RoomAcoustics>& 
       const double absorption = 16.0 * M_PI * a.critical_distance * a.critical_distance;
       volume = absorption * kSoundSpeed * a.rt60 / (24.0 * std::log(10.0));
     }
-    specs.push_back({"room " + std::to_string(k), volume, a.rt60});
+    specs.push_back({"", volume, a.rt60});
   }
   return specs;
 }
@@ -91,8 +112,8 @@ std::vector<RoomOpening> Openings(const grid::RoomSegmentation& segmentation, do
 
 RoomCoupling::RoomCoupling(const grid::OccupancyMap& map, const world_sim::Acoustics& acoustics)
     : segmentation_(map, SegmentationOptions(RequireRooms(acoustics))),
-      acoustics_(RoomsAcoustics(map, segmentation_, acoustics)),
-      rooms_(Specs(acoustics_), Openings(segmentation_, acoustics.rooms->door_height)) {}
+      rooms_of_(RoomsAcoustics(map, segmentation_, acoustics)),
+      rooms_(Specs(rooms_of_.acoustics), Openings(segmentation_, acoustics.rooms->door_height)) {}
 
 double RoomCoupling::RelativeLevelDb(const Eigen::Vector2d& source, const Eigen::Vector2d& listener) const {
   const int s = segmentation_.RoomAt(source), l = segmentation_.RoomAt(listener);

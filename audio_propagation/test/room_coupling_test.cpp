@@ -88,11 +88,55 @@ TEST(RoomCoupling, ARegionNamesTheAcousticsOfTheRoomItMostlyCovers) {
   const RoomCoupling rooms(floor.map(), acoustics);
   const auto left = static_cast<std::size_t>(rooms.RoomAt({2.0, 2.0}));
   const auto right = static_cast<std::size_t>(rooms.RoomAt({8.0, 2.0}));
+  EXPECT_EQ(rooms.Region(right), 0);
+  EXPECT_EQ(rooms.Region(left), -1);
   EXPECT_DOUBLE_EQ(rooms.Acoustics(right).rt60, 1.5);
-  EXPECT_DOUBLE_EQ(world_sim::CriticalDistance(rooms.Acoustics(right)), 1.0);
   EXPECT_DOUBLE_EQ(rooms.Acoustics(left).rt60, 0.8);
-  // The right room's absorption is its critical distance's: r_c^2 = A / (16 pi).
-  EXPECT_NEAR(rooms.rooms().Absorption(right), 16.0 * M_PI, 1e-9);
+  // The right room's share of the region's floor gets that share of its absorption
+  // (r_c^2 = A / (16 pi)): the strip of the left room the box also covers keeps the rest.
+  int in_box = 0, right_in_box = 0;
+  for (int j = 0; j < floor.map().height(); ++j) {
+    for (int i = 0; i < floor.map().width(); ++i) {
+      const Eigen::Vector2d c = floor.map().CellCenter(i, j);
+      if (floor.map().Blocks(i, j) || !hall.Contains(c.x(), c.y())) continue;
+      ++in_box;
+      right_in_box += rooms.segmentation().RoomOfCell(i, j) == static_cast<int>(right);
+    }
+  }
+  const double share = static_cast<double>(right_in_box) / in_box;
+  EXPECT_GT(share, 0.7);
+  EXPECT_LT(share, 0.95);
+  EXPECT_NEAR(rooms.rooms().Absorption(right), 16.0 * M_PI * share, 1e-9);
+  EXPECT_NEAR(world_sim::CriticalDistance(rooms.Acoustics(right)), std::sqrt(share), 1e-12);
+}
+
+// A region whose box is the larger part of no room (a strip of each) would be overruled in
+// every room without a word: it is refused by name.
+TEST(RoomCoupling, ARegionThatNamesNoRoomIsRefusedByName) {
+  const Floor floor = TwoRooms();
+  world_sim::Acoustics acoustics = Building(0.8);
+  world_sim::AcousticRegion strip;
+  strip.name = "doorway";
+  strip.min_x = 4.0, strip.min_y = 0.0, strip.max_x = 6.0, strip.max_y = 4.0;
+  strip.room.rt60 = 1.5;
+  strip.room.volume = 20.0;
+  acoustics.regions.push_back(strip);
+  try {
+    const RoomCoupling rooms(floor.map(), acoustics);
+    FAIL() << "a region naming no room was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("region 'doorway' is the larger part of none of the rooms"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(RoomCoupling, RoomsNoOpeningJoinsShareNothingButAFiniteFloor) {
+  // Two rooms with no door between them.
+  Floor floor(10.0, 4.0, 0.1);
+  floor.Wall(4.95, 0, 5.15, 4.0);
+  const RoomCoupling rooms(floor.map(), Building(0.8));
+  ASSERT_EQ(rooms.segmentation().rooms().size(), 2u);
+  EXPECT_EQ(rooms.RelativeLevelDb({2.0, 2.0}, {8.0, 2.0}), CoupledRooms::kNoCouplingDb);
 }
 
 TEST(RoomCoupling, AnAcousticsWithoutRoomsIsRefusedAndBadOptionsAreNamed) {

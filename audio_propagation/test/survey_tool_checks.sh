@@ -60,8 +60,8 @@ wav "$out/hall.wav" room 1.2 -6
 hall_truth=$("$predict" --profile room --rir "$out/hall.wav" --noise white --snr-db 10) || fail "audio_channel_predict (hall)"
 cat >"$out/building.yaml" <<EOT
 rooms:
-  - {name: office, box: [0, 0, 2, 4], distance: 1.5, recordings: [recording.wav]}
-  - {name: hall, box: [2, 0, 6, 4], distance: 1.5, recordings: [hall_recording.wav]}
+  - {name: office, box: [0, 0, 3, 4], distance: 1.5, recordings: [recording.wav]}
+  - {name: hall, box: [3, 0, 6, 4], distance: 1.5, recordings: [hall_recording.wav]}
 EOT
 lines=$("$tool" --building "$out/building.yaml" --world-out "$out/building_section.yaml") || fail "the building survey"
 echo "$lines"
@@ -72,11 +72,16 @@ hall_rt60=$(field rt60_s "$hall_truth")
 near "$(field rt60_s "$hall_line")" "$hall_rt60" "$(awk -v r="$hall_rt60" 'BEGIN { print 0.1 * r }')" ||
   fail "the hall's RT60 surveyed at $(field rt60_s "$hall_line") s, its response gives $hall_rt60"
 cat "$out/building_section.yaml"
-grep -q "^    - {name: hall, box: \[2, 0, 6, 4\], rt60: " "$out/building_section.yaml" || fail "no region for the hall"
+grep -q "^    - {name: hall, box: \[3, 0, 6, 4\], rt60: " "$out/building_section.yaml" || fail "no region for the hall"
 grep -q "^  rooms:" "$out/building_section.yaml" || fail "no rooms section"
+# The test room's wall leaves a 1.45 m gap: doors up to 1.6 m wide divide it into the two rooms.
+printf '    door_half_width: 0.8\n' >>"$out/building_section.yaml"
 model=$(predict_in "$out/building_section.yaml" 3.5,1) || exit 1
 echo "$model"
 near "$(field rt60 "$model")" "$(field rt60_s "$hall_line")" 0.001 || fail "the world's RT60 in the hall: $(field rt60 "$model")"
+office_line=$(echo "$lines" | grep '"room": "office"')
+model=$(predict_in "$out/building_section.yaml" 2,1) || exit 1
+near "$(field rt60 "$model")" "$(field rt60_s "$office_line")" 0.001 || fail "the world's RT60 in the office: $(field rt60 "$model")"
 printf 'rooms:\n  - {name: a, box: [0, 0, 1, 1], distance: 2, recordings: [gone.wav]}\n' >"$out/bad_building.yaml"
 expect_error "rooms.0.\.recordings: no such file: $out/gone.wav" --building "$out/bad_building.yaml" --world-out "$out/x.yaml"
 printf 'rooms:\n  - {name: a, box: [1, 0, 0, 1], distance: 2, recordings: [recording.wav]}\n' >"$out/bad_building.yaml"

@@ -26,7 +26,7 @@
 //   static, the sources on their duty cycles: K of N pairs deliver under 10 % or over 90 %
 //   moving: N pairs, mean delivery X % against the model's Y %
 // With --rooms: the rooms the world's acoustics.rooms cuts its map into (floor area, centre,
-// volume, RT60, critical distance, absorption) and the openings between them (width, centre); with
+// volume, RT60, critical distance, absorption, the region naming it) and the openings between them (width, centre); with
 // --from X,Y also each room's reverberant field from a source there, in dB against the field the
 // source would make in its own room shut in (coupled_rooms.h); with --plot FILE.png also the level
 // a microphone hears from that source across the map (direct and reverberant, 0.25 m squares),
@@ -138,14 +138,16 @@ int Rooms(const tools::ValidateArgs& args, const tools::AcousticWorld& world) {
     std::printf("a source at (%.2f, %.2f), in room %d\n", args.rooms_from->x(), args.rooms_from->y(), source);
   }
   std::printf("%zu rooms, %zu openings\n", cut.rooms().size(), cut.openings().size());
-  std::printf("room   centre (m)        area m^2  volume m^3  rt60 s  r_c m  absorption m^2%s\n",
+  std::printf("room   centre (m)        area m^2  volume m^3  rt60 s  r_c m  absorption m^2  region%s\n",
               source >= 0 ? "  field dB" : "");
   for (std::size_t k = 0; k < cut.rooms().size(); ++k) {
     const grid::SegmentedRoom& r = cut.rooms()[k];
     const world_sim::RoomAcoustics& a = rooms.Acoustics(k);
     const double volume = rooms.rooms().rooms()[k].volume;
-    std::printf("%4zu  (%6.2f, %6.2f)  %9.1f  %10.1f  %6.2f  %5.2f  %14.1f", k, r.centroid.x(), r.centroid.y(), r.area,
-                volume, a.rt60, world_sim::CriticalDistance(a), rooms.rooms().Absorption(k));
+    const int region = rooms.Region(k);
+    std::printf("%4zu  (%6.2f, %6.2f)  %9.1f  %10.1f  %6.2f  %5.2f  %14.1f  %-6s", k, r.centroid.x(), r.centroid.y(),
+                r.area, volume, a.rt60, world_sim::CriticalDistance(a), rooms.rooms().Absorption(k),
+                region < 0 ? "-" : world.acoustics.regions[static_cast<std::size_t>(region)].name.c_str());
     if (source >= 0) std::printf("  %+8.1f", rooms.rooms().RelativeLevelDb(static_cast<std::size_t>(source), k));
     std::printf("\n");
   }

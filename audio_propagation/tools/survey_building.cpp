@@ -16,7 +16,7 @@ BuildingSurvey ReadBuildingSurvey(const std::string& path) {
   BuildingSurvey survey;
   survey.source_level_db = root.Number("source_level_db", survey.source_level_db);
   if (!std::isfinite(survey.source_level_db) || std::abs(survey.source_level_db) > 1000.0) {
-    root.Fail("source_level_db", "expected a level in [-1000, 1000] dB");
+    root.Fail("source_level_db", "expected a level in [-1000, 1000] dB, got " + std::to_string(survey.source_level_db));
   }
   const fs::path folder = fs::path(path).parent_path();
   std::set<std::string> names;
@@ -29,11 +29,14 @@ BuildingSurvey ReadBuildingSurvey(const std::string& path) {
     }
     if (!names.insert(room.name).second) r.Fail("name", "a second room named '" + room.name + "'");
     const std::vector<double> box = r.Numbers("box", 4, "[min_x, min_y, max_x, max_y]");
-    if (!(box[0] < box[2] && box[1] < box[3])) r.Fail("box", "expected min_x < max_x and min_y < max_y");
+    if (!(box[0] < box[2] && box[1] < box[3])) {
+      r.Fail("box", "expected min_x < max_x and min_y < max_y, got [" + std::to_string(box[0]) + ", " +
+                        std::to_string(box[1]) + ", " + std::to_string(box[2]) + ", " + std::to_string(box[3]) + "]");
+    }
     room.box = {box[0], box[1], box[2], box[3]};
     room.distance = r.Number("distance");
     if (!(room.distance > 0.0 && room.distance <= 1000.0)) {
-      r.Fail("distance", "expected the robots' distance in (0, 1000] m");
+      r.Fail("distance", "expected the robots' distance in (0, 1000] m, got " + std::to_string(room.distance));
     }
     const YAML::Node list = r.node()["recordings"];
     if (!list || !list.IsSequence() || list.size() == 0) {

@@ -134,7 +134,7 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
     rooms.ceiling_height =
         Bounded(r, "ceiling_height", rooms.ceiling_height, 0.0, 100.0, true, "a height in (0, 100] m");
     rooms.door_height = Bounded(r, "door_height", rooms.door_height, 0.0, rooms.ceiling_height, true,
-                                "a height in (0, ceiling_height] m");
+                                "a height in (0, ceiling_height = " + std::to_string(rooms.ceiling_height) + "] m");
     rooms.door_half_width =
         Bounded(r, "door_half_width", rooms.door_half_width, 0.0, 50.0, true, "a half-width in (0, 50] m");
     rooms.min_room_area =
@@ -182,11 +182,22 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
 
 // Whether a region's box holds the centre of a free cell of `map`.
 bool CoversFreeSpace(const AcousticRegion& region, const grid::OccupancyMap& map) {
-  // The box's corners in cells, clamped to the map before any conversion to int (a box far off
-  // the map, or NaN, must not overflow the index); a rotated map's box is searched whole.
+  // The box clipped to the map's extent in the world (an infinite box is the whole map), then
+  // its corners in cells, clamped to the map before any conversion to int (a box far off the
+  // map must not overflow the index); a rotated map's box is searched whole.
+  double extent[4] = {1e300, 1e300, -1e300, -1e300};
+  for (const double i : {0.0, static_cast<double>(map.width())}) {
+    for (const double j : {0.0, static_cast<double>(map.height())}) {
+      const Eigen::Vector2d w = map.CellCoordsToWorld({i, j});
+      extent[0] = std::min(extent[0], w.x()), extent[1] = std::min(extent[1], w.y());
+      extent[2] = std::max(extent[2], w.x()), extent[3] = std::max(extent[3], w.y());
+    }
+  }
+  const double x0 = std::clamp(region.min_x, extent[0], extent[2]), x1 = std::clamp(region.max_x, extent[0], extent[2]);
+  const double y0 = std::clamp(region.min_y, extent[1], extent[3]), y1 = std::clamp(region.max_y, extent[1], extent[3]);
   int lo[2] = {map.width(), map.height()}, hi[2] = {-1, -1};
-  for (const double x : {region.min_x, region.max_x}) {
-    for (const double y : {region.min_y, region.max_y}) {
+  for (const double x : {x0, x1}) {
+    for (const double y : {y0, y1}) {
       const Eigen::Vector2d c = map.WorldToCellCoords({x, y});
       for (int d = 0; d < 2; ++d) {
         const double limit = d == 0 ? map.width() - 1 : map.height() - 1;
@@ -248,8 +259,11 @@ void ValidateWorld(const std::string& file, const WorldConfig& config, const gri
     const Acoustics& a = *config.acoustics;
     for (std::size_t k = 0; k < a.regions.size(); ++k) {
       if (!CoversFreeSpace(a.regions[k], map)) {
+        const AcousticRegion& r = a.regions[k];
         throw grid::InputError(file, "acoustics.regions[" + std::to_string(k) + "].box",
-                               "region '" + a.regions[k].name + "' covers none of the map's free space");
+                               "region '" + r.name + "' [" + std::to_string(r.min_x) + ", " + std::to_string(r.min_y) +
+                                   ", " + std::to_string(r.max_x) + ", " + std::to_string(r.max_y) +
+                                   "] covers none of the map's free space");
       }
     }
     if (a.rooms && a.rooms->door_half_width < map.resolution()) {

@@ -237,13 +237,26 @@ TEST_F(WorldFileTest, BadAcoustics) {
   ExpectError(robot + "acoustics: {volume: 50, regions: [{name: r, box: [3, 0, 1, 4], volume: 5}]}\n",
               "regions[0].box: expected min_x < max_x");
   ExpectError(robot + "acoustics: {volume: 50, regions: [{name: far, box: [100, 100, 120, 110], volume: 5}]}\n",
-              "acoustics.regions[0].box: region 'far' covers none of the map's free space");
+              "acoustics.regions[0].box: region 'far' [100.000000, 100.000000, 120.000000, 110.000000] covers none");
+  // An infinite box is the whole map.
+  EXPECT_EQ(LoadWorldFile(Write(robot + "acoustics: {volume: 50, regions: [{name: all, box: [-.inf, -.inf, .inf, .inf], "
+                                        "volume: 5}]}\n"))
+                .config.acoustics->regions.size(),
+            1u);
 }
 
 TEST_F(WorldFileTest, CoupledRoomsLoadSaveBackAndRefuseImpossibleSizes) {
   const std::string world = "robots: [{name: a, pose: [1.0, 1.0, 0]}]\nacoustics:\n  rt60: 0.5\n  volume: 60\n";
   EXPECT_FALSE(LoadWorldFile(Write(world)).config.acoustics->rooms.has_value());
   const LoadedWorld w = LoadWorldFile(Write(world + "  rooms: {ceiling_height: 3.0, door_height: 2.0}\n"));
+  const LoadedWorld all = LoadWorldFile(
+      Write(world + "  rooms: {door_half_width: 0.8, min_room_area: 2.5, max_obstacle_size: 0.4}\n"));
+  const std::string all_saved = (dir_ / "all_rooms.yaml").string();
+  SaveWorldFile(all_saved, all.config);
+  const CoupledRoomsSpec back_all = *LoadWorldFile(all_saved).config.acoustics->rooms;
+  EXPECT_DOUBLE_EQ(back_all.door_half_width, 0.8);
+  EXPECT_DOUBLE_EQ(back_all.min_room_area, 2.5);
+  EXPECT_DOUBLE_EQ(back_all.max_obstacle_size, 0.4);
   ASSERT_TRUE(w.config.acoustics->rooms.has_value());
   EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->ceiling_height, 3.0);
   EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->door_height, 2.0);
@@ -258,7 +271,7 @@ TEST_F(WorldFileTest, CoupledRoomsLoadSaveBackAndRefuseImpossibleSizes) {
 
   ExpectError(world + "  rooms: {ceiling_height: 0}\n", "acoustics.rooms.ceiling_height: expected a height in (0, 100] m");
   ExpectError(world + "  rooms: {ceiling_height: 2.5, door_height: 3}\n",
-              "acoustics.rooms.door_height: expected a height in (0, ceiling_height] m, got 3");
+              "acoustics.rooms.door_height: expected a height in (0, ceiling_height = 2.500000] m, got 3");
   ExpectError(world + "  rooms: {door_half_width: 0.001}\n",
               "acoustics.rooms.door_half_width: expected at least one cell of the map");
   ExpectError(world + "  rooms: {min_room_area: -1}\n", "acoustics.rooms.min_room_area: expected an area in m^2 (>= 0)");

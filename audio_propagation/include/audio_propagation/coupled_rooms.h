@@ -58,7 +58,9 @@ class CoupledRooms {
   // relative to the field the same source makes in its room with every opening shut
   // (4 W / (c A_source)): 10 log10(A_source [M^-1]_(listener, source)). 0 dB for a room with no
   // openings; below 0 in the source's own room (energy leaks out), and about 8 to 12 dB lower
-  // per doorway passed between ordinary rooms.
+  // per doorway passed between ordinary rooms. Rooms no chain of openings joins get
+  // kNoCouplingDb.
+  static constexpr double kNoCouplingDb = -200.0;
   double RelativeLevelDb(std::size_t source, std::size_t listener) const;
 
   // The reverberant energy in room `listener`, `t` s after a steady source in room `source`

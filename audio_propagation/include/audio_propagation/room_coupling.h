@@ -19,17 +19,25 @@ namespace audio_propagation {
 class RoomCoupling {
  public:
   // Throws std::invalid_argument naming the option when the segmentation or the energy balance
-  // refuses what `acoustics.rooms` asks (a door half-width under a cell, no free space), or when
-  // `acoustics` has no rooms section. `map` must outlive this.
+  // refuses what `acoustics.rooms` asks (a door half-width under a cell, no free space), when a
+  // region names no room (it is the larger part of none), or when `acoustics` has no rooms
+  // section. `map` must outlive this.
   RoomCoupling(const grid::OccupancyMap& map, const world_sim::Acoustics& acoustics);
 
   // The room at a world point, or -1 off the map's free space.
   int RoomAt(const Eigen::Vector2d& at) const { return segmentation_.RoomAt(at); }
 
   // The acoustics of room `room` (index into segmentation().rooms()): its RT60 and its critical
-  // distance, from the region covering most of its floor, else the world's RT60 and the room's
-  // own volume.
-  const world_sim::RoomAcoustics& Acoustics(std::size_t room) const { return acoustics_[room]; }
+  // distance, from the region covering most of its floor (the room's share of the region's
+  // volume or absorption), else the world's RT60 and the room's own volume.
+  const world_sim::RoomAcoustics& Acoustics(std::size_t room) const { return rooms_of_.acoustics[room]; }
+  // The region (index into the acoustics' regions) that names room `room`, or -1 for none.
+  int Region(std::size_t room) const { return rooms_of_.region[room]; }
+
+  struct Rooms {
+    std::vector<world_sim::RoomAcoustics> acoustics;
+    std::vector<int> region;
+  };
 
   // The reverberant field at `listener` from a source at `source`, in dB against the field the
   // same source would make in its own room were every opening shut (CoupledRooms::
@@ -42,7 +50,7 @@ class RoomCoupling {
 
  private:
   grid::RoomSegmentation segmentation_;
-  std::vector<world_sim::RoomAcoustics> acoustics_;
+  Rooms rooms_of_;
   CoupledRooms rooms_;
 };
 
