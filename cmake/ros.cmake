@@ -149,6 +149,8 @@ if(MULTIROBOT_AUDIO_TESTS)
   add_rostest(test/audio_propagation_map_topic.test DEPENDENCIES audio_propagation_rostest)
   # The same on the room profile at rate 1: a 64-byte frame through audio/tx.
   add_rostest(test/audio_propagation_frames.test DEPENDENCIES audio_propagation_rostest)
+  # On the acoustic channel in the office's coupled rooms: ~rooms.
+  add_rostest(test/audio_propagation_rooms.test DEPENDENCIES audio_propagation_rostest)
   add_rostest_gtest(sim_ranging_rostest test/sim_ranging.test test/sim_ranging_rostest.cpp test/rostest_main.cpp)
   target_link_libraries(sim_ranging_rostest ${catkin_LIBRARIES})
   add_dependencies(sim_ranging_rostest world_sim_node audio_propagation_node)

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -100,6 +101,25 @@ TEST(AudioPropagationNode, PacketsOfTheWrongSizeAreRejected) {
   tx.publish(big);
   WaitFor([] { return false; }, 2.0);
   EXPECT_EQ(heard, 0u);
+}
+
+// In a world of coupled rooms (test/audio_propagation_rooms.test gives ~rooms and ~openings, the
+// counts its world's map is cut into) the node draws them, latched: a floor of coloured squares,
+// a name a room and a disc a door. The other launch files' worlds have no rooms: skipped there.
+TEST(AudioPropagationNode, TheRoomsAreDrawn) {
+  ros::NodeHandle nh, pnh("~");
+  const int rooms = pnh.param("rooms", 0), openings = pnh.param("openings", 0);
+  if (rooms == 0) GTEST_SKIP() << "this launch file's world has no coupled rooms";
+  std::vector<visualization_msgs::MarkerArray> got;
+  auto sub = nh.subscribe<visualization_msgs::MarkerArray>(
+      "/audio_propagation/rooms", 1, [&](const visualization_msgs::MarkerArray::ConstPtr& m) { got.push_back(*m); });
+  ASSERT_TRUE(WaitFor([&] { return !got.empty(); }, 60.0)) << "no ~rooms markers";
+  std::map<std::string, int> by_namespace;
+  for (const visualization_msgs::Marker& m : got[0].markers) ++by_namespace[m.ns];
+  EXPECT_EQ(by_namespace["room_floors"], 1);
+  EXPECT_EQ(by_namespace["room_names"], rooms);
+  EXPECT_EQ(by_namespace["openings"], openings);
+  EXPECT_GT(got[0].markers[0].points.size(), 1000u);  // the office's floor in 0.25 m squares
 }
 
 }  // namespace
