@@ -32,7 +32,11 @@
 # a clean clone whose main objects were cached but not the sanitized and fuzz trees' took 43.4
 # (2602 s: main build 102, over the air 235, the others 816, sanitized 1262, fuzz 182); one with
 # all three cached but for the files of one day's commits 30.0 (1798 s: 104, 235, 658, 617, 180;
-# 69 compiled, 650 from the cache).
+# 69 compiled, 650 from the cache). With test files at -O0 and the sanitized tree building from
+# the start: warm 31.9 (1911 s: 254, 308, 641, 483, 220; 168 compiled after a day that changed
+# world_sim/acoustics.h); from an empty cache the main build took about 14 minutes, but that run
+# and the one before it each lost an over-the-air test to stalls (capture 0.1 s behind) with the
+# sanitized build paused, which the warm runs never did: the cold total is still unmeasured.
 set -euo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
