@@ -425,20 +425,19 @@ visualization_msgs::MarkerArray ToRoomMarkers(const audio_propagation::RoomCoupl
   visualization_msgs::MarkerArray out;
   const grid::RoomSegmentation& cut = rooms.segmentation();
   // A square per `stride` cells each way, coloured by the room of its first cell.
-  const int stride = std::max(1, static_cast<int>(std::ceil(0.25 / map.resolution() - 1e-9)));
+  const int stride = grid::CellsAcross(map, 0.25);
   Marker floors = BaseMarker(frame, ros::Time(), "room_floors", 0, Marker::CUBE_LIST);
   floors.scale.x = floors.scale.y = stride * map.resolution();
   floors.scale.z = 0.01;
+  // Twelve well-told-apart colours (RGB); rooms past the twelfth reuse them, far apart by number.
+  static constexpr float kPalette[12][3] = {{0.12f, 0.47f, 0.71f}, {1.0f, 0.5f, 0.05f}, {0.17f, 0.63f, 0.17f},
+                                            {0.84f, 0.15f, 0.16f}, {0.58f, 0.4f, 0.74f}, {0.55f, 0.34f, 0.29f},
+                                            {0.89f, 0.47f, 0.76f}, {0.5f, 0.5f, 0.5f},  {0.74f, 0.74f, 0.13f},
+                                            {0.09f, 0.75f, 0.81f}, {0.0f, 0.0f, 0.5f},  {0.5f, 0.0f, 0.0f}};
   const auto colour = [](int room) {
-    // Hues spread by the golden ratio, so that neighbours differ.
-    const double h = std::fmod(0.618033988749895 * room, 1.0) * 6.0;
-    const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
+    const float* rgb = kPalette[room % 12];
     std_msgs::ColorRGBA c;
-    const int sector = static_cast<int>(h);
-    c.r = static_cast<float>(sector == 0 || sector == 5 ? 1.0 : sector == 1 || sector == 4 ? x : 0.0);
-    c.g = static_cast<float>(sector == 1 || sector == 2 ? 1.0 : sector == 0 || sector == 3 ? x : 0.0);
-    c.b = static_cast<float>(sector == 3 || sector == 4 ? 1.0 : sector == 2 || sector == 5 ? x : 0.0);
-    c.a = 0.35f;
+    c.r = rgb[0], c.g = rgb[1], c.b = rgb[2], c.a = 0.35f;
     return c;
   };
   for (int j = 0; j < map.height(); j += stride) {

@@ -98,7 +98,7 @@ multirobot_audio::tools::HeatPanel LevelPanel(const tools::AcousticWorld& world,
                                               const std::string& title) {
   const AcousticModel model(*world.propagation, acoustics, table, world.robots);
   const grid::OccupancyMap& map = world.loaded.map;
-  const int stride = std::max(1, static_cast<int>(std::ceil(0.25 / map.resolution() - 1e-9)));
+  const int stride = grid::CellsAcross(map, 0.25);
   multirobot_audio::tools::HeatPanel panel;
   panel.title = title;
   panel.width = map.width() / stride;

@@ -1,5 +1,6 @@
 #include "grid/occupancy_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -59,6 +60,11 @@ Eigen::Vector2d OccupancyMap::CellCenter(int i, int j) const {
 bool OccupancyMap::IsFreeAt(const Eigen::Vector2d& world) const {
   const Eigen::Vector2i c = WorldToCell(world);
   return !Blocks(c.x(), c.y());
+}
+
+int CellsAcross(const OccupancyMap& map, double side) {
+  // Less a hair, so that a side that is a whole number of cells is not rounded up by one.
+  return std::max(1, static_cast<int>(std::ceil(side / map.resolution() - 1e-9)));
 }
 
 }  // namespace grid

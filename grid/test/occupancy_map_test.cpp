@@ -71,5 +71,11 @@ TEST(OccupancyMap, OffMapBlocks) {
   EXPECT_FALSE(map.IsFreeAt({-0.5, 0.5}));
 }
 
+TEST(OccupancyMap, CellsAcrossASquareRoundUpButNotAWholeNumber) {
+  EXPECT_EQ(CellsAcross(OccupancyMap(10, 10, 0.05), 0.25), 5);   // exactly five cells
+  EXPECT_EQ(CellsAcross(OccupancyMap(10, 10, 0.1), 0.25), 3);    // 2.5 cells: three
+  EXPECT_EQ(CellsAcross(OccupancyMap(10, 10, 0.5), 0.25), 1);    // under a cell: one
+}
+
 }  // namespace
 }  // namespace grid

@@ -59,4 +59,8 @@ class OccupancyMap {
   std::vector<Cell> cells_;
 };
 
+// How many cells of `map` a square at least `side` m across spans (at least 1): the stride of a
+// coarse drawing of the map (the rooms in rviz, a level plotted across it).
+int CellsAcross(const OccupancyMap& map, double side);
+
 }  // namespace grid
