@@ -76,12 +76,14 @@ nava_modem::MacOptions ReadMacParams(const ros::NodeHandle& pnh, nava_modem::Pro
   mac.calibration_time = NumberParam(pnh, "calibration_time", mac.calibration_time, 0.0, 3600.0);
   if (pnh.hasParam("threshold_db")) mac.fixed_threshold_db = NumberParam(pnh, "threshold_db", 0.0, -200.0, 20.0);
   mac.threshold_margin_db = NumberParam(pnh, "threshold_margin_db", mac.threshold_margin_db, 0.0, 100.0);
+  mac.floor_window = NumberParam(pnh, "floor_window", mac.floor_window, 0.0, 3600.0);
+  mac.floor_block = NumberParam(pnh, "floor_block", mac.floor_block, 0.01, 3600.0);
   mac.backoff_min_bits = NumberParam(pnh, "backoff_min_bits", mac.backoff_min_bits, 0.0, 1e6);
   mac.backoff_max_bits = NumberParam(pnh, "backoff_max_bits", mac.backoff_max_bits, 0.0, 1e6);
   mac.deaf_time = NumberParam(pnh, "deaf_time", mac.deaf_time, 0.0, 60.0);
   mac.queue_capacity = static_cast<std::size_t>(IntParam(pnh, "queue_size", static_cast<int>(mac.queue_capacity), 1, 100000));
   nava_modem::UseProfileTiming(profile, m, mac);
-  CheckOptionParams(pnh, {"backoff_min_bits", "backoff_max_bits", "deaf_time", "queue_size"},
+  CheckOptionParams(pnh, {"floor_window", "floor_block", "backoff_min_bits", "backoff_max_bits", "deaf_time", "queue_size"},
                     [&] { nava_modem::ValidateMacOptions(mac); });
   return mac;
 }

@@ -323,10 +323,11 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
     // Long silences (robots that say something every few seconds) are skipped in one go, up to
     // the next moment something is due (a stamped send, the noise's update); the check runs
     // once a bit, so at most a bit of silence is ticked through. A silent tick of an idle MAC
-    // changes nothing but its count, so how the silence is cut up does not change the run.
+    // changes nothing but its count and its floor, which hears the same steady level in one go,
+    // so how the silence is cut up does not change the run.
     if (ticks_ % 16 == 0 && Quiet()) {
       const std::int64_t wake = NextWake(target);
-      for (nava_modem::CsmaMac& mac : macs_) mac.SkipIdle(static_cast<std::uint64_t>(wake - ticks_));
+      for (std::size_t r = 0; r < n; ++r) macs_[r].SkipIdle(static_cast<std::uint64_t>(wake - ticks_), levels_[r]);
       ticks_ = wake;
       continue;
     }

@@ -211,12 +211,15 @@ void ExpectSameRuns(bool with_acoustics) {
       scene, with_acoustics,
       [](const AudioChannel& c, double) { return c.Idle() ? std::numeric_limits<double>::infinity() : 0.0; },
       &overflows_on_events);
-  // The scene is what it is meant to be: packets heard, collisions, a queue overflowing, and
-  // most of the run silent.
+  // The scene is what it is meant to be: packets heard, collisions, a queue overflowing (one
+  // more when a robot still holds a packet it waited with while the fan sounded), and most of
+  // the run silent (with acoustics the fan, on 1.5 s of every 3, is a carrier to the robots by it
+  // while it sounds: their floors follow its quiet halves).
   ASSERT_GT(every_step.packets, 10u);
   ASSERT_GT(every_step.collisions, 0u);
-  EXPECT_EQ(overflows, 20u - nava_modem::MacOptions().queue_capacity);
-  EXPECT_LT(on_quiet.wakes, every_step.wakes * 2 / 3);
+  EXPECT_GE(overflows, 20u - nava_modem::MacOptions().queue_capacity);
+  EXPECT_LE(overflows, 20u - nava_modem::MacOptions().queue_capacity + 1);
+  EXPECT_LT(on_quiet.wakes, every_step.wakes * 3 / 4);
   EXPECT_LT(on_events.wakes, on_quiet.wakes * 2 / 3);
   ExpectSameEvents(every_step, on_quiet);
   ExpectSameEvents(every_step, on_events);

@@ -42,6 +42,14 @@ void ValidateMacOptions(const MacOptions& o) {
   Require(o.deaf_time >= 0.0 && o.deaf_time < packet_time,
           "deaf_time (" + std::to_string(o.deaf_time) + " s) must be >= 0 and shorter than a packet (" +
               std::to_string(packet_time) + " s), or a carrier could be missed");
+  Require(o.floor_window >= 0.0 && std::isfinite(o.floor_window),
+          "floor_window must be >= 0 s (0: one calibration, as the thesis)");
+  Require(o.floor_block > 0.0 && std::isfinite(o.floor_block),
+          "floor_block must be a positive number of seconds");
+  Require(o.floor_window == 0.0 || o.floor_window >= o.floor_block,
+          "floor_window (" + std::to_string(o.floor_window) +
+              " s) must be 0 or at least one floor block (floor_block " +
+              std::to_string(o.floor_block) + " s)");
   Require(o.carrier_release_bits > 0.0, "carrier_release_bits must be positive");
   Require(o.queue_capacity > 0, "queue_capacity must be at least 1");
 }
@@ -58,7 +66,21 @@ CsmaMac::CsmaMac(const MacOptions& options, std::uint32_t seed) : options_(optio
     EnterWaiting();
   } else {
     remaining_ = calibration_ticks_;
+    if (options_.floor_window > 0.0) {
+      floor_.emplace(std::max(1, Ticks(options_.floor_block)),
+                     std::max(1, static_cast<int>(std::lround(options_.floor_window / options_.floor_block))));
+    }
   }
+}
+
+void CsmaMac::Follow(double level_db, std::uint64_t ticks) {
+  if (!floor_ || !floor_->Hear(level_db, ticks) || state_ == MacState::kCalibrating) return;
+  threshold_db_ = *floor_->floor_db() + options_.threshold_margin_db;
+}
+
+void CsmaMac::SkipIdle(std::uint64_t ticks, double level_db) {
+  ticks_ += ticks;
+  Follow(level_db, ticks);
 }
 
 int CsmaMac::Ticks(double seconds) const {
@@ -111,7 +133,8 @@ std::optional<int> CsmaMac::TicksToNextChange(double level_db) const {
       break;
     case MacState::kReceiving:  // the release counts down only once the carrier has gone
       if (heard != carrier_) return 1;
-      if (carrier_) return std::nullopt;
+      // A carrier that lasts a whole window (a new, louder room) becomes the floor.
+      if (carrier_) return floor_ ? std::optional<int>(static_cast<int>(floor_->TicksToBlockEnd())) : std::nullopt;
       break;
     case MacState::kCalibrating:
     case MacState::kSending:
@@ -123,6 +146,8 @@ std::optional<int> CsmaMac::TicksToNextChange(double level_db) const {
 
 std::optional<MacFrame> CsmaMac::Tick(double level_db, bool may_send) {
   ++ticks_;
+  // What is heard while sending or deaf is our own sound, not the room's.
+  if (state_ != MacState::kSending && state_ != MacState::kDeaf) Follow(level_db, 1);
   switch (state_) {
     case MacState::kCalibrating:
       carrier_ = false;

@@ -184,6 +184,101 @@ TEST(CsmaMac, RandomBackOffSpreadsRobotsWaitingForTheSameSender) {
   EXPECT_EQ(TicksUntilSend(a, kSilence), TicksUntilSend(b, kSilence));
 }
 
+// The thesis calibrates once; a robot that then drives into a louder room would hear its fan
+// as a carrier for ever and never send. The threshold follows the room within the window.
+TEST(CsmaMac, TheThresholdFollowsTheFloorIntoALouderRoomAndBack) {
+  MacOptions o;
+  o.calibration_time = 1.0;
+  CsmaMac mac(o, 3);
+  const int second = static_cast<int>(std::lround(1.0 / mac.tick_seconds()));
+  for (int k = 0; k < 3 * second; ++k) mac.Tick(kSilence);
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), kSilence + o.threshold_margin_db);
+  // A fan 20 dB louder: a carrier at first...
+  ASSERT_TRUE(mac.Enqueue({1, 2, 3, 4}));
+  const double fan = kSilence + 20.0;
+  int ticks = 0;
+  for (; ticks < 9 * second; ++ticks) {
+    ASSERT_FALSE(mac.Tick(fan)) << "sent over what it still took for a carrier";
+  }
+  EXPECT_EQ(mac.state(), MacState::kReceiving);
+  // ...until the whole window has heard it; then the fan is the floor and the packet goes.
+  EXPECT_GE(TicksUntilSend(mac, fan, 3 * second), 0);
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), fan + o.threshold_margin_db);
+  // Back in the quiet room the threshold comes down with the first wholly quiet block (the
+  // one the packet went in still heard the fan before it).
+  for (int k = 0; k < 3 * second; ++k) mac.Tick(kSilence);
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), kSilence + o.threshold_margin_db);
+}
+
+// Packets (or a slammed door) that leave a quiet block in the window do not move the floor;
+// the robot's own sound never does.
+TEST(CsmaMac, PassingSoundAndItsOwnPacketsLeaveTheFloorAlone) {
+  MacOptions o;
+  o.calibration_time = 1.0;
+  CsmaMac mac(o, 5);
+  const int second = static_cast<int>(std::lround(1.0 / mac.tick_seconds()));
+  for (int k = 0; k < second; ++k) mac.Tick(kSilence);
+  const double calibrated = mac.threshold_db();
+  for (int s = 0; s < 30; ++s) {
+    // Every second but every fifth holds a loud packet of someone else.
+    for (int k = 0; k < second; ++k) mac.Tick(s % 5 != 0 && k < mac.packet_ticks() ? kLoud : kSilence);
+    EXPECT_DOUBLE_EQ(mac.threshold_db(), calibrated) << "second " << s;
+  }
+  // Its own sending, loud in its own microphone, for much longer than the window.
+  for (int s = 0; s < 15; ++s) {
+    ASSERT_TRUE(mac.Enqueue({1}));
+    for (int k = 0; k < second * 2; ++k) {
+      const bool own = mac.state() == MacState::kSending || mac.state() == MacState::kDeaf;
+      mac.Tick(own ? kLoud : kSilence);
+    }
+  }
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), calibrated);
+}
+
+// Skipping idle ticks at a steady level (the simulated channel does) ends where ticking does.
+TEST(CsmaMac, SkippingIdleTicksFollowsTheFloorAsTickingDoes) {
+  MacOptions o;
+  o.calibration_time = 1.0;
+  CsmaMac ticked(o, 9), skipped(o, 9);
+  const int second = static_cast<int>(std::lround(1.0 / ticked.tick_seconds()));
+  for (int k = 0; k < second; ++k) {
+    ticked.Tick(kSilence + 10.0);
+    skipped.Tick(kSilence + 10.0);
+  }
+  for (int k = 0; k < 12 * second + 77; ++k) ticked.Tick(kSilence);
+  skipped.SkipIdle(12 * second + 77, kSilence);
+  EXPECT_EQ(ticked.ticks(), skipped.ticks());
+  EXPECT_DOUBLE_EQ(ticked.threshold_db(), kSilence + o.threshold_margin_db);
+  EXPECT_DOUBLE_EQ(skipped.threshold_db(), ticked.threshold_db());
+}
+
+TEST(CsmaMac, TheThesisCalibrationOnceWhenTheWindowIsZero) {
+  MacOptions o;
+  o.calibration_time = 1.0;
+  o.floor_window = 0.0;
+  CsmaMac mac(o, 3);
+  const int second = static_cast<int>(std::lround(1.0 / mac.tick_seconds()));
+  for (int k = 0; k < second; ++k) mac.Tick(kSilence);
+  for (int k = 0; k < 20 * second; ++k) mac.Tick(kSilence + 20.0);
+  EXPECT_DOUBLE_EQ(mac.threshold_db(), kSilence + o.threshold_margin_db);
+  EXPECT_EQ(mac.state(), MacState::kReceiving);
+}
+
+TEST(NoiseFloor, TheQuietestOfTheLastBlocksLoudestLevels) {
+  NoiseFloor floor(4, 3);
+  EXPECT_FALSE(floor.floor_db());
+  EXPECT_FALSE(floor.Hear(-50.0, 3));
+  EXPECT_EQ(floor.TicksToBlockEnd(), 1u);
+  EXPECT_TRUE(floor.Hear(-20.0));  // block 1: loudest -20
+  EXPECT_DOUBLE_EQ(*floor.floor_db(), -20.0);
+  EXPECT_TRUE(floor.Hear(-40.0, 8));  // blocks 2 and 3: -40
+  EXPECT_DOUBLE_EQ(*floor.floor_db(), -40.0);
+  EXPECT_TRUE(floor.Hear(-30.0, 12));  // three blocks at -30 push the -40s out
+  EXPECT_DOUBLE_EQ(*floor.floor_db(), -30.0);
+  EXPECT_THROW(NoiseFloor(0, 3), std::invalid_argument);
+  EXPECT_THROW(NoiseFloor(4, 0), std::invalid_argument);
+}
+
 TEST(CsmaMac, ImpossibleOptionsAreRejected) {
   MacOptions o;
   o.deaf_time = 0.5;  // longer than a 367 ms packet
@@ -197,6 +292,12 @@ TEST(CsmaMac, ImpossibleOptionsAreRejected) {
   o = {};
   o.queue_capacity = 0;
   EXPECT_THROW(CsmaMac(o, 1), std::invalid_argument);
+  o = {};
+  o.floor_window = 0.5;  // shorter than a block
+  EXPECT_THROW(ValidateMacOptions(o), std::invalid_argument);
+  o = {};
+  o.floor_block = 0.0;
+  EXPECT_THROW(ValidateMacOptions(o), std::invalid_argument);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "nava_modem/noise_floor.h"
+
 namespace nava_modem {
 
 // Timing and thresholds of the Nava CSMA-CA link layer (thesis section 5.2.4). All timing runs
@@ -17,6 +19,11 @@ struct MacOptions {
   double calibration_time = 4.0;      // s of silence listened to before the first send
   std::optional<double> fixed_threshold_db;  // skip calibration and use this carrier threshold
   double threshold_margin_db = 6.0;   // calibrated threshold: loudest silence + this margin
+  // After the calibration the threshold follows the floor where the robot is: the loudest level
+  // of each block of floor_block (its own sending and deaf time left out), the quietest
+  // of the last floor_window of them, plus the margin. 0: the thesis's one calibration.
+  double floor_window = 10.0;
+  double floor_block = 1.0;
   double backoff_min_bits = 2.0;      // random wait on a free medium before sending, in bits
   double backoff_max_bits = 30.0;
   double deaf_time = 0.2;             // s of own echo ignored after sending (< a packet)
@@ -67,11 +74,12 @@ class CsmaMac {
   // air free) before it sends; a calibration under way goes on.
   void Interrupt(std::vector<MacFrame> unsent, double hold_seconds);
 
-  // Waiting with nothing to send: a Tick() on a level below the threshold changes nothing but
-  // the tick count, so a caller that knows the air is silent may skip such ticks.
+  // Waiting with nothing to send: ticks on a steady level below the threshold change nothing but
+  // the tick count and the floor (which only raises the threshold then), so a caller that knows
+  // the air is silent may skip such ticks.
   bool Idle() const { return state_ == MacState::kWaiting && queue_.empty(); }
-  // Counts `ticks` silent ticks while Idle() without running them.
-  void SkipIdle(std::uint64_t ticks) { ticks_ += ticks; }
+  // Counts `ticks` silent ticks at `level_db` while Idle() without running them one by one.
+  void SkipIdle(std::uint64_t ticks, double level_db);
 
   // Ticks until the state or the carrier can next change if every tick from the next on hears
   // `level_db` and nothing is queued (nullopt: not before one of those changes).
@@ -92,6 +100,8 @@ class CsmaMac {
 
  private:
   void EnterWaiting();
+  // Hears `ticks` at `level_db` on the floor; once calibrated, the threshold follows it.
+  void Follow(double level_db, std::uint64_t ticks);
 
   MacOptions options_;
   std::mt19937 rng_;
@@ -100,6 +110,7 @@ class CsmaMac {
   MacState state_ = MacState::kCalibrating;
   double threshold_db_ = 0.0;
   double loudest_silence_db_ = -1e300;
+  std::optional<NoiseFloor> floor_;  // none: a fixed threshold, or the thesis's one calibration
   bool carrier_ = false;
   int remaining_ = 0;  // ticks left in the current timed phase (calibration, back-off, send, deaf, release)
   std::deque<MacFrame> queue_;
