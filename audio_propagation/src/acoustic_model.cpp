@@ -117,13 +117,13 @@ void UseAcousticPropagation(PropagationOptions& options, const world_sim::Acoust
 }
 
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
-                      const world_sim::RoomAcoustics& room, double coupling_db) {
+                      const world_sim::RoomAcoustics& room, double coupling_db, bool barron) {
   LinkLevels l;
   const double d = std::max(length, d0);
   l.rt60 = room.rt60;
   l.direct_db = source_db - 20.0 * std::log10(d / d0) - corner_loss_db * std::max(corners, 0);
   l.reverberant_db = source_db - 20.0 * std::log10(world_sim::CriticalDistance(room) / d0) -
-                     kReverberantDecay * length / room.rt60 + coupling_db;
+                     (barron ? kReverberantDecay * length / room.rt60 : 0.0) + coupling_db;
   l.total_db = Db(Power(l.direct_db) + Power(l.reverberant_db));
   l.drr_db = l.direct_db - l.reverberant_db;
   return l;
@@ -184,15 +184,19 @@ AcousticModel::AcousticModel(const PropagationModel& propagation, world_sim::Aco
 
 AcousticModel::Field AcousticModel::FieldBetween(const Eigen::Vector2d& from, const Eigen::Vector2d& at) const {
   if (rooms_) {
-    const int source = rooms_->RoomAt(from), listener = rooms_->RoomAt(at);
+    const int source = rooms_->ZoneAt(from), listener = rooms_->ZoneAt(at);
     if (source >= 0 && listener >= 0) {
-      // The source's room sets how loud its field is (the critical distance), the listener's how
+      // The source's zone sets how loud its field is (the critical distance), the listener's how
       // it falls and how it decays at the receiver.
       world_sim::RoomAcoustics room;
-      room.rt60 = rooms_->Acoustics(static_cast<std::size_t>(listener)).rt60;
-      room.critical_distance = world_sim::CriticalDistance(rooms_->Acoustics(static_cast<std::size_t>(source)));
-      return {room, rooms_->rooms().RelativeLevelDb(static_cast<std::size_t>(source),
-                                                    static_cast<std::size_t>(listener))};
+      room.rt60 = rooms_->ZoneAcoustics(static_cast<std::size_t>(listener)).rt60;
+      room.critical_distance = world_sim::CriticalDistance(rooms_->ZoneAcoustics(static_cast<std::size_t>(source)));
+      // Barron's fall is the time the direct sound takes to cross the source's own field; a
+      // field further on is reached later still, through the openings, and the coupling is its
+      // whole fall.
+      return {room,
+              rooms_->field().RelativeLevelDb(static_cast<std::size_t>(source), static_cast<std::size_t>(listener)),
+              source == listener};
     }
   }
   return {acoustics_.RoomAt(at.x(), at.y()), 0.0};
@@ -202,7 +206,7 @@ LinkLevels AcousticModel::Levels(const SoundPath& path, const Eigen::Vector2d& l
   const PropagationOptions& o = propagation_.options();
   const Field field = FieldBetween(path.polyline.empty() ? listener : path.polyline.front(), listener);
   return LinkBudget(o.source_level_db, o.reference_distance, path.length, path.bends, acoustics_.corner_loss_db,
-                    field.room, field.coupling_db);
+                    field.room, field.coupling_db, field.barron);
 }
 
 std::vector<Disturbance> AcousticModel::NoiseAt(const Eigen::Vector2d& at, double t,
@@ -245,7 +249,7 @@ std::optional<double> AcousticModel::SourceLevelDb(std::size_t k, const Eigen::V
   const PropagationOptions& o = propagation_.options();
   const Field field = FieldBetween(*from, at);
   return LinkBudget(s.level_db, o.reference_distance, p.length, p.bends, acoustics_.corner_loss_db, field.room,
-                    field.coupling_db)
+                    field.coupling_db, field.barron)
       .total_db;
 }
 

@@ -100,10 +100,25 @@ std::vector<CoupledRoomSpec> Specs(const std::vector<world_sim::RoomAcoustics>& 
   return specs;
 }
 
-std::vector<RoomOpening> Openings(const grid::RoomSegmentation& segmentation, double door_height) {
-  std::vector<RoomOpening> out;
-  for (const grid::SegmentedOpening& o : segmentation.openings()) {
-    out.push_back({static_cast<std::size_t>(o.a), static_cast<std::size_t>(o.b), o.width * door_height});
+RoomZoneOptions ZoneOptions(const world_sim::CoupledRoomsSpec& spec) {
+  RoomZoneOptions o;
+  o.ceiling_height = spec.ceiling_height;
+  o.door_height = spec.door_height;
+  o.min_zone_area = spec.min_room_area;
+  o.corridor_elongation = spec.corridor_elongation;
+  return o;
+}
+
+// A zone's share of its room: of its volume, and so of its absorption (r_c^2 goes as A).
+std::vector<world_sim::RoomAcoustics> ZonesAcoustics(const RoomZones& zones, const RoomCoupling::Rooms& rooms) {
+  std::vector<world_sim::RoomAcoustics> out;
+  for (const RoomZones::Zone& z : zones.zones()) {
+    world_sim::RoomAcoustics a = rooms.acoustics[static_cast<std::size_t>(z.room)];
+    if (z.share < 1.0) {
+      a.volume *= z.share;
+      a.critical_distance *= std::sqrt(z.share);
+    }
+    out.push_back(a);
   }
   return out;
 }
@@ -113,12 +128,14 @@ std::vector<RoomOpening> Openings(const grid::RoomSegmentation& segmentation, do
 RoomCoupling::RoomCoupling(const grid::OccupancyMap& map, const world_sim::Acoustics& acoustics)
     : segmentation_(map, SegmentationOptions(RequireRooms(acoustics))),
       rooms_of_(RoomsAcoustics(map, segmentation_, acoustics)),
-      rooms_(Specs(rooms_of_.acoustics), Openings(segmentation_, acoustics.rooms->door_height)) {}
+      zones_(map, segmentation_, ZoneOptions(*acoustics.rooms)),
+      zone_acoustics_(ZonesAcoustics(zones_, rooms_of_)),
+      field_(Specs(zone_acoustics_), zones_.openings()) {}
 
 double RoomCoupling::RelativeLevelDb(const Eigen::Vector2d& source, const Eigen::Vector2d& listener) const {
-  const int s = segmentation_.RoomAt(source), l = segmentation_.RoomAt(listener);
+  const int s = zones_.ZoneAt(source), l = zones_.ZoneAt(listener);
   if (s < 0 || l < 0) return 0.0;
-  return rooms_.RelativeLevelDb(static_cast<std::size_t>(s), static_cast<std::size_t>(l));
+  return field_.RelativeLevelDb(static_cast<std::size_t>(s), static_cast<std::size_t>(l));
 }
 
 }  // namespace audio_propagation

@@ -106,7 +106,7 @@ TEST(RoomCoupling, ARegionNamesTheAcousticsOfTheRoomItMostlyCovers) {
   const double share = static_cast<double>(right_in_box) / in_box;
   EXPECT_GT(share, 0.7);
   EXPECT_LT(share, 0.95);
-  EXPECT_NEAR(rooms.rooms().Absorption(right), 16.0 * M_PI * share, 1e-9);
+  EXPECT_NEAR(rooms.field().Absorption(static_cast<std::size_t>(rooms.ZoneAt({8.0, 2.0}))), 16.0 * M_PI * share, 1e-9);
   EXPECT_NEAR(world_sim::CriticalDistance(rooms.Acoustics(right)), std::sqrt(share), 1e-12);
 }
 
@@ -154,12 +154,19 @@ TEST(RoomCoupling, AnAcousticsWithoutRoomsIsRefusedAndBadOptionsAreNamed) {
     EXPECT_NE(std::string(e.what()).find("acoustics.rooms: room segmentation: door_half_width"), std::string::npos)
         << e.what();
   }
+  acoustics = Building(0.8);
+  acoustics.rooms->corridor_elongation = 0.5;  // a room shorter than it is wide cut
+  try {
+    AcousticModel(propagation, acoustics, test::FlatTable("nava"), {});
+    FAIL() << "an elongation under 1 was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("room zones: corridor_elongation"), std::string::npos) << e.what();
+  }
 }
 
 // A building of one room (a region naming its acoustics, as the world's room does without rooms)
-// is today's model, to the bit.
-TEST(RoomCoupling, OneRoomIsTheSingleFieldModelBitForBit) {
-  const Floor floor(20.0, 5.0, 0.1);
+// is today's model, to the bit: a room as long as it is wide, or a long hall kept whole.
+void ExpectOneRoomIsTheSingleFieldModel(const Floor& floor, double elongation) {
   const PropagationModel propagation(floor.map(), Options());
   world_sim::Acoustics single;
   single.room.rt60 = 0.6;
@@ -167,16 +174,19 @@ TEST(RoomCoupling, OneRoomIsTheSingleFieldModelBitForBit) {
   single.ambient_db = 30.0;
   world_sim::Acoustics coupled = single;
   coupled.rooms = world_sim::CoupledRoomsSpec{};
+  coupled.rooms->corridor_elongation = elongation;
   world_sim::AcousticRegion all;
   all.name = "all";
-  all.min_x = 0.0, all.min_y = 0.0, all.max_x = 20.0, all.max_y = 5.0;
+  all.min_x = 0.0, all.min_y = 0.0, all.max_x = 20.0, all.max_y = 20.0;
   all.room = single.room;
   coupled.regions.push_back(all);
   const AcousticModel a(propagation, single, test::FlatTable("nava"), {});
   const AcousticModel b(propagation, coupled, test::FlatTable("nava"), {});
   ASSERT_NE(b.rooms(), nullptr);
   ASSERT_EQ(b.rooms()->segmentation().rooms().size(), 1u);
+  ASSERT_EQ(b.rooms()->zones().zones().size(), 1u);
   for (const double x : {1.0, 4.0, 9.5, 18.0}) {
+    if (floor.map().Blocks(floor.map().WorldToCell({x, 1.5}).x(), floor.map().WorldToCell({x, 1.5}).y())) continue;
     const SoundPath path = propagation.Path({0.5, 2.5}, {x, 1.5});
     const LinkLevels la = a.Levels(path, {x, 1.5}), lb = b.Levels(path, {x, 1.5});
     EXPECT_EQ(la.direct_db, lb.direct_db) << x;
@@ -184,6 +194,51 @@ TEST(RoomCoupling, OneRoomIsTheSingleFieldModelBitForBit) {
     EXPECT_EQ(la.drr_db, lb.drr_db) << x;
     EXPECT_EQ(la.rt60, lb.rt60) << x;
   }
+}
+
+TEST(RoomCoupling, OneRoomIsTheSingleFieldModelBitForBit) {
+  ExpectOneRoomIsTheSingleFieldModel(Floor(12.0, 9.0, 0.1), 3.0);
+  ExpectOneRoomIsTheSingleFieldModel(Floor(20.0, 5.0, 0.1), 0.0);  // long, but kept whole
+}
+
+// Down a corridor the reverberant field falls as the diffusion equation says (Valeau, Picaut and
+// Billon; Kang's corridors fall about a dB a metre): w(x) ~ exp(-k x), k = (P / A_c) sqrt(3
+// alpha) / 4 for a cross-section A_c of perimeter P whose surfaces absorb alpha (Sabine's, from
+// the RT60). Worked out here from the corridor's own dimensions, not from the zones' lengths.
+TEST(RoomCoupling, ACorridorsFieldFallsAlongItAsTheDiffusionEquationSays) {
+  const double width = 2.0, length = 40.0, height = 2.7, rt60 = 0.8;
+  const Floor floor(length + 0.2, width + 0.2, 0.1);
+  world_sim::Acoustics acoustics = Building(rt60);
+  acoustics.rooms->ceiling_height = height;
+  const RoomCoupling corridor(floor.map(), acoustics);
+  ASSERT_EQ(corridor.segmentation().rooms().size(), 1u);
+  ASSERT_GT(corridor.zones().zones().size(), 8u);
+  const double zone = CorridorZoneLength(width, height);
+  EXPECT_NEAR(length / static_cast<double>(corridor.zones().zones().size()), zone, 0.25 * zone);
+
+  const double volume = length * width * height;
+  const double surface = 2.0 * length * (width + height) + 2.0 * width * height;
+  const double alpha = SabineAbsorption(volume, rt60) / surface;
+  const double perimeter = 2.0 * (width + height), section = width * height;
+  const double k = perimeter / section * std::sqrt(3.0 * alpha) / 4.0;  // 1/m, energy
+  const double diffusion_db_per_m = 10.0 * std::log10(std::exp(1.0)) * k;
+  EXPECT_GT(diffusion_db_per_m, 0.7);  // a corridor, as Kang measured them
+  EXPECT_LT(diffusion_db_per_m, 2.0);
+
+  // The slope between 8 and 28 m from a source near one end (away from the ends, where the
+  // diffusion solution bends).
+  const Eigen::Vector2d source(2.0, 1.1);
+  const double near = corridor.RelativeLevelDb(source, {10.0, 1.1});
+  const double far = corridor.RelativeLevelDb(source, {30.0, 1.1});
+  const double chain_db_per_m = (near - far) / 20.0;
+  EXPECT_NEAR(chain_db_per_m, diffusion_db_per_m, 0.15 * diffusion_db_per_m)
+      << "chain " << chain_db_per_m << " dB/m, diffusion " << diffusion_db_per_m << " dB/m";
+
+  // Kept whole, the corridor is one field again.
+  acoustics.rooms->corridor_elongation = 0.0;
+  const RoomCoupling whole(floor.map(), acoustics);
+  EXPECT_EQ(whole.zones().zones().size(), 1u);
+  EXPECT_DOUBLE_EQ(whole.RelativeLevelDb(source, {30.0, 1.1}), 0.0);
 }
 
 // Four corridors 20 x 3 m side by side, each joined to the next by a 1 m door at alternating

@@ -127,29 +127,51 @@ int Rooms(const tools::ValidateArgs& args, const tools::AcousticWorld& world) {
   }
   const RoomCoupling rooms(world.loaded.map, world.acoustics);
   const grid::RoomSegmentation& cut = rooms.segmentation();
-  int source = -1;
+  int source = -1;  // the source's zone
   if (args.rooms_from) {
-    source = rooms.RoomAt(*args.rooms_from);
+    source = rooms.ZoneAt(*args.rooms_from);
     if (source < 0) {
       std::ostringstream s;
       s << "--from: (" << args.rooms_from->x() << ", " << args.rooms_from->y() << ") is not in the map's free space";
       args.usage.Fail(s.str());
     }
-    std::printf("a source at (%.2f, %.2f), in room %d\n", args.rooms_from->x(), args.rooms_from->y(), source);
+    std::printf("a source at (%.2f, %.2f), in room %d\n", args.rooms_from->x(), args.rooms_from->y(),
+                rooms.RoomAt(*args.rooms_from));
   }
-  std::printf("%zu rooms, %zu openings\n", cut.rooms().size(), cut.openings().size());
-  std::printf("room   centre (m)        area m^2  volume m^3  rt60 s  r_c m  absorption m^2  region%s\n",
+  const std::vector<RoomZones::Zone>& zones = rooms.zones().zones();
+  const CoupledRooms& field = rooms.field();
+  auto field_db = [&](std::size_t zone) { return field.RelativeLevelDb(static_cast<std::size_t>(source), zone); };
+  std::printf("%zu rooms, %zu openings, %zu zones\n", cut.rooms().size(), cut.openings().size(), zones.size());
+  std::printf("room   centre (m)        area m^2  volume m^3  rt60 s  r_c m  absorption m^2  region  zones%s\n",
               source >= 0 ? "  field dB" : "");
   for (std::size_t k = 0; k < cut.rooms().size(); ++k) {
     const grid::SegmentedRoom& r = cut.rooms()[k];
     const world_sim::RoomAcoustics& a = rooms.Acoustics(k);
-    const double volume = rooms.rooms().rooms()[k].volume;
+    // A room cut into zones is their sum; its field, the loudest of them.
+    double volume = 0.0, absorption = 0.0, loudest = -1e300;
+    for (std::size_t z = 0; z < zones.size(); ++z) {
+      if (zones[z].room != static_cast<int>(k)) continue;
+      volume += field.rooms()[z].volume;
+      absorption += field.Absorption(z);
+      if (source >= 0) loudest = std::max(loudest, field_db(z));
+    }
     const int region = rooms.Region(k);
-    std::printf("%4zu  (%6.2f, %6.2f)  %9.1f  %10.1f  %6.2f  %5.2f  %14.1f  %-6s", k, r.centroid.x(), r.centroid.y(),
-                r.area, volume, a.rt60, world_sim::CriticalDistance(a), rooms.rooms().Absorption(k),
-                region < 0 ? "-" : world.acoustics.regions[static_cast<std::size_t>(region)].name.c_str());
-    if (source >= 0) std::printf("  %+8.1f", rooms.rooms().RelativeLevelDb(static_cast<std::size_t>(source), k));
+    std::printf("%4zu  (%6.2f, %6.2f)  %9.1f  %10.1f  %6.2f  %5.2f  %14.1f  %-6s  %5d", k, r.centroid.x(), r.centroid.y(),
+                r.area, volume, a.rt60, world_sim::CriticalDistance(a), absorption,
+                region < 0 ? "-" : world.acoustics.regions[static_cast<std::size_t>(region)].name.c_str(),
+                rooms.zones().ZonesOf(k));
+    if (source >= 0) std::printf("  %+8.1f", loudest);
     std::printf("\n");
+  }
+  if (zones.size() > cut.rooms().size()) {
+    std::printf("zone  room  area m^2  absorption m^2%s   (long rooms cut along their length)\n",
+                source >= 0 ? "  field dB" : "");
+    for (std::size_t z = 0; z < zones.size(); ++z) {
+      if (rooms.zones().ZonesOf(static_cast<std::size_t>(zones[z].room)) < 2) continue;
+      std::printf("%4zu  %4d  %8.1f  %14.1f", z, zones[z].room, zones[z].area, field.Absorption(z));
+      if (source >= 0) std::printf("  %+8.1f", field_db(z));
+      std::printf("\n");
+    }
   }
   std::printf("opening  rooms     width m  centre (m)\n");
   for (std::size_t k = 0; k < cut.openings().size(); ++k) {

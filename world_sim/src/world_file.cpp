@@ -129,7 +129,8 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
   }
   if (f.Has("rooms")) {
     const YamlFields r = f.Child("rooms");
-    r.ExpectOnlyKeys({"ceiling_height", "door_height", "door_half_width", "min_room_area", "max_obstacle_size"});
+    r.ExpectOnlyKeys({"ceiling_height", "door_height", "door_half_width", "min_room_area", "max_obstacle_size",
+                      "corridor_elongation"});
     CoupledRoomsSpec rooms;
     rooms.ceiling_height =
         Bounded(r, "ceiling_height", rooms.ceiling_height, 0.0, 100.0, true, "a height in (0, 100] m");
@@ -141,6 +142,12 @@ std::optional<Acoustics> ParseAcoustics(const YamlFields& root, const std::strin
         Bounded(r, "min_room_area", rooms.min_room_area, 0.0, kBig, false, "an area in m^2 (>= 0)");
     rooms.max_obstacle_size =
         Bounded(r, "max_obstacle_size", rooms.max_obstacle_size, 0.0, kBig, false, "a length in m (>= 0)");
+    rooms.corridor_elongation = Bounded(r, "corridor_elongation", rooms.corridor_elongation, 0.0, kBig, false,
+                                        "0 (rooms kept whole) or a ratio of length to width >= 1");
+    if (rooms.corridor_elongation > 0.0 && rooms.corridor_elongation < 1.0) {
+      r.Fail("corridor_elongation", "0 (rooms kept whole) or a ratio of length to width >= 1, got " +
+                                        std::to_string(rooms.corridor_elongation));
+    }
     a.rooms = rooms;
   }
   std::size_t k = 0;
@@ -407,7 +414,8 @@ void EmitAcoustics(YAML::Emitter& out, const Acoustics& a) {
         << a.rooms->ceiling_height << YAML::Key << "door_height" << YAML::Value << a.rooms->door_height << YAML::Key
         << "door_half_width" << YAML::Value << a.rooms->door_half_width << YAML::Key << "min_room_area"
         << YAML::Value << a.rooms->min_room_area << YAML::Key << "max_obstacle_size" << YAML::Value
-        << a.rooms->max_obstacle_size << YAML::EndMap;
+        << a.rooms->max_obstacle_size << YAML::Key << "corridor_elongation" << YAML::Value
+        << a.rooms->corridor_elongation << YAML::EndMap;
   }
   out << YAML::Key << "noise_sources" << YAML::Value << YAML::BeginSeq;
   for (const NoiseSourceSpec& s : a.noise_sources) {

@@ -250,13 +250,14 @@ TEST_F(WorldFileTest, CoupledRoomsLoadSaveBackAndRefuseImpossibleSizes) {
   EXPECT_FALSE(LoadWorldFile(Write(world)).config.acoustics->rooms.has_value());
   const LoadedWorld w = LoadWorldFile(Write(world + "  rooms: {ceiling_height: 3.0, door_height: 2.0}\n"));
   const LoadedWorld all = LoadWorldFile(
-      Write(world + "  rooms: {door_half_width: 0.8, min_room_area: 2.5, max_obstacle_size: 0.4}\n"));
+      Write(world + "  rooms: {door_half_width: 0.8, min_room_area: 2.5, max_obstacle_size: 0.4, corridor_elongation: 0}\n"));
   const std::string all_saved = (dir_ / "all_rooms.yaml").string();
   SaveWorldFile(all_saved, all.config);
   const CoupledRoomsSpec back_all = *LoadWorldFile(all_saved).config.acoustics->rooms;
   EXPECT_DOUBLE_EQ(back_all.door_half_width, 0.8);
   EXPECT_DOUBLE_EQ(back_all.min_room_area, 2.5);
   EXPECT_DOUBLE_EQ(back_all.max_obstacle_size, 0.4);
+  EXPECT_DOUBLE_EQ(back_all.corridor_elongation, 0.0);
   ASSERT_TRUE(w.config.acoustics->rooms.has_value());
   EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->ceiling_height, 3.0);
   EXPECT_DOUBLE_EQ(w.config.acoustics->rooms->door_height, 2.0);
@@ -275,6 +276,8 @@ TEST_F(WorldFileTest, CoupledRoomsLoadSaveBackAndRefuseImpossibleSizes) {
   ExpectError(world + "  rooms: {door_half_width: 0.001}\n",
               "acoustics.rooms.door_half_width: expected at least one cell of the map");
   ExpectError(world + "  rooms: {min_room_area: -1}\n", "acoustics.rooms.min_room_area: expected an area in m^2 (>= 0)");
+  ExpectError(world + "  rooms: {corridor_elongation: 0.5}\n",
+              "acoustics.rooms.corridor_elongation: 0 (rooms kept whole) or a ratio of length to width >= 1");
   ExpectError(world + "  rooms: {windows: 3}\n", "acoustics.rooms.windows: unknown key");
 }
 

@@ -51,9 +51,11 @@ struct LinkLevels {
 // Pure: a source of `source_db` at `d0` m heard over a path of `length` m round `corners`
 // corners, in `room` (its critical distance sets the reverberant field, its RT60 the field's fall
 // along the path), the reverberant field moved by `coupling_db` (RoomCoupling: the field reaching
-// another room through its doorways; 0 in a building of one field).
+// another room or zone through its doorways and cross-sections; 0 in a building of one field).
+// Barron's fall along the path (`barron`) is a room's own: from one zone to another the coupling
+// is the fall.
 LinkLevels LinkBudget(double source_db, double d0, double length, int corners, double corner_loss_db,
-                      const world_sim::RoomAcoustics& room, double coupling_db = 0.0);
+                      const world_sim::RoomAcoustics& room, double coupling_db = 0.0, bool barron = true);
 // Pure: the critical distance (m) of a room of `rt60` s in which a listener `distance` m from a
 // speaker (a straight path) hears the direct-to-reverberant ratio `drr_db`: LinkBudget inverted,
 // so that a surveyed room (nava_survey) gives back its DRR in the model.
@@ -180,6 +182,7 @@ class AcousticModel {
   struct Field {
     world_sim::RoomAcoustics room;
     double coupling_db = 0.0;
+    bool barron = true;  // the listener is in the source's field (one field, or the same zone)
   };
   Field FieldBetween(const Eigen::Vector2d& from, const Eigen::Vector2d& at) const;
   // The path from noise source `source` at `from` to `to`.

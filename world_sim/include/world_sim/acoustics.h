@@ -73,6 +73,10 @@ struct CoupledRoomsSpec {
   double door_half_width = 0.6;  // m: passages up to twice this wide divide rooms
   double min_room_area = 1.0;    // m^2: smaller pieces join their neighbour
   double max_obstacle_size = 1.0;  // m: free-standing obstacles no longer than this divide no room
+  // A room longer along its floor than this many of its mean widths (a corridor) is cut into
+  // zones along its length, so that its field falls down it (audio_propagation/room_zones.h);
+  // 0 keeps every room one field.
+  double corridor_elongation = 3.0;
 };
 
 struct Acoustics {
