@@ -21,6 +21,14 @@ grid::RoomSegmentationOptions SegmentationOptions(const world_sim::CoupledRoomsS
   return o;
 }
 
+// A part of a room or region, `share` of its floor: that share of its volume, and so of its
+// absorption (r_c^2 goes as A).
+world_sim::RoomAcoustics Share(world_sim::RoomAcoustics a, double share) {
+  a.volume *= share;
+  a.critical_distance *= std::sqrt(share);
+  return a;
+}
+
 // Each room's acoustics: the region (or the world's room) whose box holds most of its cells'
 // centres. A region names its rooms' RT60, and their volume or critical distance for the whole
 // region: a room gets its share, by its cells among the region's free ones (the absorption
@@ -63,10 +71,7 @@ RoomCoupling::Rooms RoomsAcoustics(const grid::OccupancyMap& map, const grid::Ro
     if (best >= 0) {
       const auto r = static_cast<std::size_t>(best);
       named[r] = 1;
-      const double share = static_cast<double>(most) / region_cells[r];
-      out.acoustics[k] = acoustics.regions[r].room;
-      out.acoustics[k].volume *= share;
-      out.acoustics[k].critical_distance *= std::sqrt(share);
+      out.acoustics[k] = Share(acoustics.regions[r].room, static_cast<double>(most) / region_cells[r]);
       continue;
     }
     out.acoustics[k].rt60 = acoustics.room.rt60;
@@ -109,16 +114,12 @@ RoomZoneOptions ZoneOptions(const world_sim::CoupledRoomsSpec& spec) {
   return o;
 }
 
-// A zone's share of its room: of its volume, and so of its absorption (r_c^2 goes as A).
+// Each zone: its share of its room (a room left whole is exactly itself).
 std::vector<world_sim::RoomAcoustics> ZonesAcoustics(const RoomZones& zones, const RoomCoupling::Rooms& rooms) {
   std::vector<world_sim::RoomAcoustics> out;
   for (const RoomZones::Zone& z : zones.zones()) {
-    world_sim::RoomAcoustics a = rooms.acoustics[static_cast<std::size_t>(z.room)];
-    if (z.share < 1.0) {
-      a.volume *= z.share;
-      a.critical_distance *= std::sqrt(z.share);
-    }
-    out.push_back(a);
+    const world_sim::RoomAcoustics& room = rooms.acoustics[static_cast<std::size_t>(z.room)];
+    out.push_back(z.share < 1.0 ? Share(room, z.share) : room);
   }
   return out;
 }
