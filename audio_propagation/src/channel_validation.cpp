@@ -86,6 +86,7 @@ class LinkJudge {
     render.sample_rate = options_.sample_rate;
     render.seed = static_cast<std::uint32_t>(rng());
     render.speech = options_.speech;
+    render.measured_rooms = options_.measured_rooms;
     const SceneRenderer renderer(model_, team_, resting_, std::move(render));
     const SceneRendering r = renderer.Render(scene, {kValidationListener});
 

@@ -218,6 +218,17 @@ SceneRenderer::SceneRenderer(const AcousticModel& model, std::vector<std::string
     throw std::invalid_argument("scene renderer: " + std::to_string(robot_names_.size()) + " robot names but " +
                                 std::to_string(resting_.size()) + " resting positions");
   }
+  if (model_.table().rooms == nava_modem::RoomOptions::Model::kMeasured) {
+    if (!options_.measured_rooms) {
+      throw std::invalid_argument("scene renderer: the " + model_.table().profile +
+                                  " table was measured over measured rooms (rooms: measured): expected them "
+                                  "(measured_rooms, a tool's --rir-dir)");
+    }
+    if (options_.measured_rooms->sample_rate() != options_.sample_rate) {
+      throw std::invalid_argument("scene renderer: measured rooms at " + std::to_string(options_.measured_rooms->sample_rate()) +
+                                  " Hz, expected the render's " + std::to_string(options_.sample_rate) + " Hz");
+    }
+  }
   double sum = 0.0;
   for (float v : options_.speech) sum += static_cast<double>(v) * v;
   speech_power_ = options_.speech.empty() ? 0.0 : sum / static_cast<double>(options_.speech.size());
@@ -435,6 +446,18 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
         room.geometry.distance_m = path.length;
       }
       room.seed = SeedOf(options_.seed, kRoomSeeds, static_cast<std::uint32_t>(p * robot_names_.size() + listener));
+      // A measured room moved to the link's figures; its direct sound lies where it was measured.
+      double lead = 0.0;
+      if (room.model == nava_modem::RoomOptions::Model::kMeasured) {
+        if (room.rt60 > 0.0) {
+          const nava_modem::MovedRooms::Drawn drawn = options_.measured_rooms->Move(room.rt60, room.drr_db, room.seed);
+          room.response = *drawn.response;
+          lead = static_cast<double>(drawn.peak);
+        } else {
+          room.model = nava_modem::RoomOptions::Model::kStatistical;
+        }
+        room.rt60 = room.drr_db = 0.0;
+      }
       // The speaker's card plays at its rate, the microphone's samples at its own.
       room.clock_offset = (1.0 + speaker.rate_error) / (1.0 + microphone.rate_error) - 1.0;
       nava_modem::RoomRenderInfo info;
@@ -450,11 +473,12 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       }
       hearing.signal_power = count ? sum / static_cast<double>(count) : 0.0;
       // A measured-like response has its direct sound kMeasuredLikeDelay samples in (room for
-      // its reflections' pulses): taken back, so that every kind of room's direct sound arrives
-      // after the travel time. Left in, a measured-like link arrived 0.33 ms (11 cm) later than
+      // its reflections' pulses), a measured one where it was measured: taken back, so that
+      // every kind of room's direct sound arrives after the travel time. Left in, a measured-like link arrived 0.33 ms (11 cm) later than
       // a statistical one, which a two-way range between the two kinds did not cancel.
-      const bool like = room.model == nava_modem::RoomOptions::Model::kMeasuredLike && room.rt60 > 0.0;
-      const double lead = like ? static_cast<double>(nava_modem::kMeasuredLikeDelay) : 0.0;
+      if (room.model == nava_modem::RoomOptions::Model::kMeasuredLike && room.rt60 > 0.0) {
+        lead = static_cast<double>(nava_modem::kMeasuredLikeDelay);
+      }
       const double first = std::round(hearing.arrival_clock * rate);
       hearing.in_scene = first >= 0.0 && first < static_cast<double>(n);
       hearing.first_sample = static_cast<std::size_t>(std::max(first, 0.0));

@@ -71,6 +71,15 @@ cat "$out/calibration"
 grep -Eq '^dry.wav +\+[0-9.]+ +0\.[23][0-9] +white +\+20 +[0-9]+% +100%$' "$out/calibration" \
   || fail "the room profile should decode every packet through a dry room at +20 dB"
 grep -Eq '^calibration: worst bin [0-9.]+ points apart' "$out/calibration" || fail "no calibration line"
+# A table over the measured rooms written here, moved to each cell's RT60 and DRR: it says so, and
+# names the rooms of each RT60.
+"$tool" --profile room --quick --packets 1 --snr-db 0 --rt60 0.25,1 --response measured --rir-dir "$out/rooms" \
+  --dir "$out" --out "$out/measured.yaml" >/dev/null 2>"$out/stderr" || { cat "$out/stderr"; fail "--response measured failed"; }
+grep -q '^rooms: measured$' "$out/measured.yaml" || fail "the table over measured rooms does not say so"
+grep -q '^rooms moved to RT60 1 s: hall.wav' "$out/stderr" || { cat "$out/stderr"; fail "the rooms moved to RT60 1 s are not named"; }
+expect_error "--response measured: expected --rir-dir DIR" --profile room --quick --response measured
+expect_error "--rir-dir $out/none: " --profile room --quick --response measured --rir-dir "$out/rooms,$out/none"
+expect_error "no room decays as slowly as an RT60 of 5" --profile room --quick --response measured --rir-dir "$out/rooms" --rt60 5
 expect_error "--calibrate: expected --rir-dir DIR" --profile room --calibrate
 expect_error "--rir-dir, --noise-file and --table go with --calibrate" --profile room --rir-dir "$out/rooms"
 expect_error "--calibrate measures no table: drop --quick and --out" --profile room --calibrate --rir-dir "$out/rooms" --quick
@@ -86,7 +95,7 @@ expect_error "--rt60: expected ascending reverberation times from 0.001 to 10 (s
 expect_error "--rt60: expected ascending reverberation times" --profile nava --quick --rt60 1,0.5
 expect_error "--rt60: expected ascending reverberation times" --profile nava --quick --rt60 12
 expect_error "--rt60 is a table's axis: it does not go with --calibrate" --profile room --calibrate --rir-dir "$out/rooms" --rt60 1
-expect_error "--response odd: expected statistical or measured-like" --profile nava --quick --response odd
+expect_error "--response odd: expected statistical, measured-like or measured" --profile nava --quick --response odd
 expect_error "--response: the calibration's rooms are the measured ones of --rir-dir" --profile room --calibrate \
   --rir-dir "$out/rooms" --response measured-like
 expect_error "--threads: expected a whole number from 1" --profile nava --quick --threads 0

@@ -14,6 +14,8 @@
 #include "audio_propagation/decode_table.h"
 #include "bench_support/speech.h"
 #include "grid/input_error.h"
+#include "measured_rooms.h"
+#include "nava_modem/moved_rooms.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/wav_file.h"
 #include "tool_args/tool_args.h"
@@ -77,6 +79,31 @@ inline bool HasSpeech(const world_sim::Acoustics& a) {
     if (s.kind == world_sim::NoiseKind::kSpeech) return true;
   }
   return false;
+}
+
+// The measured rooms a table measured over them (rooms: measured) renders its links through:
+// those of `rir_dir` (DIR[,DIR...], a tool's --rir-dir) at `rate`; null for a table over rendered
+// rooms. Fails the tool through `usage` for such a table without them, and for measured rooms
+// given with a table that was not measured over them.
+inline std::shared_ptr<const nava_modem::MovedRooms> MeasuredRoomsFor(const DecodeTable& table, const std::string& rir_dir,
+                                                                       double rate,
+                                                                       const multirobot_audio::tools::ToolUsage& usage) {
+  if (table.rooms != nava_modem::RoomOptions::Model::kMeasured) {
+    if (!rir_dir.empty()) {
+      usage.Fail("--rir-dir: the " + table.profile + " table was measured over " + nava_modem::RoomModelName(table.rooms) +
+                 " rooms; expected no measured rooms");
+    }
+    return nullptr;
+  }
+  if (rir_dir.empty()) {
+    usage.Fail("the " + table.profile + " table was measured over measured rooms (rooms: measured): expected them, "
+               "--rir-dir DIR[,DIR...]");
+  }
+  try {
+    return std::make_shared<const nava_modem::MovedRooms>(nava_modem::tools::MovableRooms(rir_dir, rate, usage), rate);
+  } catch (const std::invalid_argument& e) {
+    usage.Fail(std::string("--rir-dir: ") + e.what());
+  }
 }
 
 // 240 s of make_speech.sh's speech at `rate` (nothing when the world has none).

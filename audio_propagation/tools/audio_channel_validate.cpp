@@ -292,6 +292,7 @@ int Run(const tools::ValidateArgs& args) {
     }
   }
   options.speech = tools::SpeechFor(program, world.acoustics, options.sample_rate, options.seed);
+  options.measured_rooms = tools::MeasuredRoomsFor(table, args.rir_dir, options.sample_rate, args.usage);
   // The acoustic channel's propagation model (threshold 30 dB under the ambient noise, as the
   // node sets it) computes no path longer than this.
   PropagationOptions channel_paths;

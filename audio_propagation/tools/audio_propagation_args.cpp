@@ -77,9 +77,11 @@ SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words) {
   const ToolArgs args(
       "audio_scene_render",
       "audio_scene_render --world W [--map M] --scene S --out DIR [--profile nava|room] [--rate 48000] "
-      "[--table FILE] [--seed 1]",
+      "[--table FILE] [--seed 1] [--rir-dir DIR[,DIR...]]",
       words);
   SceneRenderArgs s;
+  s.usage = args.tool_usage();
+  s.rir_dir = args.String("--rir-dir", "");
   s.world_file = args.Required("--world");
   s.map_file = args.String("--map", "");
   s.scene_file = args.Required("--scene");
@@ -164,7 +166,7 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   const ToolArgs args(
       "audio_channel_validate",
       "audio_channel_validate --world W [--map M] [--profile nava|room] [--links 300] [--packets 4] [--table FILE] "
-      "[--seed 1] [--out DIR] [--threads 2] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
+      "[--seed 1] [--out DIR] [--threads 2] [--rir-dir DIR[,DIR...]] | --world W [--map M] [--profile P] [--table FILE] [--time 0] "
       "--predict X1,Y1 X2,Y2 | --world W [--map M] [--profile P] [--table FILE] [--seed 1] --static-pairs N "
       "[--pair-packets 30] [--fate-distance 0.075] | --world W [--map M] --rooms [--from X,Y [--plot FILE.png]]",
       words, {"--rooms"});
@@ -182,6 +184,7 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   options.seed = static_cast<std::uint32_t>(args.Int("--seed", 1, 0, 4294967295L));
   options.threads = static_cast<int>(args.Int("--threads", 2, 1, 64));
   v.out = args.String("--out", ".");
+  v.rir_dir = args.String("--rir-dir", "");
   v.static_pairs = static_cast<int>(args.Int("--static-pairs", 0, 0, 100000));
   v.fate.pairs = std::max(1, v.static_pairs);
   v.fate.packets = static_cast<int>(args.Int("--pair-packets", 30, 1, 10000));
@@ -197,6 +200,9 @@ ValidateArgs ParseValidateArgs(const std::vector<std::string>& words) {
   if (!v.rooms_plot.empty() && !v.rooms_from) args.Fail("--plot: expected with --rooms --from X,Y");
   if (v.rooms && (!predict.empty() || v.static_pairs > 0)) {
     args.Fail("--rooms: expected without --predict and --static-pairs");
+  }
+  if (!v.rir_dir.empty() && (v.rooms || !predict.empty() || v.static_pairs > 0)) {
+    args.Fail("--rir-dir: the rooms the validation renders; expected without --rooms, --predict and --static-pairs");
   }
   if (predict.empty()) args.CheckAllUsed();
   options.profile = Profile(args, v.profile_name);
@@ -230,9 +236,12 @@ namespace audio_propagation::tools {
 RangingBenchArgs ParseRangingBenchArgs(const std::vector<std::string>& words) {
   const ToolArgs args("ranging_bench",
                       "ranging_bench [--worlds W1.yaml,W2.yaml] [--teams 2,5,10,20] [--scenes 2] [--rounds 2] "
-                      "[--profile room|nava] [--rate 48000] [--seed 1] [--threads 2] [--plot FILE.png]",
+                      "[--profile room|nava] [--rate 48000] [--seed 1] [--threads 2] [--plot FILE.png] "
+                      "[--rir-dir DIR[,DIR...]]",
                       words);
   RangingBenchArgs r;
+  r.usage = args.tool_usage();
+  r.rir_dir = args.String("--rir-dir", "");
   const auto split = [](const std::string& text) {
     std::vector<std::string> out;
     std::istringstream in(text);

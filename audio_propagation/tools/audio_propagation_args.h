@@ -40,6 +40,8 @@ struct SceneRenderArgs {
   std::optional<nava_modem::Profile> profile;  // none: the scene's own
   double rate = 48000.0;
   unsigned seed = 1;
+  std::string rir_dir;  // --rir-dir: measured rooms, for a table measured over them
+  multirobot_audio::tools::ToolUsage usage;
 };
 SceneRenderArgs ParseSceneRenderArgs(const std::vector<std::string>& words);
 
@@ -54,12 +56,17 @@ struct RangingBenchArgs {
   unsigned seed = 1;
   int threads = 2;
   std::string plot;                 // PNG of the error against distance ("" for none)
+  std::string rir_dir;              // --rir-dir: measured rooms, for a table measured over them
+  multirobot_audio::tools::ToolUsage usage;
 };
 RangingBenchArgs ParseRangingBenchArgs(const std::vector<std::string>& words);
 
 struct ValidateArgs {
   std::string world_file, map_file, profile_name, table_file, out;
   ValidationOptions validation;  // links, packets, seed, threads, profile
+  // --rir-dir DIR[,DIR...]: measured rooms for a table measured over them (rooms: measured),
+  // moved to each link's RT60 and DRR as the table's were to its cells.
+  std::string rir_dir;
   // --predict: one link from `from` to `to` at `time` instead of the validation.
   bool predict = false;
   Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();

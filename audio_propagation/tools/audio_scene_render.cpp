@@ -48,6 +48,7 @@ int Run(const audio_propagation::tools::SceneRenderArgs& args) {
     options.sample_rate = rate;
     options.seed = seed;
     options.speech = tools::SpeechFor(program, world.acoustics, rate, seed);
+    options.measured_rooms = tools::MeasuredRoomsFor(table, args.rir_dir, rate, args.usage);
     const SceneRenderer renderer(model, world.robots, world.resting, options);
     const SceneRendering r = renderer.Render(scene);
     std::filesystem::create_directories(out);

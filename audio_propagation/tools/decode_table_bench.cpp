@@ -13,9 +13,11 @@
 #include "bench_support/child_process.h"
 #include "bench_support/speech.h"
 #include "nava_modem/frame.h"
+#include "nava_modem/moved_rooms.h"
 #include "nava_modem/packet_receiver.h"
 #include "nava_modem/room_channel.h"
 #include "nava_modem/room_phy.h"
+#include "measured_rooms.h"
 #include "model_calibration.h"
 #include "parallel_cells.h"
 #include "table_cells.h"
@@ -164,6 +166,25 @@ int DecodeTableBench(const DecodeTableRequest& request) {
     t.whine_hz = 2500.0;
   }
   t.Resize();
+  if (request.model == RoomOptions::Model::kMeasured) {
+    try {
+      s.moved = std::make_shared<const MovedRooms>(nava_modem::tools::MovableRooms(request.rir_dir, s.modem.sample_rate, usage),
+                                                   s.modem.sample_rate);
+      for (std::size_t k : s.moved->excluded()) {
+        std::fprintf(stderr, "not moved: %s (an arrival %.1f dB under its loudest peak before it)\n",
+                     s.moved->rooms()[k].name.c_str(), -s.moved->rooms()[k].before_db);
+      }
+      for (double rt60 : t.rt60) {
+        std::fprintf(stderr, "rooms moved to RT60 %g s:", rt60);
+        for (std::size_t k : s.moved->Candidates(rt60)) {
+          std::fprintf(stderr, " %s (%.2f s)", s.moved->rooms()[k].name.c_str(), s.moved->rooms()[k].rt60);
+        }
+        std::fprintf(stderr, "\n");
+      }
+    } catch (const std::invalid_argument& e) {
+      usage.Fail(std::string("--rir-dir: ") + e.what());
+    }
+  }
   // Made only now, so that bad arguments leave no folder behind.
   s.speech = ReadAudioAt(MakeSpeech(TempDir(usage, request.dir), s.seed), s.modem.sample_rate);
 

@@ -13,7 +13,7 @@ using multirobot_audio::tools::ToolArgs;
 DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& words) {
   const ToolArgs args("decode_table_bench",
                       "decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] "
-                      "[--dir DIR] [--snr-db LIST] [--rt60 LIST] [--response statistical|measured-like] | --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav] "
+                      "[--dir DIR] [--snr-db LIST] [--rt60 LIST] [--response statistical|measured-like|measured [--rir-dir DIR[,DIR...]]] | --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav] "
                       "[--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR] | --profile nava "
                       "--whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick] [--threads 2] [--seed 1]",
                       words, {"--quick", "--calibrate", "--whine-harm"});
@@ -53,8 +53,12 @@ DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& wor
   } else if (r.calibrate) {
     if (r.rir_dir.empty()) args.Fail("--calibrate: expected --rir-dir DIR, the measured responses");
     if (r.quick || !args.String("--out", "").empty()) args.Fail("--calibrate measures no table: drop --quick and --out");
+  } else if (r.model == nava_modem::RoomOptions::Model::kMeasured) {
+    if (r.rir_dir.empty()) args.Fail("--response measured: expected --rir-dir DIR[,DIR...], the measured rooms to move");
+    if (!r.noise_file.empty() || !r.table_file.empty()) args.Fail("--noise-file and --table go with --calibrate");
   } else if (!r.rir_dir.empty() || !r.noise_file.empty() || !r.table_file.empty()) {
-    args.Fail("--rir-dir, --noise-file and --table go with --calibrate (--table also with --whine-harm)");
+    args.Fail("--rir-dir, --noise-file and --table go with --calibrate or --response measured (--table also with "
+              "--whine-harm)");
   }
   if (!rt60_list.empty() && r.calibrate) args.Fail("--rt60 is a table's axis: it does not go with --calibrate");
   if (!args.String("--response", "").empty() && r.calibrate) {

@@ -4,7 +4,8 @@
 // call it.
 //
 //   decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2]
-//                      [--seed 1] [--dir DIR] [--snr-db LIST]
+//                      [--seed 1] [--dir DIR] [--snr-db LIST] [--rt60 LIST]
+//                      [--response statistical|measured-like|measured [--rir-dir DIR[,DIR...]]]
 //   decode_table_bench --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav]
 //                      [--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR]
 //   decode_table_bench --profile nava --whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick]
@@ -26,7 +27,9 @@ struct DecodeTableRequest {
   std::string out, dir;
   std::vector<double> snr_db;  // --snr-db; empty: the default axis
   std::vector<double> rt60;    // --rt60; empty: the profile's default axis
-  // --response statistical|measured-like: the rooms the table's packets are heard through.
+  // --response statistical|measured-like|measured: the rooms the table's packets are heard
+  // through; measured: the rooms of --rir-dir (folders, comma-separated) moved to each cell's
+  // RT60 and DRR (moved_rooms.h).
   nava_modem::RoomOptions::Model model = nava_modem::RoomOptions::Model::kStatistical;
   // --calibrate: the model held against the real receiver through measured rooms
   // (model_calibration.h) instead of a table measured.

@@ -182,6 +182,7 @@ SceneResult RunScene(const tools::RangingBenchArgs& args, const tools::AcousticW
   SceneRenderOptions options;
   options.sample_rate = args.rate;
   options.seed = seed;
+  options.measured_rooms = tools::MeasuredRoomsFor(table, args.rir_dir, args.rate, args.usage);
   const SceneRenderer renderer(model, world.robots, world.resting, options);
   const SceneRendering rendering = renderer.Render(scene);
 

@@ -40,7 +40,10 @@ std::vector<float> Recording(const CellSetup& s, Interference kind, double rt60,
                              std::size_t length, std::mt19937& rng) {
   const double rate = s.modem.sample_rate;
   RoomOptions room;
-  if (s.response.empty()) {
+  if (s.moved) {
+    room.response = *s.moved->Draw(rt60, drr_db, static_cast<std::uint32_t>(rng())).response;
+    room.model = RoomOptions::Model::kMeasured;
+  } else if (s.response.empty()) {
     room.rt60 = rt60;
     room.drr_db = drr_db;
     room.model = s.model;
@@ -79,6 +82,7 @@ std::vector<float> Recording(const CellSetup& s, Interference kind, double rt60,
   RoomOptions other_room = room;
   other_room.noise = RoomOptions::Noise::kNone;
   other_room.seed = static_cast<std::uint32_t>(rng());
+  if (s.moved) other_room.response = *s.moved->Draw(rt60, drr_db, static_cast<std::uint32_t>(rng())).response;
   RoomRenderInfo other_info;
   const std::vector<float> interferer =
       RenderRoom(Placed(other_burst, static_cast<std::size_t>(static_cast<double>(start) + offset), length), rate,

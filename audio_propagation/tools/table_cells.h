@@ -6,11 +6,13 @@
 // model's calibration on measured rooms (model_calibration.h).
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "audio_propagation/decode_table.h"
 #include "nava_modem/modem_options.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/moved_rooms.h"
 #include "nava_modem/room_channel.h"
 
 namespace audio_propagation::tools {
@@ -35,6 +37,9 @@ struct CellSetup {
   // packet's own room of the cell's RT60 and DRR, of this model.
   std::vector<float> response;
   nava_modem::RoomOptions::Model model = nava_modem::RoomOptions::Model::kStatistical;
+  // Measured rooms moved to each cell's RT60 and DRR, a room drawn for every packet (the table's
+  // --rooms-from); null: the rendered rooms of `model`.
+  std::shared_ptr<const nava_modem::MovedRooms> moved;
 };
 
 // One 32-bit seed from a few numbers (splitmix64's finaliser over them), so that every packet of

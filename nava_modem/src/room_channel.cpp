@@ -56,19 +56,28 @@ constexpr double kTiltMarginS = 0.1;
 std::optional<RoomOptions::Model> ParseRoomModel(const std::string& name) {
   if (name == "statistical") return RoomOptions::Model::kStatistical;
   if (name == "measured-like") return RoomOptions::Model::kMeasuredLike;
+  if (name == "measured") return RoomOptions::Model::kMeasured;
   return std::nullopt;
 }
 
 const char* RoomModelName(RoomOptions::Model model) {
-  return model == RoomOptions::Model::kMeasuredLike ? "measured-like" : "statistical";
+  switch (model) {
+    case RoomOptions::Model::kMeasuredLike: return "measured-like";
+    case RoomOptions::Model::kMeasured: return "measured";
+    case RoomOptions::Model::kStatistical: break;
+  }
+  return "statistical";
 }
 
 void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
   Check(sample_rate > 0.0 && std::isfinite(sample_rate), "sample_rate", sample_rate, " Hz", "above 0");
   Check(Within(o.rt60, 0.0, 10.0), "rt60", o.rt60, " s", "0 (no reverberation) or above 0 and at most 10");
   Check(Within(o.drr_db, -40.0, 40.0), "drr_db", o.drr_db, " dB", "from -40 to 40");
-  Check(o.model == RoomOptions::Model::kStatistical || o.model == RoomOptions::Model::kMeasuredLike, "model",
-        static_cast<double>(o.model), "", "statistical or measured-like");
+  Check(o.model == RoomOptions::Model::kStatistical || o.model == RoomOptions::Model::kMeasuredLike ||
+            o.model == RoomOptions::Model::kMeasured,
+        "model", static_cast<double>(o.model), "", kRoomModelNames);
+  Check(o.model != RoomOptions::Model::kMeasured || !o.response.empty(), "model", static_cast<double>(o.model), "",
+        "a response given with the measured model (a measured room, moved_rooms.h, is the room)");
   if (o.model == RoomOptions::Model::kMeasuredLike) {
     Check(sample_rate > 2.0 * kResponseBandHighHz, "model", sample_rate, " Hz",
           "a sample rate above " + Number(2.0 * kResponseBandHighHz) + " Hz for a measured-like room (its band)");
@@ -78,8 +87,9 @@ void ValidateRoomOptions(const RoomOptions& o, double sample_rate) {
   Check(!placed || o.model == RoomOptions::Model::kMeasuredLike, "geometry", g.distance_m, " m apart",
         "the measured-like model with a geometry (the statistical room has none)");
   if (!o.response.empty()) {
-    Check(o.model == RoomOptions::Model::kStatistical, "model", static_cast<double>(o.model), "",
-          "the statistical model (the default) with a measured response (the response is the room)");
+    Check(o.model == RoomOptions::Model::kStatistical || o.model == RoomOptions::Model::kMeasured, "model",
+          static_cast<double>(o.model), "",
+          "the statistical (the default) or the measured model with a measured response (the response is the room)");
     Check(o.rt60 == 0.0, "rt60", o.rt60, " s", "0 with a measured response (the response is the room)");
     Check(o.drr_db == 0.0, "drr_db", o.drr_db, " dB", "0 with a measured response (the response is the room)");
     const bool finite = std::all_of(o.response.begin(), o.response.end(), [](float v) { return std::isfinite(v); });

@@ -381,10 +381,11 @@ TEST(RoomChannelTest, ValidationNamesTheField) {
 }
 
 TEST(RoomChannelTest, NamesItsModelsAndGivesAMeasuredLikeRoomItsGeometry) {
-  for (const auto model : {RoomOptions::Model::kStatistical, RoomOptions::Model::kMeasuredLike}) {
+  for (const auto model : {RoomOptions::Model::kStatistical, RoomOptions::Model::kMeasuredLike,
+                           RoomOptions::Model::kMeasured}) {
     EXPECT_EQ(ParseRoomModel(RoomModelName(model)), model);
   }
-  EXPECT_FALSE(ParseRoomModel("measured"));
+  EXPECT_FALSE(ParseRoomModel("measured_like"));
   const double rate = 48000.0;
   const std::vector<float> clean = Tone(2300, 0.05, rate);
   RoomOptions o;

@@ -49,4 +49,23 @@ std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const ToolUsage&
   return rooms;
 }
 
+std::vector<MovableRoom> MovableRooms(const std::string& dirs, double sample_rate, const ToolUsage& usage) {
+  std::vector<MovableRoom> movable;
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t comma = std::min(dirs.find(',', start), dirs.size());
+    const std::string dir = dirs.substr(start, comma - start);
+    if (dir.empty()) usage.Fail("--rir-dir " + dirs + ": an empty folder name; expected DIR[,DIR...]");
+    for (const MeasuredRoom& room : MeasuredRooms(dir, usage)) {
+      if (const auto problem = ResponseProblem(room.figures)) usage.Fail(room.path + ": " + room.name + " is " + *problem);
+      MovableRoom m;
+      m.name = room.name;
+      m.response = LoadImpulseResponse(room.path, room.channel, sample_rate);
+      movable.push_back(std::move(m));
+    }
+    start = comma + 1;
+  }
+  return movable;
+}
+
 }  // namespace nava_modem::tools

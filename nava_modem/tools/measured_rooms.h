@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "nava_modem/measured_response.h"
+#include "nava_modem/moved_rooms.h"
 #include "tool_args/usage_error.h"
 
 namespace nava_modem::tools {
@@ -22,5 +23,11 @@ struct MeasuredRoom {
 // README) are passed over. A folder without audio files, or a file that cannot serve, fails the
 // tool through `usage`, naming it.
 std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const multirobot_audio::tools::ToolUsage& usage);
+
+// The rooms of every folder of `dirs` (comma-separated: a --rir-dir that takes several), loaded at
+// `sample_rate` to be moved (moved_rooms.h); a room without its figures (ResponseProblem) fails
+// the tool through `usage`, naming it.
+std::vector<MovableRoom> MovableRooms(const std::string& dirs, double sample_rate,
+                                      const multirobot_audio::tools::ToolUsage& usage);
 
 }  // namespace nava_modem::tools

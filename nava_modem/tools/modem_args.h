@@ -49,11 +49,14 @@ inline ToolModem ProfileArgs(const multirobot_audio::tools::ToolArgs& args) {
 }
 
 // --response: the room model by name (ParseRoomModel), `fallback` when not given; refused
-// through `args`, naming the flag and the names, when unknown.
+// through `args`, naming the flag and the names, when unknown, and for "measured": these tools
+// draw a room from its RT60 and DRR (a measured one is given with --rir or --rir-dir).
 inline RoomOptions::Model RoomModelArg(const multirobot_audio::tools::ToolArgs& args, RoomOptions::Model fallback) {
   const std::string model = args.String("--response", RoomModelName(fallback));
   const auto parsed = ParseRoomModel(model);
-  if (!parsed) args.Fail("--response " + model + ": expected " + kRoomModelNames);
+  if (!parsed || *parsed == RoomOptions::Model::kMeasured) {
+    args.Fail("--response " + model + ": expected statistical or measured-like (a measured room: --rir or --rir-dir)");
+  }
   return *parsed;
 }
 

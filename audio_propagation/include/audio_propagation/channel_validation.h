@@ -7,6 +7,7 @@
 // (scene_render.h): one link is one small scene. No ROS.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -51,6 +52,8 @@ struct ValidationOptions {
   double min_separation = 0.5;  // m between sender and listener
   double sample_rate = 48000.0;
   std::vector<float> speech;  // at sample_rate, for worlds with speech
+  // For a table measured over measured rooms (SceneRenderOptions::measured_rooms).
+  std::shared_ptr<const nava_modem::MovedRooms> measured_rooms;
   // The simulated channel's hearing distance (m): links longer are flagged (beyond_hearing).
   double channel_hearing_distance = 0.0;  // 0: not flagged
 };

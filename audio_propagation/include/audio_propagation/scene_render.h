@@ -58,6 +58,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +69,7 @@
 #include "grid/occupancy_map.h"
 #include "grid/pose2d.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/moved_rooms.h"
 
 namespace audio_propagation {
 
@@ -158,6 +160,10 @@ struct SceneRenderOptions {
   // Speech at sample_rate (make_speech.sh's) for speech sources and a speech ambient; needed
   // only when there are such.
   std::vector<float> speech;
+  // Measured rooms at sample_rate, for a model whose table was measured over them (rooms:
+  // measured): each link's room is one of them moved to the link's RT60 and DRR
+  // (nava_modem::MovedRooms). Needed only for such a table.
+  std::shared_ptr<const nava_modem::MovedRooms> measured_rooms;
 };
 
 // Throws std::invalid_argument naming the field and its value: a sample rate the modems run at
@@ -168,8 +174,9 @@ class SceneRenderer {
  public:
   // `robot_names` and `resting` (their positions when not in a scene) are the team the model was
   // built with. Reads the world's recorded noise sources. Throws std::invalid_argument for
-  // impossible options (ValidateOptions), names and positions of different lengths, or a
-  // recording that cannot be read (naming the source and its file).
+    // impossible options (ValidateOptions), names and positions of different lengths, a
+  // recording that cannot be read (naming the source and its file), or a table measured over
+  // measured rooms without them (or with them at another sample rate).
   SceneRenderer(const AcousticModel& model, std::vector<std::string> robot_names, std::vector<Eigen::Vector2d> resting,
                 SceneRenderOptions options);
 
