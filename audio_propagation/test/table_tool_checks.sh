@@ -76,7 +76,7 @@ grep -Eq '^calibration: worst bin [0-9.]+ points apart' "$out/calibration" || fa
 "$tool" --profile room --quick --packets 1 --snr-db 0 --rt60 0.25,1 --response measured --rir-dir "$out/rooms" \
   --dir "$out" --out "$out/measured.yaml" >/dev/null 2>"$out/stderr" || { cat "$out/stderr"; fail "--response measured failed"; }
 grep -q '^rooms: measured$' "$out/measured.yaml" || fail "the table over measured rooms does not say so"
-grep -q '^rooms moved to RT60 1 s: hall.wav' "$out/stderr" || { cat "$out/stderr"; fail "the rooms moved to RT60 1 s are not named"; }
+grep -q '^rooms moved to RT60 1 s (1 places in 1 rooms): hall.wav' "$out/stderr" || { cat "$out/stderr"; fail "the rooms moved to RT60 1 s are not named"; }
 expect_error "--response measured: expected --rir-dir DIR" --profile room --quick --response measured
 expect_error "--rir-dir $out/none: " --profile room --quick --response measured --rir-dir "$out/rooms,$out/none"
 expect_error "no room decays as slowly as an RT60 of 5" --profile room --quick --response measured --rir-dir "$out/rooms" --rt60 5

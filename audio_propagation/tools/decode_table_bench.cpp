@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <set>
+#include <string>
 
 #include "audio_propagation/decode_table.h"
 #include "bench_support/child_process.h"
@@ -175,8 +177,11 @@ int DecodeTableBench(const DecodeTableRequest& request) {
                      s.moved->rooms()[k].name.c_str(), -s.moved->rooms()[k].before_db);
       }
       for (double rt60 : t.rt60) {
-        std::fprintf(stderr, "rooms moved to RT60 %g s:", rt60);
-        for (std::size_t k : s.moved->Candidates(rt60)) {
+        const std::vector<std::size_t> candidates = s.moved->Candidates(rt60);
+        std::set<std::string> groups;
+        for (std::size_t k : candidates) groups.insert(s.moved->rooms()[k].group);
+        std::fprintf(stderr, "rooms moved to RT60 %g s (%zu places in %zu rooms):", rt60, candidates.size(), groups.size());
+        for (std::size_t k : candidates) {
           std::fprintf(stderr, " %s (%.2f s)", s.moved->rooms()[k].name.c_str(), s.moved->rooms()[k].rt60);
         }
         std::fprintf(stderr, "\n");

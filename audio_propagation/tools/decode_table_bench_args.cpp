@@ -13,7 +13,7 @@ using multirobot_audio::tools::ToolArgs;
 DecodeTableRequest ParseDecodeTableBenchArgs(const std::vector<std::string>& words) {
   const ToolArgs args("decode_table_bench",
                       "decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2] [--seed 1] "
-                      "[--dir DIR] [--snr-db LIST] [--rt60 LIST] [--response statistical|measured-like|measured [--rir-dir DIR[,DIR...]]] | --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav] "
+                      "[--dir DIR] [--snr-db LIST] [--rt60 LIST] [--response statistical|measured-like|measured [--rir-dir DIR[,DIR...]]] | --profile nava|room --calibrate --rir-dir DIR[,DIR...] [--noise-file FILE.wav] "
                       "[--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR] | --profile nava "
                       "--whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick] [--threads 2] [--seed 1]",
                       words, {"--quick", "--calibrate", "--whine-harm"});

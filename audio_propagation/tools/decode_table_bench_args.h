@@ -6,7 +6,7 @@
 //   decode_table_bench --profile nava|room [--out FILE] [--packets 12] [--quick] [--threads 2]
 //                      [--seed 1] [--dir DIR] [--snr-db LIST] [--rt60 LIST]
 //                      [--response statistical|measured-like|measured [--rir-dir DIR[,DIR...]]]
-//   decode_table_bench --profile nava|room --calibrate --rir-dir DIR [--noise-file FILE.wav]
+//   decode_table_bench --profile nava|room --calibrate --rir-dir DIR[,DIR...] [--noise-file FILE.wav]
 //                      [--table FILE] [--packets 10] [--snr-db LIST] [--threads 2] [--seed 1] [--dir DIR]
 //   decode_table_bench --profile nava --whine-harm [--table FILE] [--out FILE] [--packets 16] [--quick]
 //                      [--threads 2] [--seed 1]

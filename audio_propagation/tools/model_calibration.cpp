@@ -54,7 +54,7 @@ int CalibrateModel(const DecodeTableRequest& request) {
   setup.table.packets = request.packets;
   // What the measured rooms decode is judged in the steady state, whatever lead the table had.
   setup.table.lead_s = kTableLeadSeconds;
-  const std::vector<nava_modem::tools::MeasuredRoom> rooms = nava_modem::tools::MeasuredRooms(request.rir_dir, usage);
+  const std::vector<nava_modem::tools::MeasuredRoom> rooms = nava_modem::tools::MeasuredRoomsIn(request.rir_dir, usage);
   std::vector<std::vector<float>> responses;
   for (const nava_modem::tools::MeasuredRoom& room : rooms) {
     if (const auto problem = nava_modem::ResponseProblem(room.figures)) usage.Fail(room.name + ": " + *problem);

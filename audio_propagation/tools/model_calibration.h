@@ -1,7 +1,7 @@
 #pragma once
 
 // The acoustic channel model held against measured rooms (decode_table_bench --calibrate): every
-// room of a folder of measured impulse responses (each channel of each file, as nava_bench
+// room of a folder (or folders) of measured impulse responses (each channel of each file, as nava_bench
 // --rir-dir reads them), packets at each full-band SNR in white noise and, with --noise-file, in
 // that recorded noise, decoded by the profile's real receiver (decode_table_bench's cells, the
 // packets heard through the measured response) and predicted by the model from the response's

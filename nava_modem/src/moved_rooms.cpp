@@ -1,6 +1,7 @@
 #include "nava_modem/moved_rooms.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <stdexcept>
 
@@ -64,8 +65,11 @@ std::vector<std::size_t> MovedRooms::Candidates(double rt60) const {
 }
 
 std::size_t MovedRooms::Chosen(double rt60, std::uint32_t seed) const {
-  const std::vector<std::size_t> candidates = Candidates(rt60);
-  return candidates[seed % candidates.size()];
+  std::map<std::string, std::vector<std::size_t>> groups;
+  for (std::size_t k : Candidates(rt60)) groups[rooms_[k].group.empty() ? "\n" + rooms_[k].name : rooms_[k].group].push_back(k);
+  auto group = groups.begin();
+  std::advance(group, static_cast<std::ptrdiff_t>(seed % groups.size()));
+  return group->second[seed / groups.size() % group->second.size()];
 }
 
 

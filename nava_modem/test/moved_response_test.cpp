@@ -14,6 +14,7 @@
 #include "nava_modem/measured_response.h"
 #include "nava_modem/moved_response.h"
 #include "nava_modem/moved_rooms.h"
+#include "measured_rooms.h"
 #include "nava_modem/room_channel.h"
 
 namespace nava_modem {
@@ -105,6 +106,26 @@ TEST(MovedRooms, DrawsBySeedFromRoomsThatDecayAtLeastAsSlowlyAndNeverFromOneWith
   int drawn[4] = {0, 0, 0, 0};
   for (std::uint32_t seed = 0; seed < 40; ++seed) ++drawn[pool.Draw(0.45, 0.0, seed).room];
   for (int n : drawn) EXPECT_EQ(n, 10);
+}
+
+// A room measured from several places weighs as much as one measured from one: the draw picks a
+// room (group), then a place in it.
+TEST(MovedRooms, ARoomMeasuredFromManyPlacesWeighsAsOne) {
+  std::vector<MovableRoom> rooms{Room("hall_1", 0.8, 1), Room("hall_2", 0.8, 2), Room("hall_3", 0.8, 3),
+                                 Room("kitchen", 0.8, 4)};
+  for (int k = 0; k < 3; ++k) rooms[k].group = "hall";
+  const MovedRooms pool(rooms, kRate);
+  int drawn[4] = {0, 0, 0, 0};
+  for (std::uint32_t seed = 0; seed < 60; ++seed) ++drawn[pool.Move(0.5, 0.0, seed).room];
+  EXPECT_EQ(drawn[3], 30);
+  EXPECT_EQ(drawn[0] + drawn[1] + drawn[2], 30);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(drawn[k], 10);
+  // Rooms by their files' names: the parts before the first that holds a digit or a sign.
+  EXPECT_EQ(tools::RoomOfFile("/r/pori_s1_r2_b.wav"), "/r/pori");
+  EXPECT_EQ(tools::RoomOfFile("/r/warehouse_7_4.wav"), "/r/warehouse");
+  EXPECT_EQ(tools::RoomOfFile("/r/brir_sweep_Netzwerkakademie_headaz+40.wav"), "/r/brir_sweep_Netzwerkakademie");
+  EXPECT_EQ(tools::RoomOfFile("/r/house_kitchen.wav"), "/r/house_kitchen");
+  EXPECT_EQ(tools::RoomOfFile("/r/3d_hall.flac"), "/r/3d_hall");
 }
 
 TEST(MovedRooms, RoomsThatCannotServeAreNamed) {

@@ -49,21 +49,43 @@ std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const ToolUsage&
   return rooms;
 }
 
-std::vector<MovableRoom> MovableRooms(const std::string& dirs, double sample_rate, const ToolUsage& usage) {
-  std::vector<MovableRoom> movable;
+std::vector<MeasuredRoom> MeasuredRoomsIn(const std::string& dirs, const ToolUsage& usage) {
+  std::vector<MeasuredRoom> rooms;
   std::size_t start = 0;
   while (start <= dirs.size()) {
     const std::size_t comma = std::min(dirs.find(',', start), dirs.size());
     const std::string dir = dirs.substr(start, comma - start);
     if (dir.empty()) usage.Fail("--rir-dir " + dirs + ": an empty folder name; expected DIR[,DIR...]");
-    for (const MeasuredRoom& room : MeasuredRooms(dir, usage)) {
-      if (const auto problem = ResponseProblem(room.figures)) usage.Fail(room.path + ": " + room.name + " is " + *problem);
-      MovableRoom m;
-      m.name = room.name;
-      m.response = LoadImpulseResponse(room.path, room.channel, sample_rate);
-      movable.push_back(std::move(m));
-    }
+    for (MeasuredRoom& room : MeasuredRooms(dir, usage)) rooms.push_back(std::move(room));
     start = comma + 1;
+  }
+  return rooms;
+}
+
+std::string RoomOfFile(const std::string& path) {
+  const std::filesystem::path file(path);
+  const std::string stem = file.stem().string();
+  std::string room;
+  std::size_t start = 0;
+  while (start < stem.size()) {
+    const std::size_t end = std::min(stem.find('_', start), stem.size());
+    const std::string part = stem.substr(start, end - start);
+    if (start > 0 && part.find_first_of("0123456789+-") != std::string::npos) break;
+    room += (start > 0 ? "_" : "") + part;
+    start = end + 1;
+  }
+  return (file.parent_path() / room).string();
+}
+
+std::vector<MovableRoom> MovableRooms(const std::string& dirs, double sample_rate, const ToolUsage& usage) {
+  std::vector<MovableRoom> movable;
+  for (const MeasuredRoom& room : MeasuredRoomsIn(dirs, usage)) {
+    if (const auto problem = ResponseProblem(room.figures)) usage.Fail(room.path + ": " + room.name + " is " + *problem);
+    MovableRoom m;
+    m.name = room.name;
+    m.group = RoomOfFile(room.path);
+    m.response = LoadImpulseResponse(room.path, room.channel, sample_rate);
+    movable.push_back(std::move(m));
   }
   return movable;
 }

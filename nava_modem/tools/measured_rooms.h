@@ -24,9 +24,18 @@ struct MeasuredRoom {
 // tool through `usage`, naming it.
 std::vector<MeasuredRoom> MeasuredRooms(const std::string& dir, const multirobot_audio::tools::ToolUsage& usage);
 
-// The rooms of every folder of `dirs` (comma-separated: a --rir-dir that takes several), loaded at
-// `sample_rate` to be moved (moved_rooms.h); a room without its figures (ResponseProblem) fails
-// the tool through `usage`, naming it.
+// The rooms of every folder of `dirs` (comma-separated: a --rir-dir that takes several), in turn.
+std::vector<MeasuredRoom> MeasuredRoomsIn(const std::string& dirs, const multirobot_audio::tools::ToolUsage& usage);
+
+// The rooms of every folder of `dirs` (comma-separated, as MeasuredRoomsIn), loaded at
+// `sample_rate` to be moved (moved_rooms.h), grouped by RoomOfFile; a room without its figures
+// (ResponseProblem) fails the tool through `usage`, naming it.
+// The room a response file was measured in, by its name: the name without its extension, cut
+// before the first "_"-separated part that holds a digit or a sign (a seat, a position, a head
+// angle: pori_s1_r2_b -> pori, warehouse_7_4 -> warehouse,
+// brir_sweep_Netzwerkakademie_headaz+40 -> brir_sweep_Netzwerkakademie), in its folder.
+std::string RoomOfFile(const std::string& path);
+
 std::vector<MovableRoom> MovableRooms(const std::string& dirs, double sample_rate,
                                       const multirobot_audio::tools::ToolUsage& usage);
 

@@ -16,6 +16,10 @@ namespace nava_modem {
 
 struct MovableRoom {
   std::string name;
+  // The room it was measured in: its positions and ears share one (empty: a room of its own).
+  // A draw picks a room first, then one of its positions, so that a hall measured from a dozen
+  // seats weighs as much as a kitchen measured from one.
+  std::string group;
   std::vector<float> response;  // at the pool's sample rate, its own delay kept
   double rt60 = 0.0;            // s, as MeasureResponse reads it
   double drr_db = 0.0;
@@ -43,8 +47,9 @@ class MovedRooms {
   static constexpr double kSpan = 3.0;
   static constexpr std::size_t kMinCandidates = 6;
 
-  // One of Candidates(rt60), chosen by `seed`, moved to rt60 and drr_db: its response (its own
-  // delay kept) and where its direct sound is.
+  // One of Candidates(rt60), chosen by `seed` (a group among the candidates' groups, then one of
+  // its candidates), moved to rt60 and drr_db: its response (its own delay kept) and where its
+  // direct sound is.
   struct Drawn {
     std::shared_ptr<const std::vector<float>> response;
     std::size_t peak = 0;
