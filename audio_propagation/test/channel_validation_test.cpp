@@ -1,11 +1,14 @@
 #include "audio_propagation/channel_validation.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include <gtest/gtest.h>
 
 #include "flat_table.h"
+#include "measured_rooms.h"
 #include "test_room.h"
 #include "world_sim/world_file.h"
 
@@ -98,6 +101,18 @@ TEST(ChannelValidation, TheModelAgreesWithTheRealReceiverInTheTestRoom) {
     const DecodeTable table = LoadDecodeTable(shipped, name);
     const TestRoom room;
     ValidationOptions o;
+    // A table measured over measured rooms renders its links through them.
+    if (table.rooms == nava_modem::RoomOptions::Model::kMeasured) {
+      const std::string rooms = MULTIROBOT_AUDIO_REALROOMS;
+      if (!std::filesystem::exists(rooms)) {
+        std::printf("%s: the measured rooms its table was measured over are not there (%s): skipped\n", name.c_str(),
+                    rooms.c_str());
+        continue;
+      }
+      o.measured_rooms = std::make_shared<const nava_modem::MovedRooms>(
+          nava_modem::tools::MovableRooms(rooms + "," + rooms + "/more", o.sample_rate, {"channel_validation_test", ""}),
+          o.sample_rate);
+    }
     o.profile = profile;
     o.links = profile == nava_modem::Profile::kNava ? 30 : 15;
     o.packets = 2;

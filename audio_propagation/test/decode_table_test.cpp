@@ -249,7 +249,7 @@ TEST(DecodeTable, RefusesMalformedFilesNamingTheFileAndField) {
   ExpectRefused(Replaced(valid, "snr_db: [-12, 0]", "snr_db: [-12, x]"), "snr_db[1]");
   ExpectRefused(Replaced(valid, "drr_db: [0]\n", ""), "drr_db");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nseed: 3\n"), "seed");
-  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nrooms: measured\n"), "rooms");
+  ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nrooms: measured_like\n"), "rooms");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nlead_s: -1\n"), "lead_s");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nlead_s: soon\n"), "lead_s");
   ExpectRefused(Replaced(valid, "rt60: [0.5]\n", "rt60: [0.5]\nwhine_harm: {hz: [1000, 900], db: [1, 2]}\n"),
