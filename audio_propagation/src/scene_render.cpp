@@ -474,8 +474,9 @@ SceneRendering SceneRenderer::Render(const Scene& scene, const std::vector<std::
       hearing.signal_power = count ? sum / static_cast<double>(count) : 0.0;
       // A measured-like response has its direct sound kMeasuredLikeDelay samples in (room for
       // its reflections' pulses), a measured one where it was measured: taken back, so that
-      // every kind of room's direct sound arrives after the travel time. Left in, a measured-like link arrived 0.33 ms (11 cm) later than
-      // a statistical one, which a two-way range between the two kinds did not cancel.
+      // every kind of room's direct sound arrives after the travel time. Left in, a measured-like
+      // link arrived 0.33 ms (11 cm) later than a statistical one, which a two-way range between
+      // the two kinds did not cancel.
       if (room.model == nava_modem::RoomOptions::Model::kMeasuredLike && room.rt60 > 0.0) {
         lead = static_cast<double>(nava_modem::kMeasuredLikeDelay);
       }

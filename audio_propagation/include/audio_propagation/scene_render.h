@@ -174,7 +174,7 @@ class SceneRenderer {
  public:
   // `robot_names` and `resting` (their positions when not in a scene) are the team the model was
   // built with. Reads the world's recorded noise sources. Throws std::invalid_argument for
-    // impossible options (ValidateOptions), names and positions of different lengths, a
+  // impossible options (ValidateOptions), names and positions of different lengths, a
   // recording that cannot be read (naming the source and its file), or a table measured over
   // measured rooms without them (or with them at another sample rate).
   SceneRenderer(const AcousticModel& model, std::vector<std::string> robot_names, std::vector<Eigen::Vector2d> resting,
