@@ -26,6 +26,7 @@ struct Case {
   bool recorded = false;  // the recorded noise, else white
   double snr_db = 0.0;
   double predicted = 0.0, decoded = 0.0;
+  int false_packets = 0;  // CRC passes with data never sent
 };
 
 struct Bin {
@@ -105,6 +106,7 @@ int CalibrateModel(const DecodeTableRequest& request) {
         const Interference kind = cases[k].recorded ? Interference::kSpeech : Interference::kWhite;
         const CellCounts n = MeasureCell(w.setup, *w.receiver, k, kind, 0.0, 0.0, cases[k].snr_db);
         cases[k].decoded = static_cast<double>(n.heard[static_cast<int>(Heard::kPacket)]) / request.packets;
+        cases[k].false_packets = n.false_packets;
       },
       [&](std::size_t done) {
         if (done % std::max<std::size_t>(1, cases.size() / 20) == 0) std::fprintf(stderr, "  %zu/%zu cases\n", done, cases.size());
@@ -115,7 +117,9 @@ int CalibrateModel(const DecodeTableRequest& request) {
               request.noise_file.empty() ? "" : (" and " + request.noise_file).c_str());
   std::printf("%-44s %7s %6s %-9s %6s %9s %9s\n", "room", "drr_dB", "rt60_s", "noise", "snr_dB", "predicted", "decoded");
   std::vector<Bin> bins = {{0.0, 0.2}, {0.2, 0.6}, {0.6, 1.0001}};
+  int false_packets = 0;
   for (const Case& c : cases) {
+    false_packets += c.false_packets;
     const nava_modem::tools::MeasuredRoom& room = rooms[c.room];
     std::printf("%-44s %+7.1f %6.2f %-9s %+6.0f %8.0f%% %8.0f%%\n", room.name.c_str(), room.figures.drr_db,
                 room.figures.rt60_s, c.recorded ? "recorded" : "white", c.snr_db, 100.0 * c.predicted,
@@ -139,6 +143,9 @@ int CalibrateModel(const DecodeTableRequest& request) {
     std::printf("bin %3.0f-%3.0f %%: %4d cases, mean predicted %5.1f %%, mean decoded %5.1f %% (%+.1f points)\n",
                 100.0 * b.low, std::min(100.0, 100.0 * b.high), b.cases, predicted, decoded, decoded - predicted);
   }
+  // A wrong packet is one the receiver passes with data that was never sent (a CRC false accept).
+  std::printf("false packets: %d of %zu packets sent\n", false_packets,
+              cases.size() * static_cast<std::size_t>(request.packets));
   std::printf("calibration: worst bin %.1f points apart (the target: within 10)\n", worst);
   return 0;
 }
