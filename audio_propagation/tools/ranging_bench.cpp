@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@
 #include "audio_propagation_args.h"
 #include "nava_modem/array_decode.h"
 #include "nava_modem/modem_profile.h"
+#include "nava_modem/moved_rooms.h"
 #include "nava_modem/room_array.h"
 #include "ranging/two_way_ranger.h"
 #include "tool_args/line_chart.h"
@@ -126,7 +128,10 @@ double PositionError(const nava_modem::ModemProfile& profile, double rate, const
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-SceneResult RunScene(const tools::RangingBenchArgs& args, const tools::AcousticWorld& world, std::size_t team,
+// The table and the measured rooms (when the table was measured over them) are loaded once for
+// every scene.
+SceneResult RunScene(const tools::RangingBenchArgs& args, const tools::AcousticWorld& world, const DecodeTable& table,
+                     const std::shared_ptr<const nava_modem::MovedRooms>& measured_rooms, std::size_t team,
                      std::uint32_t seed) {
   std::mt19937 rng(seed);
   // The scene's room: one reverberation time everywhere, no noise sources, a background level
@@ -177,12 +182,11 @@ SceneResult RunScene(const tools::RangingBenchArgs& args, const tools::AcousticW
   }
   scene.duration = t + 0.5;
 
-  const DecodeTable table = tools::LoadTable("ranging_bench", args.profile, "");
   const AcousticModel model(*world.propagation, acoustics, table, world.robots);
   SceneRenderOptions options;
   options.sample_rate = args.rate;
   options.seed = seed;
-  options.measured_rooms = tools::MeasuredRoomsFor(table, args.rir_dir, args.rate, args.usage);
+  options.measured_rooms = measured_rooms;
   const SceneRenderer renderer(model, world.robots, world.resting, options);
   const SceneRendering rendering = renderer.Render(scene);
 
@@ -302,6 +306,9 @@ int Run(const tools::RangingBenchArgs& args) {
   for (const std::string& file : args.worlds) worlds.push_back(tools::LoadAcousticWorld("ranging_bench", file, ""));
   std::printf("ranging_bench: %s packets at %.0f Hz, %d rounds, %d scenes per world and team size\n",
               nava_modem::ProfileName(args.profile), args.rate, args.rounds, args.scenes);
+  const DecodeTable table = tools::LoadTable("ranging_bench", args.profile, "");
+  const std::shared_ptr<const nava_modem::MovedRooms> measured_rooms =
+      tools::MeasuredRoomsFor(table, args.rir_dir, args.rate, args.usage);
   std::vector<Pair> pairs;
   std::uint32_t seed = args.seed;
   for (const tools::AcousticWorld& world : worlds) {
@@ -311,7 +318,7 @@ int Run(const tools::RangingBenchArgs& args) {
         continue;
       }
       for (int s = 0; s < args.scenes; ++s) {
-        const SceneResult r = RunScene(args, world, static_cast<std::size_t>(team), seed++);
+        const SceneResult r = RunScene(args, world, table, measured_rooms, static_cast<std::size_t>(team), seed++);
         std::printf("%s\n", r.line.c_str());
         std::fflush(stdout);
         pairs.insert(pairs.end(), r.pairs.begin(), r.pairs.end());
