@@ -292,7 +292,7 @@ TEST(SceneRender, APacketIsTimedWhereItArrivesWithATableOverMeasuredRooms) {
     rooms.push_back(std::move(room));
   }
   const auto measured = std::make_shared<const nava_modem::MovedRooms>(std::move(rooms), 48000.0);
-  ASSERT_GE(measured->rooms()[0].peak, 1000u);  // the transducers' colouring delays the in-band peak a little
+  ASSERT_GE(measured->rooms()[0].figures.peak, 1000u);  // the transducers' colouring delays the in-band peak a little
   const PropagationModel propagation(grid::OccupancyMap(200, 120, 0.1), Everywhere());
   const world_sim::Acoustics acoustics = HallOfRt60Of07();
   DecodeTable table = FlatTable("room");

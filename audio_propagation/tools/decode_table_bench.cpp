@@ -174,7 +174,7 @@ int DecodeTableBench(const DecodeTableRequest& request) {
                                                    s.modem.sample_rate);
       for (std::size_t k : s.moved->excluded()) {
         std::fprintf(stderr, "not moved: %s (an arrival %.1f dB under its loudest peak before it)\n",
-                     s.moved->rooms()[k].name.c_str(), -s.moved->rooms()[k].before_db);
+                     s.moved->rooms()[k].name.c_str(), -s.moved->rooms()[k].figures.before_db);
       }
       for (double rt60 : t.rt60) {
         const std::vector<std::size_t> candidates = s.moved->Candidates(rt60);
@@ -182,7 +182,7 @@ int DecodeTableBench(const DecodeTableRequest& request) {
         for (std::size_t k : candidates) groups.insert(s.moved->rooms()[k].group);
         std::fprintf(stderr, "rooms moved to RT60 %g s (%zu places in %zu rooms):", rt60, candidates.size(), groups.size());
         for (std::size_t k : candidates) {
-          std::fprintf(stderr, " %s (%.2f s)", s.moved->rooms()[k].name.c_str(), s.moved->rooms()[k].rt60);
+          std::fprintf(stderr, " %s (%.2f s)", s.moved->rooms()[k].name.c_str(), s.moved->rooms()[k].figures.rt60_s);
         }
         std::fprintf(stderr, "\n");
       }

@@ -59,7 +59,11 @@ double DirectOverReverberantDb(const std::vector<float>& response, std::size_t p
 }
 
 std::vector<float> MovedResponse(const std::vector<float>& response, double sample_rate, double rt60, double drr_db) {
-  const ResponseMeasures own = MeasureResponse(response, sample_rate);
+  return MovedResponse(response, MeasureResponse(response, sample_rate), sample_rate, rt60, drr_db);
+}
+
+std::vector<float> MovedResponse(const std::vector<float>& response, const ResponseMeasures& own, double sample_rate,
+                                 double rt60, double drr_db) {
   if (const auto problem = ResponseProblem(own)) throw std::invalid_argument("moved response: the response is " + *problem);
   if (!std::isfinite(rt60) || rt60 <= 0.0 || rt60 > own.rt60_s * (1.0 + kMovedRt60Tolerance)) {
     throw std::invalid_argument("moved response: expected an RT60 above 0 and at most the response's own " +

@@ -18,14 +18,10 @@ MovedRooms::MovedRooms(std::vector<MovableRoom> rooms, double sample_rate)
   }
   if (rooms_.empty()) throw std::invalid_argument("moved rooms: expected at least one measured room, got none");
   for (MovableRoom& room : rooms_) {
-    const ResponseMeasures m = MeasureResponse(room.response, sample_rate);
-    if (const auto problem = ResponseProblem(m)) {
+    room.figures = MeasureResponse(room.response, sample_rate);
+    if (const auto problem = ResponseProblem(room.figures)) {
       throw std::invalid_argument("moved rooms: " + room.name + " cannot serve: it is " + *problem);
     }
-    room.rt60 = m.rt60_s;
-    room.drr_db = m.drr_db;
-    room.before_db = m.before_db;
-    room.peak = m.peak;
   }
   if (excluded().size() == rooms_.size()) {
     throw std::invalid_argument("moved rooms: every room has an arrival within " + std::to_string(-kMaxBeforeDb) +
@@ -36,7 +32,7 @@ MovedRooms::MovedRooms(std::vector<MovableRoom> rooms, double sample_rate)
 std::vector<std::size_t> MovedRooms::excluded() const {
   std::vector<std::size_t> out;
   for (std::size_t k = 0; k < rooms_.size(); ++k) {
-    if (rooms_[k].before_db >= kMaxBeforeDb) out.push_back(k);
+    if (rooms_[k].figures.before_db >= kMaxBeforeDb) out.push_back(k);
   }
   return out;
 }
@@ -44,21 +40,22 @@ std::vector<std::size_t> MovedRooms::excluded() const {
 std::vector<std::size_t> MovedRooms::Candidates(double rt60) const {
   std::vector<std::size_t> slower;
   for (std::size_t k = 0; k < rooms_.size(); ++k) {
-    if (rooms_[k].rt60 >= rt60 && rooms_[k].before_db < kMaxBeforeDb) slower.push_back(k);
+    if (rooms_[k].figures.rt60_s >= rt60 && rooms_[k].figures.before_db < kMaxBeforeDb) slower.push_back(k);
   }
   if (slower.empty()) {
     double longest = 0.0;
     for (const MovableRoom& room : rooms_) {
-      if (room.before_db < kMaxBeforeDb) longest = std::max(longest, room.rt60);
+      if (room.figures.before_db < kMaxBeforeDb) longest = std::max(longest, room.figures.rt60_s);
     }
     throw std::invalid_argument("moved rooms: no room decays as slowly as an RT60 of " + std::to_string(rt60) +
                                 " s (the slowest: " + std::to_string(longest) + " s); a room is only made faster");
   }
+  const auto rt60_of = [&](std::size_t k) { return rooms_[k].figures.rt60_s; };
   std::sort(slower.begin(), slower.end(), [&](std::size_t a, std::size_t b) {
-    return rooms_[a].rt60 != rooms_[b].rt60 ? rooms_[a].rt60 < rooms_[b].rt60 : a < b;
+    return rt60_of(a) != rt60_of(b) ? rt60_of(a) < rt60_of(b) : a < b;
   });
   std::size_t within = 0;
-  while (within < slower.size() && rooms_[slower[within]].rt60 <= kSpan * rt60) ++within;
+  while (within < slower.size() && rt60_of(slower[within]) <= kSpan * rt60) ++within;
   slower.resize(std::min(slower.size(), std::max(within, kMinCandidates)));
   std::sort(slower.begin(), slower.end());
   return slower;
@@ -76,8 +73,9 @@ std::size_t MovedRooms::Chosen(double rt60, std::uint32_t seed) const {
 MovedRooms::Drawn MovedRooms::Move(double rt60, double drr_db, std::uint32_t seed) const {
   Drawn d;
   d.room = Chosen(rt60, seed);
-  d.peak = rooms_[d.room].peak;
-  d.response = std::make_shared<const std::vector<float>>(MovedResponse(rooms_[d.room].response, sample_rate_, rt60, drr_db));
+  const MovableRoom& room = rooms_[d.room];
+  d.peak = room.figures.peak;
+  d.response = std::make_shared<const std::vector<float>>(MovedResponse(room.response, room.figures, sample_rate_, rt60, drr_db));
   return d;
 }
 

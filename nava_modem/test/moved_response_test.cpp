@@ -102,7 +102,7 @@ TEST(MovedRooms, DrawsBySeedFromRoomsThatDecayAtLeastAsSlowlyAndNeverFromOneWith
   const MovedRooms::Drawn anew = pool.Move(0.45, -6.0, 11);
   EXPECT_EQ(*anew.response, *first.response);
   EXPECT_EQ(anew.room, first.room);
-  EXPECT_EQ(first.peak, pool.rooms()[first.room].peak);
+  EXPECT_EQ(first.peak, pool.rooms()[first.room].figures.peak);
   int drawn[4] = {0, 0, 0, 0};
   for (std::uint32_t seed = 0; seed < 40; ++seed) ++drawn[pool.Draw(0.45, 0.0, seed).room];
   for (int n : drawn) EXPECT_EQ(n, 10);

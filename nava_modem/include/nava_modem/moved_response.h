@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "nava_modem/measured_response.h"
+
 namespace nava_modem {
 
 // The room's direct over reverberant energy, dB: the in-band (600-5400 Hz) energy up to
@@ -30,6 +32,10 @@ double DirectOverReverberantDb(const std::vector<float>& response, std::size_t p
 // figures (ResponseProblem), an rt60 not finite, not above 0 or above the response's own (naming
 // both), or a DRR not finite or beyond +-kMovedMaxDrrDb.
 std::vector<float> MovedResponse(const std::vector<float>& response, double sample_rate, double rt60, double drr_db);
+// The same, given the response's own figures (MeasureResponse's of `response` at `sample_rate`),
+// as a pool of rooms keeps them: a scene moves a room for every link and packet.
+std::vector<float> MovedResponse(const std::vector<float>& response, const ResponseMeasures& own, double sample_rate,
+                                 double rt60, double drr_db);
 constexpr double kMovedRt60Tolerance = 0.03;  // relative
 constexpr double kMovedLengthRt60 = 1.5;
 constexpr double kMovedMaxDrrDb = 40.0;

@@ -12,6 +12,8 @@
 #include <tuple>
 #include <vector>
 
+#include "nava_modem/measured_response.h"
+
 namespace nava_modem {
 
 struct MovableRoom {
@@ -21,10 +23,9 @@ struct MovableRoom {
   // seats weighs as much as a kitchen measured from one.
   std::string group;
   std::vector<float> response;  // at the pool's sample rate, its own delay kept
-  double rt60 = 0.0;            // s, as MeasureResponse reads it
-  double drr_db = 0.0;
-  double before_db = 0.0;       // sound before the direct sound's window over it, dB
-  std::size_t peak = 0;         // its direct sound's sample
+  // Filled by MovedRooms: as MeasureResponse reads the response (its RT60, its direct sound's
+  // sample, the sound before it), once, for every move.
+  ResponseMeasures figures;
 };
 
 class MovedRooms {
