@@ -103,6 +103,16 @@ TEST(MeasuredResponseTest, ARoomsResponseServesAndShortOrNoisyOnesAreToldWhy) {
   ASSERT_TRUE(no_peak.has_value());
   EXPECT_NE(no_peak->find("no direct peak"), std::string::npos) << *no_peak;
   EXPECT_GT(heard.before_db, kMaxBeforeDb);
+  // A room heard behind an obstacle: its loudest arrival 20 ms after sixteen weaker ones (each
+  // 4.4 dB under it) that together hold some 7 dB more sound than it does (an empty bedroom's
+  // far ear holds 5.6 dB).
+  std::vector<float> behind = KnownResponse(0.5, 0.0, rate, 1920, 4);
+  const float direct = behind[1920];
+  for (std::size_t k = 0; k < 16; ++k) behind[960 + 57 * k] += 0.6f * direct;
+  const ResponseMeasures heard_behind = MeasureResponse(behind, rate);
+  EXPECT_EQ(heard_behind.peak, 1920u);
+  EXPECT_GT(heard_behind.before_db, 6.0);
+  EXPECT_FALSE(ResponseProblem(heard_behind).has_value()) << *ResponseProblem(heard_behind);
 }
 
 // A response carrying noise of its own (as one estimated from packets does): white noise whose
