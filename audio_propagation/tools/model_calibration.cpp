@@ -118,8 +118,15 @@ int CalibrateModel(const DecodeTableRequest& request) {
   std::printf("%-44s %7s %6s %-9s %6s %9s %9s\n", "room", "drr_dB", "rt60_s", "noise", "snr_dB", "predicted", "decoded");
   std::vector<Bin> bins = {{0.0, 0.2}, {0.2, 0.6}, {0.6, 1.0001}};
   int false_packets = 0;
+  std::string false_cases;  // where they were heard
   for (const Case& c : cases) {
     false_packets += c.false_packets;
+    if (c.false_packets > 0) {
+      char where[160];
+      std::snprintf(where, sizeof where, "%s%s %s %+.0f dB: %d", false_cases.empty() ? "" : "; ",
+                    rooms[c.room].name.c_str(), c.recorded ? "recorded" : "white", c.snr_db, c.false_packets);
+      false_cases += where;
+    }
     const nava_modem::tools::MeasuredRoom& room = rooms[c.room];
     std::printf("%-44s %+7.1f %6.2f %-9s %+6.0f %8.0f%% %8.0f%%\n", room.name.c_str(), room.figures.drr_db,
                 room.figures.rt60_s, c.recorded ? "recorded" : "white", c.snr_db, 100.0 * c.predicted,
@@ -144,8 +151,9 @@ int CalibrateModel(const DecodeTableRequest& request) {
                 100.0 * b.low, std::min(100.0, 100.0 * b.high), b.cases, predicted, decoded, decoded - predicted);
   }
   // A wrong packet is one the receiver passes with data that was never sent (a CRC false accept).
-  std::printf("false packets: %d of %zu packets sent\n", false_packets,
-              cases.size() * static_cast<std::size_t>(request.packets));
+  std::printf("false packets: %d of %zu packets sent%s\n", false_packets,
+              cases.size() * static_cast<std::size_t>(request.packets),
+              false_cases.empty() ? "" : (" (" + false_cases + ")").c_str());
   std::printf("calibration: worst bin %.1f points apart (the target: within 10)\n", worst);
   return 0;
 }
