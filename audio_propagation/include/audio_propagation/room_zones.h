@@ -57,6 +57,10 @@ class RoomZones {
   int ZonesOf(std::size_t room) const { return zones_of_[room]; }
 
  private:
+  // The openings between the zones once they are labelled (room_width: each cut room's mean
+  // width, 0 for a room left whole).
+  void Connect(const grid::RoomSegmentation& rooms, const std::vector<double>& room_width, const RoomZoneOptions& o);
+
   const grid::OccupancyMap& map_;
   std::vector<int> labels_;  // per cell: zone, -1 off the rooms
   std::vector<Zone> zones_;
