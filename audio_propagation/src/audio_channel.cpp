@@ -70,12 +70,12 @@ AudioChannel::AudioChannel(const PropagationModel& model, std::vector<world_sim:
   powers_.assign(n, 0.0);
   arrivals_.resize(n);
   sending_.resize(n);
-  background_.assign(n, 0.0);
-  pending_per_robot_.assign(n, 0);
+  background_.power.assign(n, 0.0);
+  pending_.per_robot.assign(n, 0);
   level_edge_.assign(n, 0);
   finish_edge_.assign(n, 0);
   const double every = reception_->BackgroundSeconds();
-  if (every > 0.0) background_ticks_ = 16 * std::max<std::int64_t>(1, std::llround(every / (16.0 * tick_)));
+  if (every > 0.0) background_.ticks = 16 * std::max<std::int64_t>(1, std::llround(every / (16.0 * tick_)));
 }
 
 const std::vector<Eigen::Vector2d>& AudioChannel::Positions() {
@@ -88,12 +88,12 @@ const std::vector<Eigen::Vector2d>& AudioChannel::Positions() {
 }
 
 void AudioChannel::UpdateBackground() {
-  reception_->Background(time(), Positions(), background_);
+  reception_->Background(time(), Positions(), background_.power);
   std::fill(level_edge_.begin(), level_edge_.end(), 0);  // each level is summed again at the next tick
 }
 
 std::int64_t AudioChannel::NextBackgroundTick() const {
-  return background_ticks_ > 0 ? (ticks_ / background_ticks_ + 1) * background_ticks_ : std::numeric_limits<std::int64_t>::max();
+  return background_.ticks > 0 ? (ticks_ / background_.ticks + 1) * background_.ticks : std::numeric_limits<std::int64_t>::max();
 }
 
 bool AudioChannel::Send(std::size_t robot, nava_modem::MacFrame frame) {
@@ -111,9 +111,9 @@ std::int64_t AudioChannel::TickAt(double time) const {
 void AudioChannel::SetPoseAt(std::size_t robot, const grid::Pose2D& pose, double time) {
   if (robot >= poses_.size()) throw std::out_of_range("audio channel: no robot " + std::to_string(robot));
   PendingPose p{TickAt(time), robot, pose};
-  const auto at = std::upper_bound(pending_poses_.begin(), pending_poses_.end(), p.tick,
+  const auto at = std::upper_bound(pending_.poses.begin(), pending_.poses.end(), p.tick,
                                    [](std::int64_t t, const PendingPose& q) { return t < q.tick; });
-  pending_poses_.insert(at, std::move(p));
+  pending_.poses.insert(at, std::move(p));
 }
 
 bool AudioChannel::SendAt(std::size_t robot, std::vector<std::uint8_t> data, double time) {
@@ -126,40 +126,40 @@ bool AudioChannel::SendAt(std::size_t robot, nava_modem::MacFrame frame, double 
   nava_modem::ValidateMacFrame(frame);
   // The queue's own limit is applied when the packet enters it (how full the queue is then does
   // not depend on how far the caller has advanced the channel); this one only bounds memory.
-  if (pending_per_robot_[robot] >= kMaxPendingSends) {
-    ++send_overflows_;
+  if (pending_.per_robot[robot] >= kMaxPendingSends) {
+    ++counts_.send_overflows;
     return false;
   }
   PendingSend p{TickAt(time), robot, std::move(frame)};
-  const auto at = std::upper_bound(pending_sends_.begin(), pending_sends_.end(), p.tick,
+  const auto at = std::upper_bound(pending_.sends.begin(), pending_.sends.end(), p.tick,
                                    [](std::int64_t t, const PendingSend& q) { return t < q.tick; });
-  pending_sends_.insert(at, std::move(p));
-  ++pending_per_robot_[robot];
+  pending_.sends.insert(at, std::move(p));
+  ++pending_.per_robot[robot];
   return true;
 }
 
 void AudioChannel::ApplyPending() {
-  while (!pending_poses_.empty() && pending_poses_.front().tick <= ticks_) {
-    poses_[pending_poses_.front().robot] = pending_poses_.front().pose;
+  while (!pending_.poses.empty() && pending_.poses.front().tick <= ticks_) {
+    poses_[pending_.poses.front().robot] = pending_.poses.front().pose;
     positions_stale_ = true;
-    pending_poses_.pop_front();
+    pending_.poses.pop_front();
   }
-  while (!pending_sends_.empty() && pending_sends_.front().tick <= ticks_) {
-    PendingSend& p = pending_sends_.front();
-    --pending_per_robot_[p.robot];
-    if (!macs_[p.robot].Enqueue(std::move(p.frame))) ++send_overflows_;
-    pending_sends_.pop_front();
+  while (!pending_.sends.empty() && pending_.sends.front().tick <= ticks_) {
+    PendingSend& p = pending_.sends.front();
+    --pending_.per_robot[p.robot];
+    if (!macs_[p.robot].Enqueue(std::move(p.frame))) ++counts_.send_overflows;
+    pending_.sends.pop_front();
   }
 }
 
 double AudioChannel::NextEventTime() const {
   if (Idle()) return std::numeric_limits<double>::infinity();
   std::int64_t next = std::numeric_limits<std::int64_t>::max();
-  if (!pending_sends_.empty()) next = pending_sends_.front().tick;
+  if (!pending_.sends.empty()) next = pending_.sends.front().tick;
   for (std::size_t r = 0; r < macs_.size(); ++r) {
     // The level changes only where an arrival starts or ends; until then it is what the next
     // tick hears.
-    double power = background_[r];
+    double power = background_.power[r];
     for (const Arrival& a : arrivals_[r]) {
       if (a.start > ticks_) next = std::min(next, a.start);
       if (!a.done) next = std::min(next, a.end);
@@ -178,7 +178,7 @@ double AudioChannel::NextEventTime() const {
 
 std::int64_t AudioChannel::NextWake(std::int64_t target) const {
   std::int64_t wake = target;
-  if (!pending_sends_.empty()) wake = std::min(wake, pending_sends_.front().tick);
+  if (!pending_.sends.empty()) wake = std::min(wake, pending_.sends.front().tick);
   return std::min(wake, NextBackgroundTick());
 }
 
@@ -247,7 +247,7 @@ void AudioChannel::NoteArrival(std::size_t receiver, std::int64_t start, std::in
 void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events) {
   for (const auto& [from, to] : sending_[receiver]) {
     if (from < a.end && a.start < to) {
-      ++missed_while_sending_;  // half duplex: its own speaker drowns everything
+      ++counts_.missed_while_sending;  // half duplex: its own speaker drowns everything
       return;
     }
   }
@@ -272,7 +272,7 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   const Decision d = reception_->Decide(a.path, receiver, a.level_db, a.start * tick_, a.end * tick_, overlaps, at,
                                         [&] { return DecisionDraw(a.sender, receiver, at); });
   if (!d.heard) {
-    ++unheard_;  // the receiver would not have noticed it
+    ++counts_.unheard;  // the receiver would not have noticed it
     return;
   }
   rx.kind = d.packet ? Reception::Kind::kPacket : Reception::Kind::kNoise;
@@ -303,7 +303,7 @@ bool AudioChannel::Quiet() const {
   for (std::size_t r = 0; r < macs_.size(); ++r) {
     if (!macs_[r].Idle()) return false;
     // (Checked again every bit once the medium is busy.)
-    if (!reception_->Quiet(powers_[r], background_[r], levels_[r], macs_[r])) return false;
+    if (!reception_->Quiet(powers_[r], background_.power[r], levels_[r], macs_[r])) return false;
     for (const Arrival& a : arrivals_[r]) {
       if (!a.done) return false;
     }
@@ -319,7 +319,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
     ApplyPending();
     // The background changes as robots move a cell or a source turns on or off: every so often
     // is enough, and the check for quiet below runs on the same bit boundaries.
-    if (background_ticks_ > 0 && ticks_ % background_ticks_ == 0) UpdateBackground();
+    if (background_.ticks > 0 && ticks_ % background_.ticks == 0) UpdateBackground();
     // Long silences (robots that say something every few seconds) are skipped in one go, up to
     // the next moment something is due (a stamped send, the noise's update); the check runs
     // once a bit, so at most a bit of silence is ticked through. A silent tick of an idle MAC
@@ -336,7 +336,7 @@ AudioChannel::Events AudioChannel::AdvanceTo(double time) {
       // The level only changes where an arrival starts or ends (or the noise is updated): the
       // sum is taken again there, and only there (a big team hears dozens of arrivals).
       if (ticks_ >= level_edge_[r]) {
-        double power = background_[r];  // linear sum of what is arriving now
+        double power = background_.power[r];  // linear sum of what is arriving now
         std::int64_t edge = std::numeric_limits<std::int64_t>::max();
         for (const Arrival& a : arrivals_[r]) {
           if (a.start <= ticks_ && ticks_ < a.end) power += a.power;

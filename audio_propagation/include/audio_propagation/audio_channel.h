@@ -130,7 +130,7 @@ class AudioChannel {
   // Nothing in the air or on its way, every MAC idle, nothing stamped still to take effect:
   // until a new SendAt() or Send(), AdvanceTo() produces no events (the acoustic model's noise
   // may still move a carrier, which AdvanceTo() then works out as it goes).
-  bool Idle() const { return pending_sends_.empty() && Quiet(); }
+  bool Idle() const { return pending_.sends.empty() && Quiet(); }
   // The earliest simulated time (s) after now at which AdvanceTo() may have something to
   // report (a transmission starting, a reception, a carrier changing), unless something new
   // is sent before: a caller may sleep until then and lose nothing (+inf when Idle(); with an
@@ -149,10 +149,10 @@ class AudioChannel {
   double Level(std::size_t robot) const { return levels_.at(robot); }
   bool Carrier(std::size_t robot) const { return macs_.at(robot).carrier(); }
   const nava_modem::CsmaMac& mac(std::size_t robot) const { return macs_.at(robot); }
-  std::uint64_t missed_while_sending() const { return missed_while_sending_; }
-  std::uint64_t send_overflows() const { return send_overflows_; }
+  std::uint64_t missed_while_sending() const { return counts_.missed_while_sending; }
+  std::uint64_t send_overflows() const { return counts_.send_overflows; }
   // Acoustic model: arrivals the receiver would not have noticed at all.
-  std::uint64_t unheard() const { return unheard_; }
+  std::uint64_t unheard() const { return counts_.unheard; }
   const AcousticModel* acoustic() const { return reception_->acoustic(); }
   const ReceptionModel& reception() const { return *reception_; }
   const PathCache& cache() const { return cache_; }
@@ -204,8 +204,11 @@ class AudioChannel {
 
   const PropagationModel& model_;
   std::unique_ptr<ReceptionModel> reception_;
-  std::vector<double> background_;     // per robot, linear
-  std::int64_t background_ticks_ = 0;  // ticks between background updates (whole bits; 0: never)
+  // Each robot's background power (linear), worked out again every `ticks` (whole bits; 0: never).
+  struct Background {
+    std::vector<double> power;
+    std::int64_t ticks = 0;
+  } background_;
   std::vector<world_sim::Microphone> microphones_;
   ChannelOptions options_;
   std::vector<nava_modem::CsmaMac> macs_;
@@ -216,9 +219,12 @@ class AudioChannel {
   std::vector<double> powers_;  // linear power behind each level
   std::vector<std::deque<Arrival>> arrivals_;  // per receiver: pending and recently finished
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> sending_;  // per robot, recent
-  std::deque<PendingPose> pending_poses_;  // in stamp order
-  std::deque<PendingSend> pending_sends_;  // in stamp order
-  std::vector<std::size_t> pending_per_robot_;  // sends not yet in each robot's queue
+  // What was stamped to take effect later (SetPoseAt, SendAt), in stamp order.
+  struct Stamped {
+    std::deque<PendingPose> poses;
+    std::deque<PendingSend> sends;
+    std::vector<std::size_t> per_robot;  // sends not yet in each robot's queue
+  } pending_;
   // Per robot, the next tick its level may change (an arrival starts or ends) and the next tick
   // an arrival of its finishes: between them a tick need not look at its arrivals.
   std::vector<std::int64_t> level_edge_, finish_edge_;
@@ -239,9 +245,12 @@ class AudioChannel {
   // The longest transmission yet, in ticks: what has finished longer ago than a few of these can
   // no longer overlap anything still to come.
   std::int64_t longest_ticks_ = 0;
-  std::uint64_t missed_while_sending_ = 0;
-  std::uint64_t unheard_ = 0;
-  std::uint64_t send_overflows_ = 0;
+  // What the channel counts for its callers (missed_while_sending() and the others).
+  struct Counts {
+    std::uint64_t missed_while_sending = 0;
+    std::uint64_t unheard = 0;
+    std::uint64_t send_overflows = 0;
+  } counts_;
 };
 
 }  // namespace audio_propagation
