@@ -48,7 +48,6 @@ std::vector<double> FloorDistances(const grid::RoomSegmentation& rooms, int widt
   return d;
 }
 
-
 // Each room's cells, and the band along its length each cell lies in.
 struct Bands {
   std::vector<std::vector<int>> cells;  // per room
