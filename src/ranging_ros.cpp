@@ -35,8 +35,6 @@ multirobot_audio::PacketTiming ToMsg(const ranging::Timing& t) {
   return m;
 }
 
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-
 }  // namespace
 
 RangingRosOptions ReadRangingRosOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {

@@ -19,6 +19,9 @@
 
 namespace multirobot_audio {
 
+// What the ranging messages' float fields hold when there is nothing to report.
+inline constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+
 // Options of a robot's ranging, from the nava_modem node's private parameters.
 struct RangingRosOptions {
   std::string robot;                // ~robot: this robot's name (default: its namespace)

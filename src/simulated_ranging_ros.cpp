@@ -11,8 +11,6 @@
 namespace multirobot_audio {
 namespace {
 
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-
 // What a listener's receiver reports of a sender's clock (ranging/simulated_ranging.h): the
 // room profile's chirps measure it to some 30 ppm; nava's bit clock is not trusted (nothing).
 double RateReportStd(nava_modem::Profile profile) { return profile == nava_modem::Profile::kRoom ? 30e-6 : -1.0; }

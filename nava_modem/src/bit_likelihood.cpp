@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nava_modem/math_constants.h"
+
 namespace nava_modem {
 namespace {
-
-constexpr double kTiny = 1e-20;
 
 // ln I0(x), the log of the modified Bessel function of order 0 (Abramowitz and Stegun 9.8.1,
 // 9.8.2), for x >= 0.

@@ -4,10 +4,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "nava_modem/math_constants.h"
+
 namespace nava_modem {
 namespace {
 
-constexpr double kTiny = 1e-20;
 // Per-sample in-band power below which the detector sees silence (-70 dB of full scale): the
 // ratios it takes are meaningless on digital silence.
 constexpr double kSilence = 1e-7;

@@ -4,11 +4,11 @@
 
 #include "nava_modem/bit_likelihood.h"
 #include "nava_modem/frame_reading.h"
+#include "nava_modem/math_constants.h"
 
 namespace nava_modem {
 namespace {
 
-constexpr double kTiny = 1e-20;
 // Bit repairs (FrameRepair) are allowed only on clocks within this of the nominal rate: the
 // receiver searches max_rate_error (3.5 %) for robustness, but sound cards are within a few
 // tenths of a percent, and the far clocks are where wrong fits to echoes or noise land.

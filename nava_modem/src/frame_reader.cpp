@@ -4,11 +4,11 @@
 #include "nava_modem/bit_clock.h"
 #include "nava_modem/bit_likelihood.h"
 #include "nava_modem/frame_reading.h"
+#include "nava_modem/math_constants.h"
 
 namespace nava_modem {
 namespace {
 
-constexpr double kTiny = 1e-20;
 // The bit clock's loop gains: small, because the fit over the whole packet already has the
 // clock right to a few hundredths of a bit; the loop only follows what a straight line cannot
 // (a resampler's wander).

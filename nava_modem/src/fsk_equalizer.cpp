@@ -7,11 +7,12 @@
 
 #include <Eigen/Dense>
 
+#include "nava_modem/math_constants.h"
+
 namespace nava_modem {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.141592653589793;
 // The taps: each filter sees its own tone from kEarly bits early (the bit clock a little late)
 // to kLate bits late (the early reflections reach 40 ms, 12 bits; the diffuse tail's first
 // 8 bits after them still help in rooms with RT60 0.5 s); the other tone only through its

@@ -5,12 +5,12 @@
 
 #include "nava_modem/clock_search.h"
 #include "nava_modem/frame_reading.h"
+#include "nava_modem/math_constants.h"
 #include "nava_modem/power_of_two.h"
 
 namespace nava_modem {
 namespace {
 
-constexpr double kTiny = 1e-20;
 constexpr int kDetectorBits = 10;  // each half of the break detector
 // After the detector first passes its threshold, the strongest step within this many bits is
 // taken as the break: noise can pass the threshold just before a real break arrives.

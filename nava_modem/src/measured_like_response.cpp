@@ -8,6 +8,7 @@
 #include <string>
 
 #include "nava_modem/biquad.h"
+#include "nava_modem/math_constants.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/room_impulse_response.h"
@@ -15,7 +16,6 @@
 namespace nava_modem {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kSoundSpeed = 343.0;  // m/s
 // A pulse between samples: a Hann-windowed sinc this many samples either side.
 constexpr int kSincHalf = 8;

@@ -3,12 +3,11 @@
 #include <cmath>
 #include <complex>
 
+#include "nava_modem/math_constants.h"
 #include "nava_modem/real_fft.h"
 
 namespace nava_modem {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // Scales x to mean power 1 (unless it is silent).
 void NormalisePower(std::vector<double>& x) {

@@ -7,12 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "nava_modem/math_constants.h"
 #include "nava_modem/real_fft.h"
 
 namespace nava_modem {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kToneHalfWidthHz = 150.0;
 constexpr double kEnvelopeS = 0.0005;
 

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "nava_modem/fft_plan.h"
+#include "nava_modem/math_constants.h"
 #include "nava_modem/modem_profile.h"
 #include "nava_modem/parabola.h"
 #include "nava_modem/real_fft.h"
@@ -18,7 +19,6 @@ namespace nava_modem {
 namespace {
 
 using Spectrum = std::vector<std::complex<double>>;
-constexpr double kPi = 3.14159265358979323846;
 // Lags before the packets, held as unknowns to measure the estimate's noise on.
 constexpr double kQuietLagsS = 1.0;
 // How long after a packet heard but not decoded its sound is left out of the fit, s.
@@ -80,7 +80,7 @@ double BandPower(const Spectrum& s, std::size_t n, double sample_rate, double lo
   return 2.0 * sum / (static_cast<double>(n) * static_cast<double>(std::max<std::size_t>(1, samples)));
 }
 
-double Db(double power) { return 10.0 * std::log10(std::max(power, 1e-30)); }
+double FlooredDb(double power) { return 10.0 * std::log10(std::max(power, 1e-30)); }
 
 // The lag (fractional) within `reach` of 0 at which the circular sequence `c` is largest.
 double PeakLag(const std::vector<double>& c, std::size_t reach) {
@@ -458,7 +458,7 @@ SurveyResult SurveyResponse(const std::vector<float>& recording, double sample_r
   const double kept = static_cast<double>(heeded_samples) /
                       std::max(1.0, static_cast<double>(heeded_samples) - static_cast<double>(window + quiet));
   const Spectrum left = fft.Forward(residual);
-  const auto noise_db = [&](double lo, double hi) { return Db(kept * BandPower(left, n, sample_rate, lo, hi, heeded_samples)); };
+  const auto noise_db = [&](double lo, double hi) { return FlooredDb(kept * BandPower(left, n, sample_rate, lo, hi, heeded_samples)); };
   result.noise_db = noise_db(kResponseBandLowHz, kResponseBandHighHz);
   for (int b = 0; b < kSurveyBands; ++b) {
     const double lo = room_phy::kLowestToneHz + b * room_phy::kTonesPerBand * room_phy::kToneSpacingHz;
@@ -473,7 +473,7 @@ SurveyResult SurveyResponse(const std::vector<float>& recording, double sample_r
     sent_samples += s.size();
   }
   sent_power /= static_cast<double>(std::max<std::size_t>(1, sent_samples));
-  result.signal_db = Db(BandPower(sounded, n, sample_rate, kResponseBandLowHz, kResponseBandHighHz, sent_samples));
+  result.signal_db = FlooredDb(BandPower(sounded, n, sample_rate, kResponseBandLowHz, kResponseBandHighHz, sent_samples));
   // The direct sound's share: the sent power through the response's direct window alone. The
   // estimate holds the band only, so its direct energy is the band's share of the whole (a
   // direct sound spreads over every frequency, the packets over the band).
@@ -485,7 +485,7 @@ SurveyResult SurveyResponse(const std::vector<float>& recording, double sample_r
   }
   const double band_share = (kResponseBandHighHz - kResponseBandLowHz) / (sample_rate / 2.0);
   result.direct_db =
-      Db(sent_power * std::max(0.0, direct - static_cast<double>(2 * half + 1) * result.response_noise_power) / band_share);
+      FlooredDb(sent_power * std::max(0.0, direct - static_cast<double>(2 * half + 1) * result.response_noise_power) / band_share);
   return result;
 }
 

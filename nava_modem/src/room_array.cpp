@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include "nava_modem/math_constants.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/real_fft.h"
 #include "nava_modem/room_impulse_response.h"
@@ -14,8 +15,6 @@ namespace nava_modem {
 namespace {
 
 using Spectrum = std::vector<std::complex<double>>;
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // Padding beyond the output in the big FFT: the zero-phase tilt and the fractional delays' sinc
 // both ring before a sound, and that ringing would wrap round to the buffer's end (as in

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nava_modem/math_constants.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/real_fft.h"
 
@@ -17,7 +18,6 @@ constexpr double kTailStartS = 0.005;
 constexpr double kTailFadeS = 0.005;
 constexpr double kEarlyFirstS = 0.005, kEarlyLastS = 0.040;
 constexpr double kLn1000 = 6.907755278982137;  // 60 dB of amplitude decay
-constexpr double kPi = 3.141592653589793;
 
 double Energy(const std::vector<double>& x) {
   double e = 0.0;

@@ -5,11 +5,11 @@
 #include <cstdint>
 
 #include "nava_modem/frame.h"
+#include "nava_modem/math_constants.h"
 
 namespace nava_modem {
 namespace {
 
-constexpr double kTiny = 1e-20;
 // The tone model (FitToneModel). Bits of the break whose windows lie inside its SPACE half and
 // its MARK half even with the bit rate max_rate_error off and the break found a bit or two off.
 constexpr int kSpaceFirst = -17, kSpaceLast = -3, kMarkFirst = 2, kMarkLast = 17;
