@@ -127,12 +127,17 @@ void ExpectAccounted(const DiagnosticsWatch& watch, const std::vector<Feed*>& fe
   for (const Feed* f : feeds) {
     const InputFigures mine = watch.Figures(f->node(), f->topic(), me);
     const InputFigures all = watch.Figures(f->node(), f->topic());
-    std::printf("hostile_peer: %-28s %-26s sent %6" PRIu64 " (%6" PRIu64 " bad): accepted %6" PRIu64
-                ", rejected %6" PRIu64 ", dropped %6" PRIu64 " (all publishers: %" PRIu64 ", %" PRIu64 ", %" PRIu64
-                ", queued %" PRIu64 ")\n",
-                f->node().c_str(), f->topic().c_str(), f->sent(), f->bad_sent(), mine.accepted, mine.rejected,
-                mine.dropped, all.accepted, all.rejected, all.dropped, all.queued);
-    const std::string what = f->node() + " " + f->topic() + ": ";
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "%-28s %-26s sent %6" PRIu64 " (%6" PRIu64 " bad): accepted %6" PRIu64 ", rejected %6" PRIu64
+                  ", dropped %6" PRIu64 ", received %6" PRIu64 " (all publishers: %" PRIu64 ", %" PRIu64 ", %" PRIu64
+                  ", queued %" PRIu64 ")",
+                  f->node().c_str(), f->topic().c_str(), f->sent(), f->bad_sent(), mine.accepted, mine.rejected,
+                  mine.dropped, mine.received, all.accepted, all.rejected, all.dropped, all.queued);
+    std::printf("hostile_peer: %s\n", line);
+    // The figures go into every failure's message too: the log of a failed run under rostest
+    // shows the assertions, not this node's output.
+    const std::string what = std::string(line) + ": ";
     EXPECT_TRUE(mine.found && all.found) << what << "no figures on /diagnostics for " << me;
     EXPECT_EQ(mine.settled(), f->sent()) << what << "accepted + rejected + dropped must be every message sent";
     EXPECT_EQ(mine.received, f->sent()) << what << "not every message sent was seen to arrive";
