@@ -86,19 +86,56 @@ TEST(FrameRepair, AnErrorEventOfThreeBitsIsFlippedWhole) {
   SoftFrame s = Soft(f, 0.9f);
   for (int b : {41, 42, 43}) s[b] = -s[b];  // a transition moved: three bits wrong together
   EXPECT_FALSE(RepairFrame(s, CrcVariant::kCcittFalse, 2).has_value());
-  // The event, behind a weaker one of three bits that does not make the CRC right.
+  // The event, behind weaker ones of two and three bits that do not make the CRC right.
   const std::vector<std::vector<int>> events = {{1, 2}, {20, 21, 22}, {41, 42, 43}, {30, 31, 32}};
-  const auto repaired = RepairEvent(s, events, CrcVariant::kCcittFalse, 2, 4);
+  const auto repaired = RepairEvent(s, events, CrcVariant::kCcittFalse, 3, 4);
   ASSERT_TRUE(repaired.has_value());
   EXPECT_EQ(repaired->frame, f);
   EXPECT_EQ(repaired->fixed_bits, 3);
-  // Only the weakest `max_events` of 3 to `max_event_bits` bits are tried.
-  EXPECT_FALSE(RepairEvent(s, events, CrcVariant::kCcittFalse, 1, 4).has_value());
+  // Only the weakest `max_events` of 2 to `max_event_bits` bits are tried; single bits are not
+  // events here (RepairFrame's).
+  EXPECT_FALSE(RepairEvent(s, events, CrcVariant::kCcittFalse, 2, 4).has_value());
+  EXPECT_TRUE(RepairEvent(s, {{7}, {1, 2}, {41, 42, 43}}, CrcVariant::kCcittFalse, 2, 4).has_value());
   EXPECT_FALSE(RepairEvent(s, {{41, 42, 43}}, CrcVariant::kCcittFalse, 2, 2).has_value());
   EXPECT_FALSE(RepairEvent(s, {}, CrcVariant::kCcittFalse, 2, 4).has_value());
   EXPECT_THROW(RepairEvent(s, {{41, 42, 56}}, CrcVariant::kCcittFalse, 2, 4), std::invalid_argument);
   EXPECT_THROW(RepairEvent(s, {{-1, 42, 43}}, CrcVariant::kCcittFalse, 2, 4), std::invalid_argument);
   EXPECT_THROW(RepairEvent(s, {{41, 42, 42}}, CrcVariant::kCcittFalse, 2, 4), std::invalid_argument);
+}
+
+TEST(FrameRepair, ATransitionMovedByOneBitIsRepairedAsAnEventNotAsAnyPair) {
+  const Frame f = MakeFrame({0x3C, 0xA5, 0x0F, 0x81}, CrcVariant::kCcittFalse);
+  SoftFrame s = Soft(f, 0.9f);
+  // Two neighbouring bits wrong together, decided as surely as the rest (the sequence search
+  // found no cheaper competitor for either alone), with six other bits weaker than both.
+  for (int b : {17, 18}) s[b] = -s[b];
+  for (int b : {3, 9, 25, 33, 47, 52}) s[b] *= 0.3f;
+  EXPECT_FALSE(RepairFrame(s, CrcVariant::kCcittFalse, 2).has_value());
+  const auto repaired = RepairEvent(s, {{17, 18}}, CrcVariant::kCcittFalse, 1, 4);
+  ASSERT_TRUE(repaired.has_value());
+  EXPECT_EQ(repaired->frame, f);
+  EXPECT_EQ(repaired->fixed_bits, 2);
+}
+
+TEST(FrameRepair, OnlyTheEightLeastSureBitsAndPairsOfTheFiveLeastSureAreTried) {
+  const Frame f = MakeFrame({1, 2, 3, 4}, CrcVariant::kCcittFalse);
+  // One wrong bit, the ninth least sure: eight others are weaker, so it is not tried.
+  SoftFrame s = Soft(f, 0.9f);
+  s[30] = -0.5f * s[30];
+  for (int b = 0; b < 8; ++b) s[b] *= 0.4f;
+  EXPECT_FALSE(RepairFrame(s, CrcVariant::kCcittFalse, 1).has_value());
+  s[7] /= 0.4f;  // as sure as the rest again: the wrong bit is now the eighth least sure
+  ASSERT_TRUE(RepairFrame(s, CrcVariant::kCcittFalse, 1).has_value());
+  EXPECT_EQ(RepairFrame(s, CrcVariant::kCcittFalse, 1)->frame, f);
+  // Two wrong bits, the weakest and the sixth weakest: no pair of the five least sure makes it.
+  SoftFrame two = Soft(f, 0.9f);
+  two[12] = -0.05f * two[12];
+  two[44] = -0.3f * two[44];
+  for (int b : {20, 21, 22, 23}) two[b] *= 0.2f;
+  EXPECT_FALSE(RepairFrame(two, CrcVariant::kCcittFalse, 2).has_value());
+  two[23] = Soft(f, 0.9f)[23];  // the wrong bit is now the fifth weakest
+  ASSERT_TRUE(RepairFrame(two, CrcVariant::kCcittFalse, 2).has_value());
+  EXPECT_EQ(RepairFrame(two, CrcVariant::kCcittFalse, 2)->frame, f);
 }
 
 }  // namespace
