@@ -28,6 +28,7 @@ catkin_package(CATKIN_DEPENDS message_runtime roscpp std_msgs geometry_msgs sens
 # Bridges between the components and ROS: conversions and the node classes.
 add_library(multirobot_audio_ros STATIC
   src/conversions.cpp
+  src/rviz_markers.cpp
   src/input_checks.cpp
   src/input_guard.cpp
   src/subscription_stats.cpp

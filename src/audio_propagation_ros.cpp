@@ -13,6 +13,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "rviz_markers.h"
 #include "input_checks.h"
 #include "audio_propagation/delivery_map.h"
 #include "params.h"

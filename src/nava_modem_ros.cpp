@@ -8,6 +8,7 @@
 #include <multirobot_audio/CarrierSense.h>
 
 #include "conversions.h"
+#include "rviz_markers.h"
 #include "input_checks.h"
 #include "nava_modem/carrier_reports.h"
 #include "nava_modem/frame.h"

@@ -19,6 +19,7 @@
 #include <ros/callback_queue.h>
 
 #include "conversions.h"
+#include "rviz_markers.h"
 #include "input_checks.h"
 #include "lockstep_participant.h"
 #include "params.h"

@@ -1,4 +1,5 @@
 #include "conversions.h"
+#include "rviz_markers.h"
 
 #include <cmath>
 #include <limits>
