@@ -105,14 +105,7 @@ visualization_msgs::MarkerArray ToWorldMarkers(const world_sim::World& world,
 
 visualization_msgs::Marker ToDirectionMarker(double direction, double confidence, bool packet, const std::string& frame,
                                              const ros::Time& stamp, int id) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = frame;
-  m.header.stamp = stamp;
-  m.ns = "direction";
-  m.id = id;
-  m.type = visualization_msgs::Marker::ARROW;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
+  visualization_msgs::Marker m = BaseMarker(frame, stamp, "direction", id, visualization_msgs::Marker::ARROW);
   const double length = 0.3 + 0.7 * std::clamp(confidence, 0.0, 1.0);
   geometry_msgs::Point tail, head;
   head.x = length * std::cos(direction);
@@ -121,10 +114,11 @@ visualization_msgs::Marker ToDirectionMarker(double direction, double confidence
   m.scale.x = 0.04;  // shaft diameter
   m.scale.y = 0.08;  // head diameter
   m.scale.z = 0.1;   // head length
-  m.color.a = 1.0f;
-  m.color.r = packet ? 0.1f : 1.0f;
-  m.color.g = packet ? 0.8f : 0.5f;
-  m.color.b = 0.1f;
+  if (packet) {
+    SetColour(m, 0.1f, 0.8f, 0.1f);
+  } else {
+    SetColour(m, 1.0f, 0.5f, 0.1f);
+  }
   m.lifetime = ros::Duration(3.0);
   return m;
 }
