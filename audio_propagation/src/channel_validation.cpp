@@ -26,7 +26,7 @@ namespace {
 // The tools' carrier threshold (nava_decode --threshold-db, the decode tables' receiver), dB of
 // full scale.
 constexpr double kCarrierThresholdDb = -40.0;
-// After each packet: its room's tail and a gap (before the first: kTableLeadSeconds of noise).
+// After each packet: its room's tail and a gap (before the first: the noise's lead, in Judge).
 constexpr double kGapS = 0.4;
 constexpr int kDrawTries = 1000000;
 
@@ -66,9 +66,12 @@ class LinkJudge {
     std::mt19937 rng(seed);
     Scene scene;
     scene.profile = options_.profile;
-    scene.start = link.time - kTableLeadSeconds;
+    // The receiver hears the noise for as long as the tables give it before a packet, and before
+    // that for as long as it remembers: a whine that started then is new to it, as on a robot.
+    const double lead = kTableLeadSeconds + nava_modem::WhineSettleSeconds(options_.profile);
+    scene.start = link.time - lead;
     const double longest_travel = 2.0 * link.path_length / model_.propagation().options().speed_of_sound;
-    scene.duration = kTableLeadSeconds + options_.packets * spacing_ + longest_travel;
+    scene.duration = lead + options_.packets * spacing_ + longest_travel;
     scene.robots = {{kValidationSender, {{link.time, link.sender.x(), link.sender.y(), 0.0}}},
                     {kValidationListener, {{link.time, link.listener.x(), link.listener.y(), 0.0}}}};
     std::set<std::array<std::uint8_t, 4>> sent;

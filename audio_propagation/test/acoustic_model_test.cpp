@@ -288,6 +288,70 @@ TEST(AcousticModel, OverAPacketANoiseSourceCountsForTheShareOfItThatItSounds) {
   EXPECT_EQ(model.NoiseDuring(listener, 5.5, 9.5, {}).size(), 1u);  // off all the while
 }
 
+TEST(AcousticModel, ASourceCountsHowLongItHasSoundedSinceItStarted) {
+  world_sim::NoiseSourceSpec s;
+  s.duty = 0.5;
+  s.period = 10.0;
+  s.phase = 2.0;  // on from 2 to 7 s, 12 to 17 s, ...
+  EXPECT_NEAR(world_sim::SoundingFor(s, 2.5), 0.5, 1e-12);
+  EXPECT_NEAR(world_sim::SoundingFor(s, 16.0), 4.0, 1e-12);
+  EXPECT_NEAR(world_sim::SoundingFor(s, -5.0), 3.0, 1e-12);  // on from -8 to -3 s
+  EXPECT_DOUBLE_EQ(world_sim::SoundingFor(s, 8.0), 0.0);     // silent
+  s.duty = 1.0;
+  EXPECT_TRUE(std::isinf(world_sim::SoundingFor(s, 8.0)));
+}
+
+// The radio's place, level and duty, as a pump's whine on from 0 to 10 s of every 20.
+world_sim::Acoustics QuietWithPump() {
+  world_sim::Acoustics a = QuietWithRadio();
+  world_sim::NoiseSourceSpec& pump = a.noise_sources.at(0);
+  pump.name = "pump";
+  pump.kind = world_sim::NoiseKind::kWhine;
+  pump.frequency = 900.0;
+  pump.period = 20.0;
+  return a;
+}
+
+TEST(AcousticModel, AWhineTheRoomReceiverHasNotYetWhitenedCountsAsWhiteNoise) {
+  Strip strip;
+  DecodeTable room_table = LinearTable();
+  room_table.profile = "room";
+  const Eigen::Vector2d listener(11.0, 2.5);
+  const double settle = nava_modem::WhineSettleSeconds(nava_modem::Profile::kRoom);
+  EXPECT_GT(settle, 3.0);  // the chirp detector's whitening window and its CFAR background
+  EXPECT_LT(settle, 4.0);
+  EXPECT_DOUBLE_EQ(nava_modem::WhineSettleSeconds(nava_modem::Profile::kNava), 0.0);
+
+  const AcousticModel room(strip.model, QuietWithPump(), room_table, {});
+  const std::vector<Disturbance> steady = room.NoiseDuring(listener, settle + 1.0, settle + 3.0, {});
+  const std::vector<Disturbance> fresh = room.NoiseDuring(listener, settle - 1.0, settle + 1.0, {});
+  const std::vector<Disturbance> starting = room.NoiseDuring(listener, 19.0, 21.0, {});  // half of it on
+  ASSERT_EQ(steady.size(), 2u);
+  ASSERT_EQ(fresh.size(), 2u);
+  ASSERT_EQ(starting.size(), 2u);
+  EXPECT_EQ(steady[1].kind, Interference::kWhine);
+  EXPECT_EQ(fresh[1].kind, Interference::kWhite);
+  EXPECT_EQ(starting[1].kind, Interference::kWhite);
+  EXPECT_DOUBLE_EQ(fresh[1].power, steady[1].power);
+  EXPECT_NEAR(starting[1].power, 0.5 * steady[1].power, 1e-9 * steady[1].power);
+  // At the power of its harmonics in the band (900, 1800 and 2700 Hz: all of it), where the
+  // tables count white noise by its full-band power.
+  EXPECT_GT(fresh[1].listened, 0.9);
+  EXPECT_LE(fresh[1].listened, 1.0);
+  world_sim::Acoustics hum = QuietWithPump();
+  hum.noise_sources[0].frequency = 150.0;  // 150, 300, 450 Hz: under room's band
+  const AcousticModel hummed(strip.model, hum, room_table, {});
+  EXPECT_LT(hummed.NoiseDuring(listener, 1.0, 2.0, {})[1].listened, 0.01);
+  // The model judges it on the white cells, at an SNR that much lower.
+  const SoundPath path = strip.Path(1.0, 11.0);
+  EXPECT_EQ(room.Predict(path, listener, fresh).kind, Interference::kWhite);
+  EXPECT_EQ(room.Predict(path, listener, steady).kind, Interference::kWhine);
+
+  // nava does not whiten: a whine is a whine from its first moment.
+  const AcousticModel nava(strip.model, QuietWithPump(), LinearTable(), {});
+  EXPECT_EQ(nava.NoiseDuring(listener, 0.5, 2.5, {})[1].kind, Interference::kWhine);
+}
+
 TEST(AcousticModel, AWhineCountsByItsHarmonicsInTheBandAndHowCloseTheyComeToNavasTones) {
   Strip strip;
   const AcousticModel model(strip.model, Quiet(), LinearTable(), {});  // nava: tones 2300, 3700 Hz

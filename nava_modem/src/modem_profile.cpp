@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "nava_modem/chirp_detector.h"
 #include "nava_modem/frame.h"
 #include "nava_modem/fsk_modulator.h"
 #include "nava_modem/fsk_receiver.h"
@@ -103,6 +104,12 @@ double ProfileAirtime(Profile profile, const ModemOptions& options) { return Fra
 double FrameAirtime(Profile profile, const ModemOptions& options, std::size_t data_bytes, int rate) {
   if (profile == Profile::kNava) return kPacketBits / options.baud;
   return room_frame::FrameSeconds(static_cast<int>(data_bytes), rate);
+}
+
+double WhineSettleSeconds(Profile profile) {
+  if (profile == Profile::kNava) return 0.0;
+  const ChirpDetectorOptions detector;  // the room receiver's own
+  return detector.whitening_seconds + detector.background_seconds + detector.guard_seconds;
 }
 
 }  // namespace nava_modem

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace world_sim {
 
@@ -31,11 +32,24 @@ double CriticalDistance(const RoomAcoustics& room) {
   return std::sqrt(0.161 * room.volume / (16.0 * M_PI * room.rt60));
 }
 
-bool Sounding(const NoiseSourceSpec& source, double t) {
-  if (source.duty >= 1.0) return true;
+namespace {
+// Seconds since the start of the period holding `t`, in [0, period).
+double CycleTime(const NoiseSourceSpec& source, double t) {
   double cycle = std::fmod(t - source.phase, source.period);
   if (cycle < 0.0) cycle += source.period;
-  return cycle < source.duty * source.period;
+  return cycle;
+}
+}  // namespace
+
+bool Sounding(const NoiseSourceSpec& source, double t) {
+  if (source.duty >= 1.0) return true;
+  return CycleTime(source, t) < source.duty * source.period;
+}
+
+double SoundingFor(const NoiseSourceSpec& source, double t) {
+  if (source.duty >= 1.0) return std::numeric_limits<double>::infinity();
+  const double cycle = CycleTime(source, t);
+  return cycle < source.duty * source.period ? cycle : 0.0;
 }
 
 double SoundingFraction(const NoiseSourceSpec& source, double t0, double t1) {

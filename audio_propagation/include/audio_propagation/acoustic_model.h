@@ -173,6 +173,7 @@ class AcousticModel {
   std::vector<int> source_robot_;  // per noise source: robot index, or -1 when fixed
   std::vector<double> source_listened_;  // per noise source: Disturbance::listened
   std::vector<double> source_heard_;     // per noise source: Disturbance::heard
+  double whine_settle_s_ = 0.0;          // nava_modem::WhineSettleSeconds of the table's profile
   std::vector<std::shared_ptr<const nava_modem::RecordingWeight>> source_recording_;  // null but for recordings
   double ambient_heard_ = 1.0;           // the ambient noise's Disturbance::heard
   std::vector<double> tones_;      // Hz, a profile's few tones (nava); empty when they fill the band

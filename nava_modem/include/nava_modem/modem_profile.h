@@ -84,6 +84,12 @@ double ProfileAirtime(Profile profile, const ModemOptions& options = {});
 double FrameAirtime(Profile profile, const ModemOptions& options, std::size_t data_bytes, int rate);
 // The frames a profile carries, without building it.
 FrameFormat ProfileFormat(Profile profile);
+// How long a steady tone must have sounded before the profile's receiver has whitened it away.
+// room whitens by the least power at each frequency over its chirp detector's window, and its
+// CFAR background then still holds the blocks from before: a whine that starts after quiet is
+// whitened once both have forgotten the quiet (measured: 3 to 3.5 s). Until then it harms a
+// packet as a tone the receiver has not notched. nava does not whiten: 0.
+double WhineSettleSeconds(Profile profile);
 // Sets the MAC's bit rate and packet length to the profile's.
 void UseProfileTiming(Profile profile, const ModemOptions& options, MacOptions& mac);
 

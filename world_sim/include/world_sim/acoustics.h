@@ -61,6 +61,9 @@ struct NoiseSourceSpec {
 bool Sounding(const NoiseSourceSpec& source, double t);
 // The fraction of [t0, t1] during which it sounds (whether it sounds at t0 when t1 <= t0).
 double SoundingFraction(const NoiseSourceSpec& source, double t0, double t1);
+// How long it has been sounding at `t` since it last started: infinity for a source that never
+// stops (duty 1), 0 when it is silent at `t`.
+double SoundingFor(const NoiseSourceSpec& source, double t);
 
 // A building of coupled rooms (the world file's `acoustics.rooms`): the map is cut into rooms at
 // its narrow places (grid/room_segmentation.h), each room keeps its own reverberant field, and the
