@@ -129,6 +129,7 @@ TrialOutcome RunTrialOutcome(const audio_propagation::PropagationModel& model, c
   for (std::size_t k = 0; k < sim.size(); ++k) outcome.packets_sent += sim.mutex(k).counters().sent;
   outcome.corrupted = sim.corrupted();
   outcome.lost = sim.lost();
+  outcome.request_copies = sim.request_copies();
   return outcome;
 }
 
@@ -149,6 +150,7 @@ TrialSummary Summarize(const std::vector<TrialOutcome>& outcomes) {
     s.packets_sent += o.packets_sent;
     s.corrupted += o.corrupted;
     s.lost += o.lost;
+    s.request_copies += o.request_copies;
   }
   s.mean_wait = s.grants ? wait_sum / s.grants : 0.0;
   return s;

@@ -1,6 +1,7 @@
 #include "local_mutex/team_sim.h"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -48,6 +49,7 @@ TeamSim::TeamSim(const audio_propagation::PropagationModel& model, std::vector<T
       channel_(model, OmniMicrophones(robots_.size()), options.channel, acoustic_.get()),
       rng_(options.seed) {
   const std::size_t n = robots_.size();
+  sending_request_.assign(n, false);
   std::vector<Eigen::Vector2d> positions;
   for (std::size_t k = 0; k < n; ++k) {
     const Eigen::Vector2d& p = robots_[k].position;
@@ -83,6 +85,12 @@ TeamSim::TeamSim(const audio_propagation::PropagationModel& model, std::vector<T
 }
 
 void TeamSim::OnEvent(std::size_t k, const MutexEvent& e) {
+  if (e.kind == MutexEvent::Kind::kSent) {
+    sending_request_[k] = e.message.type == MessageType::kRequest;
+    if (sending_request_[k]) {
+      for (std::size_t other = 0; other < mutexes_.size(); ++other) request_copies_.offered += in_range_[k][other];
+    }
+  }
   if (e.kind == MutexEvent::Kind::kStateChange && e.state == State::kHeld) {
     for (std::size_t other = 0; other < mutexes_.size(); ++other) {
       if (other != k && in_range_[k][other] && mutexes_[other]->state() == State::kHeld) ++violations_;
@@ -102,9 +110,16 @@ void TeamSim::Deliver(const audio_propagation::Reception& rx) {
     ++lost_;
     return;
   }
-  LocalMutex& m = *mutexes_[rx.receiver];
   const bool packet = rx.kind == audio_propagation::Reception::Kind::kPacket;
+  // A whole packet says what it is; noise is the sender's packet being sent (a packet lasts well
+  // under the shortest interval between two of a robot's sends).
+  const std::optional<Message> message = packet ? Decode(rx.data) : std::nullopt;
+  const bool request = packet ? message && message->type == MessageType::kRequest : sending_request_[rx.sender];
+  const bool counted = request && in_range_[rx.sender][rx.receiver];
+  request_copies_.sounded += counted;
+  LocalMutex& m = *mutexes_[rx.receiver];
   if (packet && !(options_.noise > 0.0 && u(rng_) < options_.noise)) {
+    request_copies_.heard += counted;
     sender_ = rx.sender;
     m.HearPacket(rx.data, rx.time);
     sender_ = std::numeric_limits<std::size_t>::max();

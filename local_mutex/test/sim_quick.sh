@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# local_mutex_sim's random trials and sweep over machines: shards 1/2 and 2/2 of a small run merge
+# local_mutex_sim's random trials, sweep and failure bound over machines: shards 1/2 and 2/2 of a small run merge
 # into the whole run's report, to the byte; then the tool's answers to bad shard options.
 #   sim_quick.sh LOCAL_MUTEX_SIM
 set -uo pipefail
@@ -10,11 +10,15 @@ source "$(dirname "$0")/../../test/tool_checks.sh"
 
 check_shards --trials 7 --robots 2..4 --noise 0.1
 check_shards --sweep 2 --robots 2..3
+check_shards --bound 2 --robots 2..3 --noise 0.2 --rho 0.01
 # The acoustic channel on the open floor with the test room's acoustics, links keeping their fate.
 maps=$(dirname "$0")/../../maps
 check_shards --trials 5 --robots 2..4 --channel acoustic --profile room --acoustics "$maps/open_floor_world.yaml" --link-fate
 
-expect_error "--shard: for --trials N and --sweep N, not --scenario" --scenario single --shard 1/2 --out "$out/x"
+expect_error "--shard: for --trials N, --sweep N and --bound N, not --scenario" --scenario single --shard 1/2 --out "$out/x"
+expect_error "give exactly one of --scenario, --trials N, --sweep N, --bound N" --bound 3 --trials 3
+expect_error "--bound: a team needs at least 2 robots to lose a request, got --robots 1" --bound 3 --robots 1..3
+expect_error "--rho: expected a failure rate in (0, 1), got 1" --bound 3 --rho 1
 expect_error "--shard: give --out DIR for the shard's files" --trials 3 --shard 1/2
 expect_error "--out: for --shard only (the report is printed)" --trials 3 --out "$out/x"
 expect_error "--timeline draws one trial: give it without --shard" --trials 1 --timeline "$out/t.png" --shard 1/1 --out "$out/x"

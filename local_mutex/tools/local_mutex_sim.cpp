@@ -4,9 +4,10 @@
 //   local_mutex_sim --trials N [--robots 2..6] [--noise P] [--loss Q] [trial options] [timers] [--seed S]
 //                   [--timeline out.png, with --trials 1: that trial]
 //   local_mutex_sim --sweep N [--robots 2..6] [--seed S]
+//   local_mutex_sim --bound N [--robots 2..8] [--rho 0.001] [channel] [--seed S]
 //
 // Timers (s): --grab 40 --request 15 --request-sd 2 --lock 10 --lock-sd 1.
-// Trial options: --radius 3 --want-spread 60 --hold-min 5 --hold-max 20 --cycles 1 --bound 0.
+// Trial options: --radius 3 --want-spread 60 --hold-min 5 --hold-max 20 --cycles 1 --liveness-bound 0.
 //
 // A scenario prints one line per grant, in grant order:
 //   robot ID wanted SECONDS request (T,ID) granted SECONDS released SECONDS
@@ -15,9 +16,13 @@
 //   trials N violations V liveness_failures L mean_wait_s M max_wait_s X
 // --sweep runs N trials per cell of two tables (corrupted packets, lost receptions) against the
 // number of requests sent in one t_grab, beside the thesis's (p)^n bound.
+// --bound runs N trials per cell of r robots, all in earshot, and n = 1..6 requests in one
+// t_grab: p_r (the share of request copies that did not reach a robot in range whole) and q_r
+// (that did not reach it at all), violations per grant with a 95 % interval beside (p_r)^n and
+// (q_r)^n, and the n each would choose for --rho.
 //
-// Over machines (tool_args/shard.h): --trials or --sweep with --shard K/N --out DIR runs every
-// Nth trial (the sweep's in table, row, trial order) into DIR; --merge DIR... prints the whole
+// Over machines (tool_args/shard.h): --trials, --sweep or --bound with --shard K/N --out DIR runs
+// every Nth trial (the sweep's and the bound's in cell, trial order) into DIR; --merge DIR... prints the whole
 // run's report from the shards.
 #include <algorithm>
 #include <chrono>
@@ -29,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "local_mutex/failure_bound.h"
 #include "local_mutex/scenarios.h"
 #include "local_mutex/timeline_plot.h"
 #include "local_mutex_sim_args.h"
@@ -94,44 +100,60 @@ void UseAcousticChannel(Request& r) {
   r.options.decode_table = audio_propagation::tools::LoadExperimentTable(r.channel);
 }
 
-// The groups of trials a run is made of, each `count` trials of one TeamSimOptions: --trials N
-// is one group of N, --sweep N a group of N per cell of its tables (tables, then rows). Trial t
-// of group g is trial g * count + t of the whole run.
+// The groups of trials a run is made of, each `count` trials of one TeamSimOptions and one
+// TrialOptions: --trials N is one group of N, --sweep N a group of N per cell of its tables
+// (tables, then rows), --bound N a group of N per (r, n) cell. Trial t of group g is trial
+// g * count + t of the whole run.
 struct SweepCell {
   bool lose = false;  // receptions lost (else packets corrupted)
   double p = 0.0;
   int n = 0;          // requests in one t_grab
+  int robots = 0;     // --bound: the team's size, all in earshot
   TeamSimOptions options;
+  TrialOptions trials;
 };
 
-std::vector<SweepCell> SweepCells(const TeamSimOptions& base) {
+constexpr int kBoundMaxRequests = 6;
+
+std::vector<SweepCell> SweepCells(const TeamSimOptions& base, const TrialOptions& trials) {
   std::vector<SweepCell> cells;
-  const double grab = base.mutex.grab_time;
   for (const bool lose : {false, true})
     for (const double p : {0.0, 0.1, 0.2, 0.3, 0.5})
       for (int n = 1; n <= 4; ++n) {
         TeamSimOptions o = base;
-        // n requests fit in one t_grab of silence: at t_request, 2 t_request, ... n t_request.
-        o.mutex.request_mean = grab / (n + 0.5);
-        o.mutex.request_sd = o.mutex.request_mean * 2.0 / 15.0;
-        o.mutex.lock_mean = std::min(base.mutex.lock_mean, o.mutex.request_mean);
-        o.mutex.lock_sd = o.mutex.lock_mean * 0.1;
+        o.mutex = WithRequestsPerGrab(base.mutex, n);
         (lose ? o.loss : o.noise) = p;
-        cells.push_back({lose, p, n, o});
+        cells.push_back({lose, p, n, 0, o, trials});
       }
   return cells;
 }
 
-std::vector<SweepCell> Groups(const Request& r) {
-  return r.sweep > 0 ? SweepCells(r.options) : std::vector<SweepCell>{{false, 0.0, 0, r.options}};
+std::vector<SweepCell> BoundCells(const TeamSimOptions& base, const TrialOptions& trials) {
+  std::vector<SweepCell> cells;
+  for (int robots = trials.min_robots; robots <= trials.max_robots; ++robots)
+    for (int n = 1; n <= kBoundMaxRequests; ++n) {
+      TeamSimOptions o = base;
+      o.mutex = WithRequestsPerGrab(base.mutex, n);
+      TrialOptions t = trials;
+      t.min_robots = t.max_robots = robots;
+      cells.push_back({false, base.noise, n, robots, o, t});
+    }
+  return cells;
 }
-int PerGroup(const Request& r) { return r.sweep > 0 ? r.sweep : r.trial_count; }
+
+std::vector<SweepCell> Groups(const Request& r) {
+  if (r.sweep > 0) return SweepCells(r.options, r.trials);
+  if (r.bound > 0) return BoundCells(r.options, r.trials);
+  return {{false, 0.0, 0, 0, r.options, r.trials}};
+}
+int PerGroup(const Request& r) { return r.sweep > 0 ? r.sweep : r.bound > 0 ? r.bound : r.trial_count; }
 
 // One trial's outcome as a record (tool_args/record.h), and back.
 std::string Record(const TrialOutcome& o) {
   multirobot_audio::tools::RecordWriter w;
   w.Put(o.seed).Put(o.violations).Put(o.unserved).Put(o.liveness_bound).Put(o.packets_sent).Put(o.corrupted);
-  w.Put(o.lost).PutList(o.waits);
+  w.Put(o.lost).Put(o.request_copies.offered).Put(o.request_copies.heard).Put(o.request_copies.sounded);
+  w.PutList(o.waits);
   return w.text();
 }
 
@@ -146,6 +168,9 @@ TrialOutcome ReadRecord(const std::string& text, const std::string& where, std::
   o.packets_sent = in.Get<std::uint64_t>();
   o.corrupted = in.Get<std::uint64_t>();
   o.lost = in.Get<std::uint64_t>();
+  o.request_copies.offered = in.Get<std::uint64_t>();
+  o.request_copies.heard = in.Get<std::uint64_t>();
+  o.request_copies.sounded = in.Get<std::uint64_t>();
   o.waits = in.GetList<double>();
   in.End();
   return o;
@@ -154,10 +179,48 @@ TrialOutcome ReadRecord(const std::string& text, const std::string& where, std::
 // The outcomes of one group's trials, as records read back.
 using GroupOutcomes = std::function<std::vector<TrialOutcome>(std::size_t group)>;
 
-// The report of --trials or --sweep, the same for a whole run and a merge of shards. A whole
-// run's sweep prints each row as its cell is done.
+// --bound's report: a row per (r, n) cell as it is done, then the n each r needs for --rho.
+void ReportBound(const Request& r, const std::vector<SweepCell>& groups, const GroupOutcomes& outcomes) {
+  std::printf("Failure bound: %d trials per cell, r robots all in earshot, n requests in one t_grab; p_r = request "
+              "copies not decoded / offered, q_r = not heard at all (not even as noise) / offered; violations per "
+              "grant with a 95 %% interval\n\n", r.bound);
+  std::printf("| r | n | t_request s | p_r | (p_r)^n | q_r | (q_r)^n | violations / grant [95 %%] | grants | "
+              "liveness failures | mean wait s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<std::pair<int, RequestCopies>> pooled;  // per team size, over its cells
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const SweepCell& cell = groups[g];
+    const TrialSummary s = Summarize(outcomes(g));
+    const double p = RequestLoss(s.request_copies), q = RequestSilence(s.request_copies);
+    const Proportion v = WilsonInterval(std::min(s.violations, s.grants), s.grants);
+    std::printf("| %d | %d | %.1f | %.4f | %.2e | %.4f | %.2e | %.2e [%.1e, %.1e] | %llu | %llu | %.1f |\n", cell.robots,
+                cell.n, cell.options.mutex.request_mean, p, std::pow(p, cell.n), q, std::pow(q, cell.n), v.rate, v.low,
+                v.high, static_cast<unsigned long long>(s.grants), static_cast<unsigned long long>(s.liveness_failures),
+                s.mean_wait);
+    if (pooled.empty() || pooled.back().first != cell.robots) pooled.push_back({cell.robots, {}});
+    pooled.back().second += s.request_copies;
+    std::fflush(stdout);
+  }
+  std::printf("\nrequests before grabbing for a failure rate under rho = %g (n = log_{p} rho, p over all n):\n", r.rho);
+  const auto choose = [&](double p) {
+    const int n = RequestsFor(r.rho, p);
+    return n > 0 ? std::to_string(n) : std::string("none will do");
+  };
+  for (const auto& [robots, copies] : pooled) {
+    const double p = RequestLoss(copies), q = RequestSilence(copies);
+    std::printf("  r %d: p_r %.4f, q_r %.4f of %llu copies: n = %s by p_r, %s by q_r\n", robots, p, q,
+                static_cast<unsigned long long>(copies.offered), choose(p).c_str(), choose(q).c_str());
+  }
+}
+
+// The report of --trials, --sweep or --bound, the same for a whole run and a merge of shards. A
+// whole run's sweep prints each row as its cell is done.
 void Report(const Request& r, const GroupOutcomes& outcomes) {
   const std::vector<SweepCell> groups = Groups(r);
+  if (r.bound > 0) {
+    ReportBound(r, groups, outcomes);
+    return;
+  }
   if (r.sweep == 0) {
     const TrialSummary s = Summarize(outcomes(0));
     std::printf("grants %llu packets_sent %llu corrupted %llu lost %llu\n", static_cast<unsigned long long>(s.grants),
@@ -192,14 +255,14 @@ void RunTrialsOrSweep(const Request& r, const BatchRun& batch) {
   if (batch.sharded()) {
     std::vector<std::string> records(groups.size() * count);
     for (std::size_t i : batch.Trials(records.size()))
-      records[i] = Record(RunTrialOutcome(*model, r.trials, groups[i / count].options, static_cast<int>(i % count)));
+      records[i] = Record(RunTrialOutcome(*model, groups[i / count].trials, groups[i / count].options, static_cast<int>(i % count)));
     batch.WriteShard(r.out, records);
   } else {
     Report(r, [&](std::size_t g) {
       std::vector<TrialOutcome> outcomes;
       for (int t = 0; t < count; ++t) {
         const TeamSimOptions& o = groups[g].options;
-        const std::string record = Record(RunTrialOutcome(*model, r.trials, o, t));
+        const std::string record = Record(RunTrialOutcome(*model, groups[g].trials, o, t));
         outcomes.push_back(ReadRecord(record, "trial " + std::to_string(g * count + t), o.seed + t));
       }
       return outcomes;

@@ -14,10 +14,11 @@
 
 namespace local_mutex::tools {
 
-// What a run asks for: a scenario, N random trials or the sweep.
+// What a run asks for: a scenario, N random trials, the sweep or the failure bound.
 struct SimRequest {
   std::string scenario, timeline, out;
-  int trial_count = 0, sweep = 0;
+  int trial_count = 0, sweep = 0, bound = 0;  // trials in all, or per cell of the sweep or the bound
+  double rho = 1e-3;                          // the bound's failure rate to choose n for
   TeamSimOptions options;  // with the acoustic channel, its table and acoustics are loaded by the tool
   TrialOptions trials;
   audio_propagation::tools::ExperimentChannel channel;

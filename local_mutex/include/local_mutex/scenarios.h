@@ -56,6 +56,7 @@ struct TrialSummary {
   std::uint64_t grants = 0;
   double mean_wait = 0.0, max_wait = 0.0;  // s from wanting to holding
   std::uint64_t packets_sent = 0, corrupted = 0, lost = 0;
+  RequestCopies request_copies;
 };
 
 // What one trial leaves for a summary: enough to sum any number of trials (a whole run's or
@@ -66,6 +67,7 @@ struct TrialOutcome {
   std::uint64_t unserved = 0;  // demands never granted: still waiting, or wished after the run's end
   double liveness_bound = 0.0; // s: a longer wait is a liveness failure
   std::uint64_t packets_sent = 0, corrupted = 0, lost = 0;
+  RequestCopies request_copies;
   std::vector<double> waits;   // s from wanting to holding, per grant in grant order
 };
 

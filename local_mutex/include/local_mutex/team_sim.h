@@ -53,6 +53,22 @@ struct TeamSimOptions {
 // acoustics or acoustics without a decode table.
 void ValidateTeamSimOptions(const TeamSimOptions& options);
 
+// The copies of requests that could reach a robot in range, and what became of them: each
+// REQUEST sent offers one copy to every robot in its sender's range. `heard` arrived whole (not
+// lost to a collision, the noise or the half-duplex radio): 1 - heard / offered is the thesis's
+// p_r, the chance that one request is lost (section 6.3.2). `sounded` arrived at all, whole or
+// as noise: the lock takes any sound as a reason to wait, so only a copy that did not even
+// sound leaves a robot free to take the lock.
+struct RequestCopies {
+  std::uint64_t offered = 0, heard = 0, sounded = 0;
+  RequestCopies& operator+=(const RequestCopies& o) {
+    offered += o.offered;
+    heard += o.heard;
+    sounded += o.sounded;
+    return *this;
+  }
+};
+
 // A lock event of one robot; for a packet heard, `from` is the robot that sent it.
 struct RobotEvent {
   std::size_t robot = 0;
@@ -98,6 +114,7 @@ class TeamSim {
   std::uint64_t violations() const { return violations_; }
   std::uint64_t corrupted() const { return corrupted_; }
   std::uint64_t lost() const { return lost_; }
+  const RequestCopies& request_copies() const { return request_copies_; }
   const std::vector<RobotEvent>& events() const { return events_; }
   const audio_propagation::AudioChannel& channel() const { return channel_; }
 
@@ -126,6 +143,8 @@ class TeamSim {
   std::size_t sender_ = std::numeric_limits<std::size_t>::max();  // of the reception being delivered
   double now_ = 0.0;
   std::uint64_t violations_ = 0, corrupted_ = 0, lost_ = 0;
+  RequestCopies request_copies_;
+  std::vector<bool> sending_request_;  // per robot: its last packet sent was a REQUEST
 };
 
 }  // namespace local_mutex
