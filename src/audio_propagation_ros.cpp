@@ -42,6 +42,12 @@ AudioPropagationOptions ReadAudioPropagationOptions(const ros::NodeHandle& pnh) 
   c.speed_of_sound = NumberParam(pnh, "speed_of_sound", c.speed_of_sound);
   c.capture_margin_db = NumberParam(pnh, "capture_margin_db", c.capture_margin_db);
   c.direction_noise = NumberParam(pnh, "direction_noise", c.direction_noise);
+  const std::string directions = StringParam(pnh, "directions", "exact");
+  if (directions != "exact" && directions != "measured") {
+    throw ParamError(pnh.resolveName("directions") + ": expected exact or measured, got '" + directions + "'");
+  }
+  c.measured_directions = directions == "measured";
+  c.direction_table = StringParam(pnh, "direction_table", c.direction_table);
   c.seed = IntParam(pnh, "seed", c.seed);
   c.rate = IntParam(pnh, "rate", c.rate);
   c.cache_size = IntParam(pnh, "cache_size", c.cache_size);

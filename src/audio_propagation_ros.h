@@ -26,7 +26,8 @@ struct AudioPropagationOptions {
   // its name (~world and ~map for world_file and map_file): ~world, ~map, ~robots, ~microphones,
   // ~profile, ~bit_rate, ~channel_model, ~decode_table, ~delivery_map_robot, ~source_level_db,
   // ~threshold_db, ~max_range, ~speed_of_sound, ~rule, ~capture_margin_db, ~direction_noise,
-  // ~seed, ~cache_size, ~link_fate, ~fate_distance.
+  // ~seed, ~cache_size, ~link_fate, ~fate_distance; ~directions (exact or measured: the
+  // measured_directions flag) and ~direction_table.
   audio_propagation::SimulatedChannelOptions channel;
   // ~frame_id: the world's fixed frame: the robots' poses are looked up in it, and the paths,
   // corners and delivery maps are drawn in it.

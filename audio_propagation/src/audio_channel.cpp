@@ -55,6 +55,10 @@ AudioChannel::AudioChannel(const PropagationModel& model, std::vector<world_sim:
       rng_(options.seed) {
   ValidateOptions(options_);
   if (!reception_) throw std::invalid_argument("audio channel: expected a reception model, got none");
+  if (options_.direction_errors && !reception_->acoustic()) {
+    throw std::invalid_argument("audio channel: measured direction errors need the acoustic channel model (each link's "
+                                "DRR and RT60 pick the table's cell); the threshold model has neither");
+  }
   nava_modem::MacOptions mac = options_.mac;
   // Unless the model fixes one, each robot calibrates its threshold on the noise it hears at the
   // start, as a real robot does (the loudest level of its calibration time plus a margin).
@@ -265,10 +269,18 @@ void AudioChannel::Finish(std::size_t receiver, const Arrival& a, Events& events
   rx.time = a.end * tick_;
   rx.level_db = a.level_db;
   rx.path_length = a.path.length;
-  rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
-                                options_.direction_noise, rng_);
-  rx.direction_confidence = std::isfinite(rx.direction) ? 1.0 : 0.0;
   const std::vector<Eigen::Vector2d>& at = Positions();
+  if (options_.direction_errors) {
+    const LinkLevels levels = reception_->acoustic()->Levels(a.path, at[receiver]);
+    const SensedDirection sensed = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
+                                                  *options_.direction_errors, levels.drr_db, levels.rt60, rng_);
+    rx.direction = sensed.direction;
+    rx.direction_confidence = sensed.confidence;
+  } else {
+    rx.direction = SenseDirection(microphones_[receiver], a.path.arrival_angle, poses_[receiver].yaw,
+                                  options_.direction_noise, rng_);
+    rx.direction_confidence = std::isfinite(rx.direction) ? 1.0 : 0.0;
+  }
   const Decision d = reception_->Decide(a.path, receiver, a.level_db, a.start * tick_, a.end * tick_, overlaps, at,
                                         [&] { return DecisionDraw(a.sender, receiver, at); });
   if (!d.heard) {

@@ -1,10 +1,13 @@
 #include "audio_propagation/channel_factory.h"
 
+#include "audio_propagation/direction_errors_file.h"
+
 #include <algorithm>
 #include <sstream>
 #include <utility>
 
 #include "audio_propagation/decode_table.h"
+#include "audio_propagation/direction_errors_file.h"
 #include "grid/input_error.h"
 #include "grid/map_file.h"
 #include "nava_modem/csma_mac.h"
@@ -162,6 +165,12 @@ void CheckSimulatedChannelOptions(const SimulatedChannelOptions& o) {
     if (!o.delivery_map_robot.empty()) {
       throw ChannelOptionError("delivery_map_robot", "only used by channel_model acoustic");
     }
+    if (o.measured_directions) {
+      throw ChannelOptionError("directions", "measured needs channel_model acoustic (each link's DRR and RT60)");
+    }
+  }
+  if (!o.direction_table.empty() && !o.measured_directions) {
+    throw ChannelOptionError("direction_table", "only used with directions measured");
   }
 }
 
@@ -222,7 +231,13 @@ SimulatedChannel BuildSimulatedChannel(const SimulatedChannelOptions& o, std::op
       throw grid::InputError(o.world_file, "", e.what());
     }
   }
-  out.channel = std::make_unique<AudioChannel>(*out.propagation, out.microphones, ChannelFor(o), out.acoustic.get());
+  ChannelOptions channel = ChannelFor(o);
+  if (o.measured_directions) {
+    const std::string profile = nava_modem::ProfileName(o.profile);
+    channel.direction_errors = std::make_shared<const DirectionErrors>(
+        LoadDirectionErrors(o.direction_table.empty() ? ShippedDirectionErrors(profile) : o.direction_table, profile));
+  }
+  out.channel = std::make_unique<AudioChannel>(*out.propagation, out.microphones, channel, out.acoustic.get());
   out.profile = o.profile;
   out.modem = ModemFor(o);
   out.rate = o.rate;

@@ -26,4 +26,10 @@ double SenseDirection(world_sim::Microphone microphone, double arrival_world, do
   return kNaN;
 }
 
+SensedDirection SenseDirection(world_sim::Microphone microphone, double arrival_world, double robot_yaw,
+                               const DirectionErrors& errors, double drr_db, double rt60, std::mt19937& rng) {
+  if (std::isnan(arrival_world)) return {std::numeric_limits<double>::quiet_NaN(), 0.0};
+  return errors.Sense(microphone, grid::NormalizeAngle(arrival_world - robot_yaw), drr_db, rt60, rng);
+}
+
 }  // namespace audio_propagation

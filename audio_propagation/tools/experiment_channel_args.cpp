@@ -1,6 +1,7 @@
 #include "experiment_channel_args.h"
 
 #include "audio_propagation/acoustic_model.h"
+#include "audio_propagation/direction_errors_file.h"
 #include "grid/input_error.h"
 #include "world_sim/world_file.h"
 
@@ -19,15 +20,22 @@ ExperimentChannel ParseExperimentChannel(const multirobot_audio::tools::ToolArgs
   nava_modem::UseProfileTiming(c.profile, {}, channel.mac);
   c.table_file = args.String("--table", "");
   c.acoustics_file = args.String("--acoustics", "");
+  const std::string directions = args.String("--directions", "exact");
+  if (directions != "exact" && directions != "measured") {
+    args.Fail("--directions: expected exact or measured, got " + directions);
+  }
+  c.measured_directions = directions == "measured";
+  c.direction_table_file = args.String("--direction-table", "");
   channel.link_fate = args.Switch(kLinkFateSwitch);
   channel.fate_distance = args.Double("--fate-distance", channel.fate_distance, 1e-6, 100.0);
   const auto given = [&](const char* flag) { return args.given().count(flag) > 0; };
   if (!c.acoustic()) {
-    for (const char* flag : {"--table", "--acoustics", kLinkFateSwitch, "--fate-distance"}) {
+    for (const char* flag : {"--table", "--acoustics", kLinkFateSwitch, "--fate-distance", "--directions", "--direction-table"}) {
       if (given(flag)) args.Fail(std::string(flag) + " is for --channel acoustic");
     }
   }
   if (given("--fate-distance") && !channel.link_fate) args.Fail("--fate-distance goes with --link-fate");
+  if (given("--direction-table") && !c.measured_directions) args.Fail("--direction-table goes with --directions measured");
   return c;
 }
 
@@ -35,6 +43,13 @@ std::shared_ptr<const DecodeTable> LoadExperimentTable(const ExperimentChannel& 
   const std::string name = nava_modem::ProfileName(channel.profile);
   return std::make_shared<const DecodeTable>(
       LoadDecodeTable(channel.table_file.empty() ? ShippedDecodeTable(name) : channel.table_file, name));
+}
+
+std::shared_ptr<const DirectionErrors> LoadExperimentDirections(const ExperimentChannel& channel) {
+  if (!channel.measured_directions) return nullptr;
+  const std::string name = nava_modem::ProfileName(channel.profile);
+  return std::make_shared<const DirectionErrors>(LoadDirectionErrors(
+      channel.direction_table_file.empty() ? ShippedDirectionErrors(name) : channel.direction_table_file, name));
 }
 
 void GiveAcoustics(const ExperimentChannel& channel, std::vector<world_sim::WorldConfig>& worlds,

@@ -7,6 +7,9 @@
 //   --table FILE                  the decode table (default: the profile's shipped one)
 //   --acoustics WORLD.yaml        a world file whose acoustics section the trials get
 //   --link-fate [--fate-distance M]  a link's outcome held while neither robot moves M m
+//   --directions exact|measured   microphones report the path's exact direction, or what a real
+//                                 array reports over the link's DRR and RT60
+//   --direction-table FILE        the table of the latter (default: the profile's shipped one)
 // The acoustic-only flags are refused with the threshold channel.
 #include <memory>
 #include <string>
@@ -25,7 +28,7 @@ namespace audio_propagation::tools {
 
 inline constexpr const char* kExperimentChannelUsage =
     "[--channel threshold|acoustic] [--profile nava|room] [--table FILE] [--acoustics WORLD.yaml] "
-    "[--link-fate [--fate-distance 0.075]]";
+    "[--link-fate [--fate-distance 0.075]] [--directions exact|measured [--direction-table FILE]]";
 // The flag that takes no value, for the runner's ToolArgs switches.
 inline constexpr const char* kLinkFateSwitch = "--link-fate";
 
@@ -34,6 +37,8 @@ struct ExperimentChannel {
   nava_modem::Profile profile = nava_modem::Profile::kNava;
   std::string table_file;      // empty: the profile's shipped table
   std::string acoustics_file;  // empty: each world's own section
+  bool measured_directions = false;
+  std::string direction_table_file;  // empty: the profile's shipped table
   bool acoustic() const { return model == ChannelModel::kAcoustic; }
 };
 
@@ -44,6 +49,10 @@ ExperimentChannel ParseExperimentChannel(const multirobot_audio::tools::ToolArgs
 
 // The profile's decode table: --table, or the shipped one. Throws grid::InputError naming the file.
 std::shared_ptr<const DecodeTable> LoadExperimentTable(const ExperimentChannel& channel);
+
+// With --directions measured, the profile's direction table (--direction-table, or the shipped
+// one); else null. Throws grid::InputError naming the file.
+std::shared_ptr<const DirectionErrors> LoadExperimentDirections(const ExperimentChannel& channel);
 
 // For the acoustic channel, every world of the run gets the --acoustics file's section, or must
 // have one of its own; each is checked against `map` (the trials' map; `map_file` its file, to

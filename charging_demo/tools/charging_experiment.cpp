@@ -210,6 +210,7 @@ int Run(const Protocol& p, const BatchRun& batch) {
                                             run[0].map_file);
     for (std::size_t k = 0; k < which.size(); ++k) worlds[which[k]] = run[k];
     options.decode_table = audio_propagation::tools::LoadExperimentTable(p.channel);
+    options.channel.direction_errors = audio_propagation::tools::LoadExperimentDirections(p.channel);
     audio_propagation::tools::UseAcousticPropagation(audio, run, p.hearing_given);
   }
   const fs::path out(p.out_dir);

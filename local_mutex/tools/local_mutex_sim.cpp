@@ -98,6 +98,7 @@ void UseAcousticChannel(Request& r) {
   audio_propagation::tools::GiveAcoustics(r.channel, world, {}, OpenFloorMap(), "");
   r.options.acoustics = world[0].acoustics;
   r.options.decode_table = audio_propagation::tools::LoadExperimentTable(r.channel);
+  r.options.channel.direction_errors = audio_propagation::tools::LoadExperimentDirections(r.channel);
 }
 
 // The groups of trials a run is made of, each `count` trials of one TeamSimOptions and one

@@ -6,8 +6,8 @@
 # through a measured response (--rir); nava_decode's trace of each break (--diagnostics); then
 # the tools' answers to bad input.
 #   room_tool_checks.sh NAVA_ROOM NAVA_ENCODE NAVA_DECODE MAKE_SPEECH NAVA_BENCH
-# (nava_bench for its --arrival and --likeness modes: room packets timed through measured
-# responses; measured responses beside the renderer's)
+# (nava_bench for its --arrival, --likeness, --splice and --direction modes: room packets timed
+# through measured responses; measured responses beside the renderer's; directions by RT60 and DRR)
 set -uo pipefail
 export PATH="/usr/bin:/bin:${PATH}"
 tool=$1
@@ -122,6 +122,16 @@ for f in a2.5_b a10_b b2.5_a b10_a; do
 done
 same=$(awk '$1 == "a.wav" { a = $2 " " $3 } $1 == "a10_b.wav" { b = $2 " " $3 } END { print (a == b && a != "") }' "$out/bench")
 [ "$same" = 1 ] || { cat "$out/bench"; fail "nava_bench --splice: a response spliced with itself changed its RT60 or DRR"; }
+# nava_bench --direction on a one-cell grid, and the pair judged on a "dummy head" whose two ears
+# hear the same response: a sound from its front (head azimuth 0), which no pair can place, and
+# the table written.
+mkdir -p "$out/heads"
+cp "$out/response.wav" "$out/heads/same_headaz+0.wav"
+"$bench" --direction --packets 3 --min-decoded 0 --rt60 0.5 --drr 3 --binaural-dir "$out/heads" --threads 1 \
+  --errors-out "$out/direction.yaml" >"$out/bench" 2>&1 || { cat "$out/bench"; fail "nava_bench --direction failed"; }
+grep -Eq "^ +0\.50 +\+3 \| +3/3 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --direction: no line for the cell"; }
+grep -Eq "^same_headaz\+0\.wav +-?0 .* 3/3 +0 +0 +3 " "$out/bench" || { cat "$out/bench"; fail "nava_bench --direction: identical ears gave a direction"; }
+grep -q "^  - rt60_s: 0.5" "$out/direction.yaml" || fail "nava_bench --direction: no cell in the table"
 tool_was=$tool
 tool=$bench
 expect_error "--likeness: expected --rir-dir DIR" --likeness
@@ -144,6 +154,9 @@ expect_error "--arrival: expected --rir-dir DIR" --arrival
 mkdir -p "$out/nothing_here"
 expect_error "--rir-dir $out/nothing_here: no audio files" --arrival --rir-dir "$out/nothing_here"
 expect_error "--rir-dir $out/missing: No such file" --arrival --rir-dir "$out/missing"
+expect_error "--direction: expected --rate above 10800 Hz" --direction --rate 8000
+expect_error "--drr: expected ascending DRRs" --direction --drr 3,-3
+expect_error "--binaural-dir $out/rooms: no two-channel response named" --direction --packets 1 --rt60 0.5 --drr 3 --binaural-dir "$out/rooms"
 tool=$tool_was
 sox -n -r 48000 -c 1 "$out/silent.wav" trim 0 0.1 || fail "sox could not make silence"
 expect_error "--rir $out/response.wav: 2 channels: expected one, or a channel chosen (--channel 0..1)" \

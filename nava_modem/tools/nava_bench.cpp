@@ -14,6 +14,8 @@
 //   nava_bench --link-cost [--seconds 120] [--period 6] [--runs 3] [--profile room|nava]
 //   nava_bench --frames --rir-dir DIR [--bytes 64] [--speed all|R] [--count 20] [--snr 10] [--noise-file FILE]
 //              [--threads 2] [--profile room|nava]
+//   nava_bench --direction [--packets 40] [--min-decoded 10] [--max-packets 1000] [--snr 20] [--rt60 0.3,0.6,1,2] [--drr -15,-9,-3,3,9]
+//              [--binaural-dir DIR] [--errors-out FILE.yaml] [--threads 2] [--profile room|nava]
 //
 // The decode tables of the simulated `acoustic` channel are measured with the same receivers by
 // audio_propagation's decode_table_bench, where the tables live.
@@ -63,6 +65,7 @@
 #include "nava_bench_support.h"
 #include "measured_rooms.h"
 #include "arrival_table.h"
+#include "direction_table.h"
 #include "frame_table.h"
 #include "likeness_table.h"
 #include "splice_table.h"
@@ -538,13 +541,6 @@ struct DoaResult {
   double decode_cpu = 0.0, estimate_cpu = 0.0;
 };
 
-// The p-quantile (nearest rank) of `v`, sorted in place; NaN for none.
-double Percentile(std::vector<double>& v, double p) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)))];
-}
-
 DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, const DoaCondition& c, int packets,
                      unsigned seed) {
   const auto profile = MakeProfile(p, options);
@@ -710,6 +706,8 @@ int main(int argc, char** argv) {
         return LinkCostTable(o.link_cost);
       case NavaBenchOptions::Mode::kFrames:
         return FrameTable(o.frames, o.usage);
+      case NavaBenchOptions::Mode::kDirection:
+        return DirectionTable(o.direction, o.usage);
       case NavaBenchOptions::Mode::kRooms:
         return RoomsTable(o.rooms, o.usage);
       case NavaBenchOptions::Mode::kWhiteNoise:

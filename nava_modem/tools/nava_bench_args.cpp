@@ -166,16 +166,45 @@ FramesRequest ParseFrames(const ToolArgs& args) {
   return r;
 }
 
+DirectionRequest ParseDirection(const ToolArgs& args) {
+  DirectionRequest r;
+  r.packets = static_cast<int>(args.Int("--packets", r.packets, 1, 100000));
+  r.min_decoded = static_cast<int>(args.Int("--min-decoded", r.min_decoded, 0, 100000));
+  r.max_packets = static_cast<int>(args.Int("--max-packets", std::max(r.max_packets, r.packets), r.packets, 1000000));
+  r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
+  r.snr_db = args.Double("--snr", r.snr_db, -30.0, 80.0);
+  const std::vector<double> rt60 = args.AscendingList("--rt60", 0.05, 10.0, "reverberation times from 0.05 to 10 (s)");
+  if (!rt60.empty()) r.rt60 = rt60;
+  const std::vector<double> drr = args.AscendingList("--drr", -39.0, 30.0, "DRRs from -39 to 30 (dB)");
+  if (!drr.empty()) r.drr_db = drr;
+  r.binaural_dir = args.String("--binaural-dir", "");
+  r.errors_out = args.String("--errors-out", "");
+  r.threads = static_cast<int>(args.Int("--threads", r.threads, 1, 64));
+  const ToolModem modem = ProfileArgs(args);
+  r.profile = args.Switch("--profile") ? modem.profile : Profile::kRoom;
+  r.options = modem.options;
+  args.CheckAllUsed();
+  // The measured-like responses reach 5400 Hz.
+  if (r.options.sample_rate <= 10800.0) {
+    args.Fail("--direction: expected --rate above 10800 Hz (the rendered rooms reach 5400 Hz), got " +
+              std::to_string(r.options.sample_rate));
+  }
+  return r;
+}
+
 }  // namespace
 
 NavaBenchOptions ParseNavaBenchArgs(const std::vector<std::string>& words) {
   const std::string usage = std::string(
-      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] [--curve-rt60 0.3,0.6,1] [--curve-drr-min -15] [--curve-snr 40] [--response statistical|measured-like] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3] | --frames --rir-dir DIR [--bytes 64] [--speed all|R] [--count 20] [--snr 10] [--noise-file FILE] [--threads 2]] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
+      "nava_bench [--rooms [--rir-dir DIR [--rir-packets 20] [--measured-only] [--drier DB,...]] [--curve-rt60 0.3,0.6,1] [--curve-drr-min -15] [--curve-snr 40] [--response statistical|measured-like] | --doa | --arrival --rir-dir DIR [--snr 10] [--min-drr -8] [--errors-out FILE.yaml] (--profile room the default) | --likeness --rir-dir DIR [--like-rooms 5] | --splice --early A.wav[:K] --late B.wav[:K] --at-ms T,... --out DIR | --link-cost [--seconds 120] [--period 6] [--runs 3] | --frames --rir-dir DIR [--bytes 64] [--speed all|R] [--count 20] [--snr 10] [--noise-file FILE] [--threads 2] | --direction [--packets 40] [--min-decoded 10] [--max-packets 1000] [--snr 20] [--rt60 0.3,0.6,1,2] [--drr -15,-9,-3,3,9] [--binaural-dir DIR] [--errors-out FILE.yaml] [--threads 2] (--profile room the default)] [--packets 60] [--rooms-per-row 6] [--plot-packets 30] [--plot FILE.png] [--seed 1] [--snr-min -12] "
       "[--snr-max 0] [--dir DIR] [--minimodem minimodem|none] ") + kModemUsage + " (with --rooms, --profile both is the default)";
-  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--splice", "--link-cost", "--frames", "--measured-only"});
+  const ToolArgs args("nava_bench", usage, words, {"--rooms", "--doa", "--arrival", "--likeness", "--splice", "--link-cost", "--frames", "--direction", "--measured-only"});
   NavaBenchOptions o;
   o.usage = args.tool_usage();
-  if (args.Switch("--frames")) {
+  if (args.Switch("--direction")) {
+    o.mode = NavaBenchOptions::Mode::kDirection;
+    o.direction = ParseDirection(args);
+  } else if (args.Switch("--frames")) {
     o.mode = NavaBenchOptions::Mode::kFrames;
     o.frames = ParseFrames(args);
   } else if (args.Switch("--link-cost")) {

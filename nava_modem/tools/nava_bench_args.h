@@ -48,6 +48,22 @@ struct DoaRequest {
   ModemOptions options;
 };
 
+// nava_bench --direction: the arrays' direction errors by RT60 and DRR (direction_table.h).
+struct DirectionRequest {
+  int packets = 40;  // per cell and array
+  int min_decoded = 10;   // more are sent until this many are decoded...
+  int max_packets = 1000;  // ...or this many sent
+  unsigned seed = 1;
+  double snr_db = 20.0;  // white noise, full band, per microphone
+  std::vector<double> rt60 = {0.3, 0.6, 1.0, 2.0};
+  std::vector<double> drr_db = {-15.0, -9.0, -3.0, 3.0, 9.0};
+  std::string binaural_dir;  // "" for no measured check
+  std::string errors_out;    // "" for no table
+  int threads = 2;
+  Profile profile = Profile::kRoom;
+  ModemOptions options;
+};
+
 // nava_bench --arrival --rir-dir DIR: first arrivals of room packets through measured responses.
 struct ArrivalRequest {
   std::string rir_dir;
@@ -104,7 +120,7 @@ struct FramesRequest {
 };
 
 struct NavaBenchOptions {
-  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kSplice, kLinkCost, kFrames };
+  enum class Mode { kWhiteNoise, kRooms, kDoa, kArrival, kLikeness, kSplice, kLinkCost, kFrames, kDirection };
   Mode mode = Mode::kWhiteNoise;
   WhiteNoiseRequest white;  // the mode's request; the others stay at their defaults
   RoomsRequest rooms;
@@ -114,6 +130,7 @@ struct NavaBenchOptions {
   SpliceRequest splice;
   LinkCostRequest link_cost;
   FramesRequest frames;
+  DirectionRequest direction;
   multirobot_audio::tools::ToolUsage usage;  // to refuse what turns out wrong while running
 };
 

@@ -4,6 +4,9 @@
 // packets they printed, and scoring those against what was sent.
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -95,6 +98,13 @@ inline CleanSignal RandomPackets(const ModemProfile& profile, int packets, doubl
   }
   c.seconds = c.samples.size() / rate;
   return c;
+}
+
+// The p-quantile (nearest rank) of `v`, sorted in place; NaN for none.
+inline double Percentile(std::vector<double>& v, double p) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(std::floor(p * (v.size() - 1) + 0.5)))];
 }
 
 }  // namespace nava_modem::tools

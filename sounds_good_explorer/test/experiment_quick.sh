@@ -59,7 +59,29 @@ else
   whole_run_checks
 fi
 
+# Directions as a real array reports them: the acoustic channel draws every microphone's report
+# from the profile's direction table. (The sanitized build checks that path in less time in
+# audio_propagation_test's channel test.)
+directions=(--quick --configs 1 --trials 1 --jobs 2 --modes omni --channel acoustic --profile room
+            --acoustics "$maps/office_world.yaml" --directions measured)
+if [ "$sanitized" != sanitized ]; then
+  "$tool" "${directions[@]}" --out "$out/directions" >"$out/directions.out" 2>"$out/stderr" ||
+    { cat "$out/stderr"; fail "--directions measured exited $?"; }
+  [ "$(($(wc -l <"$out/directions/trials.csv") - 1))" -eq 1 ] || fail "--directions measured: expected 1 trial"
+fi
+
 # Bad input: a clear message and exit status 1 (expect_error).
+expect_error "--directions: expected exact or measured, got west" --quick --directions west --out "$out/x"
+expect_error "--directions is for --channel acoustic" --quick --directions measured --out "$out/x"
+expect_error "--direction-table goes with --directions measured" --quick --channel acoustic \
+  --acoustics "$maps/office_world.yaml" --direction-table "$out/x.yaml" --out "$out/x"
+cat >"$out/holes.yaml" <<YAML
+profile: room
+cells:
+  - {rt60_s: 0.5, drr_db: 0, omni: [[10, 12, 0.5]], bidirectional: [[10, 5, 0.5]]}
+  - {rt60_s: 1.0, drr_db: 6, omni: [[10, 12, 0.5]], bidirectional: [[10, 5, 0.5]]}
+YAML
+expect_error "holes.yaml: cells: the grid has a hole" "${directions[@]}" --direction-table "$out/holes.yaml" --out "$out/x"
 expect_error "expected none, bidirectional or omni, got 'loud'" --quick --modes loud --out "$out/x"
 expect_error "--robots: expected a whole number from 1" --quick --robots 0 --out "$out/x"
 expect_error "--jobs: expected a whole number from 1" --quick --jobs 0 --out "$out/x"

@@ -102,6 +102,7 @@ Setup MakeSetup(Protocol& p) {
   }
   if (p.channel.acoustic()) {
     trial.decode_table = audio_propagation::tools::LoadExperimentTable(p.channel);
+    trial.channel.direction_errors = audio_propagation::tools::LoadExperimentDirections(p.channel);
     audio_propagation::tools::GiveAcoustics(p.channel, setup.configs, p.worlds, setup.map, setup.map_file);
   }
   fs::create_directories(fs::path(p.out_dir) / "configs");

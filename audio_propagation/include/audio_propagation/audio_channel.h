@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "audio_propagation/acoustic_model.h"
+#include "audio_propagation/direction_errors.h"
 #include "audio_propagation/path_cache.h"
 #include "audio_propagation/propagation_model.h"
 #include "audio_propagation/reception_model.h"
@@ -23,6 +24,10 @@ struct ChannelOptions {
   nava_modem::MacOptions mac;
   double capture_margin_db = 10.0;  // a packet this much louder than every overlap survives it
   double direction_noise = 0.0;     // rad (standard deviation) added by omni microphones
+  // Set: every microphone reports what a real array would over the link's DRR and RT60, drawn
+  // from this table (direction_errors.h; direction_noise is then unused). Needs the acoustic
+  // model, which knows each link's DRR and RT60. Unset: the exact direction of the path's last leg.
+  std::shared_ptr<const DirectionErrors> direction_errors;
   double noise_floor_db = 0.0;      // level reported when nothing is heard
   // Paths kept for reuse, keyed on the cells of sender and listener (0 = compute every path
   // exactly). A reused path was computed for other points of the same two cells. With a cache,

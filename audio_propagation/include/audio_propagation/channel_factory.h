@@ -67,6 +67,10 @@ struct SimulatedChannelOptions {
   DiffractionRule rule = PropagationOptions{}.rule;
   double capture_margin_db = ChannelOptions{}.capture_margin_db;
   double direction_noise = ChannelOptions{}.direction_noise;  // rad, omni microphones
+  // Acoustic model: microphones report what a real array does over each link's DRR and RT60
+  // (direction_errors.h), from direction_table (empty: the profile's shipped one).
+  bool measured_directions = false;
+  std::string direction_table;
   int seed = 1;           // back-offs and direction noise
   int cache_size = 1000;  // paths kept for reuse (0: every path computed exactly)
   // Acoustic model: a link's fate held while neither robot moves fate_distance (ChannelOptions).
@@ -80,8 +84,9 @@ struct SimulatedChannelOptions {
 // bit_rate outside [1, 100000] bits/s, given with a profile other than nava, or too fast for
 // the MAC; a rate not on the profile's ladder, or above 0 with the acoustic model (its decode
 // tables are today's packet's); seed below 0; cache_size outside [0, 10^7]; fate_distance not in
-// (0, 100] m; no robots and no world file; decode_table, delivery_map_robot or link_fate with the
-// threshold model.
+// (0, 100] m; no robots and no world file; decode_table, delivery_map_robot, link_fate,
+// measured_directions or direction_table with the threshold model; direction_table without
+// measured_directions.
 void CheckSimulatedChannelOptions(const SimulatedChannelOptions& options);
 
 // Whether the options name neither a world file nor a map file, so that the caller must give
