@@ -37,6 +37,9 @@ void ValidateOptions(const ChannelOptions& o) {
                                 std::to_string(o.noise_floor_db));
   }
   grid::RequireAbove("audio channel fate_distance (m)", o.fate_distance, 0.0);
+  if (o.direction_errors && o.direction_noise > 0.0) {
+    throw std::invalid_argument("audio channel direction_noise is unused with a direction table (it gives each report's error)");
+  }
 }
 
 AudioChannel::AudioChannel(const PropagationModel& model, std::vector<world_sim::Microphone> microphones,

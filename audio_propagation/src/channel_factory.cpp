@@ -1,7 +1,5 @@
 #include "audio_propagation/channel_factory.h"
 
-#include "audio_propagation/direction_errors_file.h"
-
 #include <algorithm>
 #include <sstream>
 #include <utility>
@@ -168,6 +166,9 @@ void CheckSimulatedChannelOptions(const SimulatedChannelOptions& o) {
     if (o.measured_directions) {
       throw ChannelOptionError("directions", "measured needs channel_model acoustic (each link's DRR and RT60)");
     }
+  }
+  if (o.measured_directions && o.direction_noise > 0.0) {
+    throw ChannelOptionError("direction_noise", "unused with directions measured (the table gives each report's error)");
   }
   if (!o.direction_table.empty() && !o.measured_directions) {
     throw ChannelOptionError("direction_table", "only used with directions measured");

@@ -1,12 +1,14 @@
 #include "audio_propagation/direction_errors.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <stdexcept>
 #include <utility>
 
+#include "grid/number_text.h"
 #include "grid/pose2d.h"
 
 namespace audio_propagation {
@@ -15,9 +17,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string Where(const DirectionCell& c) {
-  return "the cell at RT60 " + std::to_string(c.rt60) + " s, DRR " + std::to_string(c.drr_db) + " dB";
-}
+std::string Where(const DirectionCell& c) { return "the cell at RT60 " + grid::NumberText(c.rt60) + " s, DRR " + grid::NumberText(c.drr_db) + " dB"; }
+
+const std::vector<DirectionSample>& Of(const DirectionCell& c, bool omni) { return omni ? c.omni : c.bidirectional; }
 
 void ValidateSamples(const DirectionCell& c, const std::vector<DirectionSample>& samples, const char* array) {
   for (const DirectionSample& s : samples) {
@@ -49,9 +51,10 @@ double NearestValue(const std::vector<double>& grid, double v, Distance distance
 
 }  // namespace
 
-DirectionErrors::DirectionErrors(std::string profile, std::vector<DirectionCell> cells)
-    : profile_(std::move(profile)), cells_(std::move(cells)) {
+DirectionErrors::DirectionErrors(std::string profile, std::vector<DirectionCell> cells, std::size_t min_packets)
+    : profile_(std::move(profile)), cells_(std::move(cells)), min_packets_(min_packets) {
   if (cells_.empty()) throw std::invalid_argument("a direction table needs at least one cell");
+  if (min_packets_ < 1) throw std::invalid_argument("a direction table's cells need at least 1 packet to be drawn from");
   std::set<double> rt60s, drrs;
   std::set<std::pair<double, double>> places;
   for (const DirectionCell& c : cells_) {
@@ -67,34 +70,24 @@ DirectionErrors::DirectionErrors(std::string profile, std::vector<DirectionCell>
   for (double r : rt60s) {
     for (double d : drrs) {
       if (!places.count({r, d})) {
-        throw std::invalid_argument("the grid has a hole: no cell at RT60 " + std::to_string(r) + " s, DRR " +
-                                    std::to_string(d) + " dB (expected every RT60 with every DRR)");
+        throw std::invalid_argument("the grid has a hole: no cell at RT60 " + grid::NumberText(r) + " s, DRR " + grid::NumberText(d) +
+                                    " dB (expected every RT60 with every DRR)");
       }
     }
   }
   rt60s_ = Sorted(rt60s);
   drrs_ = Sorted(drrs);
-  // Every RT60's driest cell must have packets for both arrays: the wetter ones without lend theirs.
-  for (double r : rt60s_) {
-    const DirectionCell& driest = Nearest(r, drrs_.back());
-    if (driest.omni.empty() || driest.bidirectional.empty()) {
-      throw std::invalid_argument(Where(driest) + " (the driest of its RT60) has no packets for the " +
-                                  (driest.omni.empty() ? "omni" : "bidirectional") +
-                                  " array; a wetter cell without packets lends a drier one's");
+  // Every cell with too few packets must find one with enough: at the driest DRR at least.
+  for (const bool omni : {true, false}) {
+    const bool some = std::any_of(cells_.begin(), cells_.end(), [&](const DirectionCell& c) {
+      return c.drr_db == drrs_.back() && Of(c, omni).size() >= min_packets_;
+    });
+    if (!some) {
+      throw std::invalid_argument("no cell at the driest DRR (" + grid::NumberText(drrs_.back()) + " dB) has " +
+                                  std::to_string(min_packets_) + " packets for the " + (omni ? "omni" : "bidirectional") +
+                                  " array; a cell with fewer draws from one that has");
     }
   }
-}
-
-const std::vector<DirectionSample>& DirectionErrors::Packets(world_sim::Microphone microphone, double rt60,
-                                                             double drr_db) const {
-  const bool omni = microphone == world_sim::Microphone::kOmni;
-  const DirectionCell* cell = &Nearest(rt60, drr_db);
-  // Up the DRRs of its RT60 until one has packets (the driest always has: the constructor checks).
-  for (auto d = std::lower_bound(drrs_.begin(), drrs_.end(), cell->drr_db); d != drrs_.end(); ++d) {
-    cell = &Nearest(cell->rt60, *d);
-    if (!(omni ? cell->omni : cell->bidirectional).empty()) break;
-  }
-  return omni ? cell->omni : cell->bidirectional;
 }
 
 const DirectionCell& DirectionErrors::Nearest(double rt60, double drr_db) const {
@@ -104,11 +97,28 @@ const DirectionCell& DirectionErrors::Nearest(double rt60, double drr_db) const 
   return *std::find_if(cells_.begin(), cells_.end(), [&](const DirectionCell& c) { return c.rt60 == r && c.drr_db == d; });
 }
 
+const std::vector<DirectionSample>& DirectionErrors::Packets(world_sim::Microphone microphone, double rt60,
+                                                             double drr_db) const {
+  const bool omni = microphone == world_sim::Microphone::kOmni;
+  const DirectionCell& nearest = Nearest(rt60, drr_db);
+  if (Of(nearest, omni).size() >= min_packets_) return Of(nearest, omni);
+  // The same DRR at the nearest RT60 (by ratio) with enough; else the next drier DRR's.
+  for (auto d = std::lower_bound(drrs_.begin(), drrs_.end(), nearest.drr_db); d != drrs_.end(); ++d) {
+    const DirectionCell* best = nullptr;
+    for (const DirectionCell& c : cells_) {
+      if (c.drr_db != *d || Of(c, omni).size() < min_packets_) continue;
+      if (!best || std::abs(std::log(c.rt60 / nearest.rt60)) < std::abs(std::log(best->rt60 / nearest.rt60))) best = &c;
+    }
+    if (best) return Of(*best, omni);
+  }
+  return Of(nearest, omni);  // unreachable: the constructor checks the driest DRR
+}
+
 SensedDirection DirectionErrors::Sense(world_sim::Microphone microphone, double relative, double drr_db, double rt60,
                                        std::mt19937& rng) const {
   if (microphone == world_sim::Microphone::kNone || !std::isfinite(relative)) return {kNaN, 0.0};
   const std::vector<DirectionSample>& packets =
-      Packets(microphone, std::isfinite(rt60) ? rt60 : rt60s_.front(), std::isfinite(drr_db) ? drr_db : drrs_.back());
+      Packets(microphone, std::isfinite(rt60) ? rt60 : rt60s_.back(), std::isfinite(drr_db) ? drr_db : drrs_.front());
   if (microphone == world_sim::Microphone::kOmni) {
     std::uniform_int_distribution<std::size_t> pick(0, packets.size() - 1);
     const DirectionSample& s = packets[pick(rng)];

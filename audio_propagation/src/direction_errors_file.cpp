@@ -44,7 +44,7 @@ std::vector<DirectionSample> Samples(const grid::YamlFields& cell, const char* a
 
 DirectionErrors LoadDirectionErrors(const std::string& path, const std::string& expected_profile) {
   const grid::YamlFields root = grid::YamlFields::Load(path, "direction table");
-  root.ExpectOnlyKeys({"profile", "command", "snr_db", "packets", "rt60_s", "drr_db", "arrays", "cells"});
+  root.ExpectOnlyKeys({"profile", "command", "snr_db", "packets", "min_packets", "rt60_s", "drr_db", "arrays", "cells"});
   const std::string profile = root.String("profile");
   if (!expected_profile.empty() && profile != expected_profile) {
     root.Fail("profile", "the table is for '" + profile + "', but the link runs '" + expected_profile + "'");
@@ -59,8 +59,12 @@ DirectionErrors LoadDirectionErrors(const std::string& path, const std::string& 
     cell.bidirectional = Samples(c, "bidirectional");
     cells.push_back(std::move(cell));
   }
+  const double min_packets = root.Number("min_packets", static_cast<double>(DirectionErrors::kMinPackets));
+  if (!(min_packets >= 1.0 && min_packets <= 1e6) || min_packets != std::floor(min_packets)) {
+    root.Fail("min_packets", "expected a whole number of packets from 1 (what a cell needs to be drawn from)");
+  }
   try {
-    return DirectionErrors(profile, std::move(cells));
+    return DirectionErrors(profile, std::move(cells), static_cast<std::size_t>(min_packets));
   } catch (const std::invalid_argument& e) {
     root.Fail("cells", e.what());
   }

@@ -40,8 +40,9 @@ DirectionCell Cell(double rt60, double drr, double omni_error, double confidence
   return c;
 }
 
+// Cells of a handful of packets each: drawn from as they are (min_packets 1).
 DirectionErrors Table() {
-  return DirectionErrors("room", {Cell(0.3, -9.0, 40.0), Cell(0.3, 3.0, 2.0), Cell(1.0, -9.0, 90.0), Cell(1.0, 3.0, 5.0)});
+  return DirectionErrors("room", {Cell(0.3, -9.0, 40.0), Cell(0.3, 3.0, 2.0), Cell(1.0, -9.0, 90.0), Cell(1.0, 3.0, 5.0)}, 1);
 }
 
 TEST(DirectionErrors, TheNearestCellByRt60RatioAndDrrAndTheGridsEdgesBeyond) {
@@ -74,7 +75,7 @@ TEST(DirectionErrors, OmniReportsTheTrueDirectionPlusADrawnPacketsErrorAndItsCon
 TEST(DirectionErrors, AnOmniPacketWithoutADirectionReportsNone) {
   DirectionCell c = Cell(0.5, 0.0, 0.0);
   for (DirectionSample& s : c.omni) s.estimate = kNaN;
-  const DirectionErrors t("room", {c});
+  const DirectionErrors t("room", {c}, 1);
   std::mt19937 rng(1);
   const SensedDirection s = t.Sense(Microphone::kOmni, 1.0, 0.0, 0.5, rng);
   EXPECT_TRUE(std::isnan(s.direction));
@@ -98,34 +99,54 @@ TEST(DirectionErrors, ThePairDrawsFromPacketsAsFarOffItsAxis) {
   }
 }
 
-TEST(DirectionErrors, ACellWithoutPacketsLendsTheNextDrierCellsOfItsRt60) {
-  DirectionCell wet = Cell(1.0, -9.0, 90.0);
-  wet.omni.clear();
-  wet.bidirectional.clear();
-  const DirectionErrors t("nava", {Cell(0.3, -9.0, 40.0), Cell(0.3, 3.0, 2.0), wet, Cell(1.0, 3.0, 5.0)});
+TEST(DirectionErrors, ACellWithTooFewPacketsDrawsFromItsDrrAtTheNearestRt60ThatHasEnough) {
+  // RT60 0.3, 1 and 2 s at DRR -9 and +3 dB; the wet cells of 1 and 2 s hold one packet or none.
+  DirectionCell thin = Cell(1.0, -9.0, 90.0);
+  thin.omni.resize(1);
+  thin.bidirectional.resize(1);
+  DirectionCell empty = Cell(2.0, -9.0, 120.0);
+  empty.omni.clear();
+  empty.bidirectional.clear();
+  const DirectionErrors t("nava", {Cell(0.3, -9.0, 40.0), Cell(0.3, 3.0, 2.0), thin, Cell(1.0, 3.0, 5.0), empty,
+                                   Cell(2.0, 3.0, 7.0)}, 2);
   std::mt19937 rng(1);
-  EXPECT_NEAR(t.Sense(Microphone::kOmni, 0.5, -20.0, 1.0, rng).direction, 0.5 + 5.0 * kDeg, 1e-9);
-  EXPECT_NEAR(t.Sense(Microphone::kOmni, 0.5, -20.0, 0.3, rng).direction, 0.5 + 40.0 * kDeg, 1e-9);
-  EXPECT_EQ(&t.Packets(Microphone::kBidirectional, 1.0, -9.0), &t.Nearest(1.0, 3.0).bidirectional);
-  // The driest cell of an RT60 has nothing to lend from.
+  // Not the drier cell of its RT60 (5 and 7 degrees): the same DRR, 0.3 s.
+  EXPECT_NEAR(t.Sense(Microphone::kOmni, 0.5, -9.0, 1.0, rng).direction, 0.5 + 40.0 * kDeg, 1e-9);
+  EXPECT_NEAR(t.Sense(Microphone::kOmni, 0.5, -20.0, 2.0, rng).direction, 0.5 + 40.0 * kDeg, 1e-9);
+  EXPECT_EQ(&t.Packets(Microphone::kBidirectional, 2.0, -9.0), &t.Nearest(0.3, -9.0).bidirectional);
+  // Enough where it is: its own.
+  EXPECT_NEAR(t.Sense(Microphone::kOmni, 0.5, 3.0, 2.0, rng).direction, 0.5 + 7.0 * kDeg, 1e-9);
+  // No RT60 with enough at -9 dB: the next drier DRR's, at the nearest RT60.
+  DirectionCell thin_short = Cell(0.3, -9.0, 40.0);
+  thin_short.omni.resize(1);
+  const DirectionErrors u("nava", {thin_short, Cell(0.3, 3.0, 2.0), thin, Cell(1.0, 3.0, 5.0), empty, Cell(2.0, 3.0, 7.0)}, 2);
+  EXPECT_NEAR(u.Sense(Microphone::kOmni, 0.5, -9.0, 1.0, rng).direction, 0.5 + 5.0 * kDeg, 1e-9);
+  // A link the model cannot place gets the wettest, longest cell's draw.
+  EXPECT_NEAR(t.Sense(Microphone::kOmni, 0.5, -std::numeric_limits<double>::infinity(), kNaN, rng).direction,
+              0.5 + 40.0 * kDeg, 1e-9);
+  // Nothing with enough at the driest DRR: refused.
   DirectionCell dry = Cell(1.0, 3.0, 5.0);
-  dry.omni.clear();
-  EXPECT_THROW(DirectionErrors("nava", {Cell(0.3, -9.0, 40.0), Cell(0.3, 3.0, 2.0), Cell(1.0, -9.0, 90.0), dry}),
+  dry.omni.resize(1);
+  EXPECT_THROW(DirectionErrors("nava", {Cell(0.3, -9.0, 40.0), Cell(0.3, 3.0, 2.0), Cell(1.0, -9.0, 90.0), dry}, 5),
                std::invalid_argument);
+  EXPECT_THROW(DirectionErrors("nava", {Cell(0.3, 3.0, 2.0)}, 0), std::invalid_argument);
 }
 
 TEST(DirectionErrors, ATableWithAHoleOrBadPacketsIsRefused) {
-  EXPECT_THROW(DirectionErrors("room", {}), std::invalid_argument);
+  EXPECT_NO_THROW(DirectionErrors("room", {Cell(0.3, -9.0, 0.0)}, 1));
+  EXPECT_THROW(DirectionErrors("room", {}, 1), std::invalid_argument);
   // 0.3 s with -9 and 3 dB, 1.0 s with -9 only.
-  EXPECT_THROW(DirectionErrors("room", {Cell(0.3, -9.0, 0.0), Cell(0.3, 3.0, 0.0), Cell(1.0, -9.0, 0.0)}),
+  EXPECT_THROW(DirectionErrors("room", {Cell(0.3, -9.0, 0.0), Cell(0.3, 3.0, 0.0), Cell(1.0, -9.0, 0.0)}, 1),
                std::invalid_argument);
-  EXPECT_THROW(DirectionErrors("room", {Cell(0.3, -9.0, 0.0), Cell(0.3, -9.0, 1.0)}), std::invalid_argument);
-  EXPECT_THROW(DirectionErrors("room", {Cell(0.0, -9.0, 0.0)}), std::invalid_argument);
+  EXPECT_THROW(DirectionErrors("room", {Cell(0.3, -9.0, 0.0), Cell(0.3, -9.0, 1.0)}, 1), std::invalid_argument);
+  EXPECT_THROW(DirectionErrors("room", {Cell(0.0, -9.0, 0.0)}, 1), std::invalid_argument);
   DirectionCell empty = Cell(0.3, 0.0, 0.0);
   empty.bidirectional.clear();
-  EXPECT_THROW(DirectionErrors("room", {empty}), std::invalid_argument);
+  EXPECT_THROW(DirectionErrors("room", {empty}, 1), std::invalid_argument);
   DirectionCell sure = Cell(0.3, 0.0, 0.0, 1.5);
-  EXPECT_THROW(DirectionErrors("room", {sure}), std::invalid_argument);
+  EXPECT_THROW(DirectionErrors("room", {sure}, 1), std::invalid_argument);
+  // Four packets a cell are too few for the default.
+  EXPECT_THROW(DirectionErrors("room", {Cell(0.3, -9.0, 0.0)}), std::invalid_argument);
 }
 
 std::string WriteFile(const std::string& name, const std::string& text) {
@@ -138,6 +159,7 @@ const char* kTwoCells = R"(profile: room
 command: "by hand"
 snr_db: 20
 packets: 2
+min_packets: 1
 rt60_s: [0.5]
 drr_db: [-6, 6]
 arrays:
@@ -195,6 +217,9 @@ TEST(DirectionErrorsFile, AMalformedTableNamesTheFieldAndTheFile) {
                 "cells[1].bidirectional");
   ExpectRefused("hole", Replaced(kTwoCells, "  - rt60_s: 0.5\n    drr_db: 6", "  - rt60_s: 0.9\n    drr_db: 6"), "hole");
   ExpectRefused("key", Replaced(kTwoCells, "packets: 2", "packets: 2\nfudge: 1"), "fudge");
+  ExpectRefused("min", Replaced(kTwoCells, "min_packets: 1", "min_packets: 0.5"), "min_packets");
+  // By default a cell needs 10 packets: these two have too few.
+  ExpectRefused("few", Replaced(kTwoCells, "min_packets: 1\n", ""), "cells");
 }
 
 TEST(DirectionErrorsFile, TheShippedTablesLoadForBothProfiles) {

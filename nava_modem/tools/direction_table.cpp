@@ -92,7 +92,7 @@ std::vector<DirectionSample> MeasureCell(const ModemProfile& profile, const MicA
     room.drr_db = drr_db;
     room.noise = RoomOptions::Noise::kWhite;
     room.snr_db = r.snr_db;
-    room.seed = seed * 1000u + static_cast<unsigned>(k);
+    room.seed = seed * 1000u + static_cast<unsigned>(k);  // apart from every other cell's: k < 1000 (--max-packets)
     const std::vector<std::vector<float>> heard = RenderRoomArray(clean, fs, room, source);
     const std::vector<RxEvent> events = DecodeArray(profile, {}, heard, array.mics);
     const auto it = std::find_if(events.begin(), events.end(),
@@ -148,8 +148,8 @@ void WriteTable(const DirectionRequest& r, const std::vector<DirectionCell>& cel
                "--drr %s --seed %u --rate %.0f --errors-out %s\"\n",
                ProfileName(r.profile), r.packets, r.min_decoded, r.max_packets, FormatNumber(r.snr_db).c_str(), rt60s.c_str(),
                drrs.c_str(), r.seed, r.options.sample_rate, r.errors_out.c_str());
-  std::fprintf(f, "snr_db: %s\npackets: %d\nrt60_s: [%s]\ndrr_db: [%s]\n", FormatNumber(r.snr_db).c_str(), r.packets,
-               rt60s.c_str(), drrs.c_str());
+  std::fprintf(f, "snr_db: %s\npackets: %d\nmin_packets: %d\nrt60_s: [%s]\ndrr_db: [%s]\n", FormatNumber(r.snr_db).c_str(),
+               r.packets, std::max(1, r.min_decoded), rt60s.c_str(), drrs.c_str());
   const std::vector<MicArray> arrays = Arrays();
   std::fprintf(f, "arrays:\n");
   for (const MicArray& a : arrays) std::fprintf(f, "  %s: \"%s\"\n", a.name, a.geometry);
@@ -315,22 +315,32 @@ int DirectionTable(const DirectionRequest& request, const multirobot_audio::tool
   }
   if (!request.binaural_dir.empty()) MeasuredPairs(*profile, request, cells, usage);
   if (!request.errors_out.empty()) {
-    // A cell where nothing was decoded lends the next drier cell's packets in the simulation
-    // (audio_propagation/direction_errors.h); the driest of each RT60 must have some.
-    std::string lending;
-    for (const DirectionCell& c : cells) {
-      for (std::size_t a = 0; a < arrays.size(); ++a) {
-        if (!c.samples[a].empty()) continue;
-        if (c.drr_db == request.drr_db.back()) {
-          std::fprintf(stderr, "nava_bench: --errors-out %s: no packet decoded by the %s array at RT60 %g s, DRR %g dB, the "
-                               "driest cell of its RT60 (more --max-packets, or a drier grid)\n",
-                       request.errors_out.c_str(), arrays[a].name, c.rt60, c.drr_db);
-          return 1;
+    // A cell with fewer than min_decoded packets draws in the simulation from its DRR at the
+    // nearest RT60 that has enough, else a drier DRR's (audio_propagation/direction_errors.h):
+    // the driest DRR needs one with enough.
+    const std::size_t enough = static_cast<std::size_t>(std::max(1, request.min_decoded));
+    std::string thin;
+    for (std::size_t a = 0; a < arrays.size(); ++a) {
+      bool driest = false;
+      for (const DirectionCell& c : cells) {
+        if (c.samples[a].size() >= enough) {
+          driest = driest || c.drr_db == request.drr_db.back();
+          continue;
         }
-        lending += " " + std::string(arrays[a].name) + " at RT60 " + FormatNumber(c.rt60) + " s, DRR " + FormatNumber(c.drr_db) + " dB;";
+        thin += " " + std::string(arrays[a].name) + " at RT60 " + FormatNumber(c.rt60) + " s, DRR " + FormatNumber(c.drr_db) +
+                " dB (" + std::to_string(c.samples[a].size()) + ");";
+      }
+      if (!driest) {
+        std::fprintf(stderr, "nava_bench: --errors-out %s: no cell at the driest DRR (%g dB) decoded %zu packets by the %s "
+                             "array (more --max-packets, or a drier grid)\n",
+                     request.errors_out.c_str(), request.drr_db.back(), enough, arrays[a].name);
+        return 1;
       }
     }
-    if (!lending.empty()) std::printf("no packet decoded (the simulation draws from the next drier cell):%s\n", lending.c_str());
+    if (!thin.empty()) {
+      std::printf("cells under %zu packets (the simulation draws from their DRR at the nearest RT60 with enough):%s\n", enough,
+                  thin.c_str());
+    }
     WriteTable(request, cells);
     std::printf("wrote %s\n", request.errors_out.c_str());
   }

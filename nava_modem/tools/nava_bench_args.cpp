@@ -168,9 +168,10 @@ FramesRequest ParseFrames(const ToolArgs& args) {
 
 DirectionRequest ParseDirection(const ToolArgs& args) {
   DirectionRequest r;
-  r.packets = static_cast<int>(args.Int("--packets", r.packets, 1, 100000));
+  r.packets = static_cast<int>(args.Int("--packets", r.packets, 1, 1000));
   r.min_decoded = static_cast<int>(args.Int("--min-decoded", r.min_decoded, 0, 100000));
-  r.max_packets = static_cast<int>(args.Int("--max-packets", std::max(r.max_packets, r.packets), r.packets, 1000000));
+  // At most 1000: each cell's packets take seeds of their own from a thousand (direction_table.cpp).
+  r.max_packets = static_cast<int>(args.Int("--max-packets", std::max(r.max_packets, r.packets), r.packets, 1000));
   r.seed = static_cast<unsigned>(args.Int("--seed", 1, 0, 4294967295L));
   r.snr_db = args.Double("--snr", r.snr_db, -30.0, 80.0);
   const std::vector<double> rt60 = args.AscendingList("--rt60", 0.05, 10.0, "reverberation times from 0.05 to 10 (s)");

@@ -65,8 +65,10 @@ fi
 directions=(--quick --configs 1 --trials 1 --jobs 2 --modes omni --channel acoustic --profile room
             --acoustics "$maps/office_world.yaml" --directions measured)
 if [ "$sanitized" != sanitized ]; then
-  "$tool" "${directions[@]}" --out "$out/directions" >"$out/directions.out" 2>"$out/stderr" ||
-    { cat "$out/stderr"; fail "--directions measured exited $?"; }
+  status=0
+  "$tool" "${directions[@]}" --out "$out/directions" >"$out/directions.out" 2>"$out/stderr" || status=$?
+  [ "$status" -eq 0 ] || { cat "$out/stderr"; fail "--directions measured exited $status"; }
+  grep -q "trials on .*, directions measured" "$out/stderr" || { cat "$out/stderr"; fail "--directions measured: the trials ran without the table"; }
   [ "$(($(wc -l <"$out/directions/trials.csv") - 1))" -eq 1 ] || fail "--directions measured: expected 1 trial"
 fi
 

@@ -175,8 +175,9 @@ int Run(Protocol p, const BatchRun& batch) {
   const audio_propagation::PropagationModel model(setup.map, audio);
   std::vector<TrialRow> rows = ExperimentRows(p.configs, p.options);
   const std::vector<std::size_t> which = batch.Trials(rows.size());
-  std::fprintf(stderr, "sounds_good_experiment: %d configurations x %zu modes x %d trials on %s%s\n",
+  std::fprintf(stderr, "sounds_good_experiment: %d configurations x %zu modes x %d trials on %s%s%s\n",
                p.configs, p.options.modes.size(), p.options.trials, setup.map_file.c_str(),
+               p.options.trial.channel.direction_errors ? ", directions measured" : "",
                batch.sharded() ? (", shard " + batch.shard().Name()).c_str() : "");
   multirobot_audio::tools::ProgressBar bar;
   const auto start = std::chrono::steady_clock::now();

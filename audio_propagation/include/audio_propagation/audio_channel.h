@@ -25,7 +25,7 @@ struct ChannelOptions {
   double capture_margin_db = 10.0;  // a packet this much louder than every overlap survives it
   double direction_noise = 0.0;     // rad (standard deviation) added by omni microphones
   // Set: every microphone reports what a real array would over the link's DRR and RT60, drawn
-  // from this table (direction_errors.h; direction_noise is then unused). Needs the acoustic
+  // from this table (direction_errors.h; direction_noise must then be 0). Needs the acoustic
   // model, which knows each link's DRR and RT60. Unset: the exact direction of the path's last leg.
   std::shared_ptr<const DirectionErrors> direction_errors;
   double noise_floor_db = 0.0;      // level reported when nothing is heard
@@ -49,7 +49,7 @@ struct ChannelOptions {
 };
 
 // Throws std::invalid_argument naming the field and its value: capture_margin_db and
-// direction_noise at least 0, a finite noise_floor_db, fate_distance above 0. Each robot's MAC checks `mac` once given
+// direction_noise at least 0 (0 with direction_errors), a finite noise_floor_db, fate_distance above 0. Each robot's MAC checks `mac` once given
 // the profile's timing (nava_modem::ValidateMacOptions).
 void ValidateOptions(const ChannelOptions& options);
 

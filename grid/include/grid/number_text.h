@@ -1,0 +1,15 @@
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+namespace grid {
+
+// A number as a person would type it back ("%g": 0.3, -15, 1e-06), for messages and files.
+inline std::string NumberText(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace grid
