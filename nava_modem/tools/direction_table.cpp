@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <dirent.h>
 #include <limits>
 #include <optional>
 #include <random>
-#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -179,15 +179,30 @@ struct HeadFile {
   double head_azimuth = 0.0;
 };
 
+// The head's azimuth (deg) in a name ending in `headaz<signed degrees>.wav`, else nothing.
+// (By hand: <regex> trips GCC 12's maybe-uninitialized warning in the sanitized build.)
+std::optional<double> HeadAzimuth(const std::string& name) {
+  const std::string key = "headaz", suffix = ".wav";
+  const std::size_t at = name.rfind(key);
+  if (at == std::string::npos || name.size() < suffix.size() ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return std::nullopt;
+  }
+  const std::string number = name.substr(at + key.size(), name.size() - suffix.size() - at - key.size());
+  if (number.empty() || number.find_first_not_of("+-.0123456789") != std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  if (end != number.c_str() + number.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
 std::vector<HeadFile> HeadFiles(const std::string& dir, const multirobot_audio::tools::ToolUsage& usage) {
   DIR* d = opendir(dir.c_str());
   if (!d) usage.Fail("--binaural-dir " + dir + ": cannot read the folder");
   std::vector<HeadFile> files;
-  const std::regex pattern(R"(.*headaz([+-]?[0-9]+(\.[0-9]+)?)\.wav)", std::regex::icase);
   while (const dirent* e = readdir(d)) {
-    std::smatch m;
     const std::string name = e->d_name;
-    if (std::regex_match(name, m, pattern)) files.push_back({dir + "/" + name, name, std::stod(m[1].str())});
+    if (const std::optional<double> azimuth = HeadAzimuth(name)) files.push_back({dir + "/" + name, name, *azimuth});
   }
   closedir(d);
   std::sort(files.begin(), files.end(), [](const HeadFile& a, const HeadFile& b) { return a.name < b.name; });
