@@ -8,8 +8,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "grid/number_text.h"
 #include "grid/pose2d.h"
+#include "nava_modem/direction_estimator.h"
+#include "tool_args/number_text.h"
 
 namespace audio_propagation {
 
@@ -17,7 +18,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string Where(const DirectionCell& c) { return "the cell at RT60 " + grid::NumberText(c.rt60) + " s, DRR " + grid::NumberText(c.drr_db) + " dB"; }
+std::string Where(const DirectionCell& c) { return "the cell at RT60 " + multirobot_audio::tools::NumberText(c.rt60) + " s, DRR " + multirobot_audio::tools::NumberText(c.drr_db) + " dB"; }
 
 const std::vector<DirectionSample>& Of(const DirectionCell& c, bool omni) { return omni ? c.omni : c.bidirectional; }
 
@@ -70,7 +71,7 @@ DirectionErrors::DirectionErrors(std::string profile, std::vector<DirectionCell>
   for (double r : rt60s) {
     for (double d : drrs) {
       if (!places.count({r, d})) {
-        throw std::invalid_argument("the grid has a hole: no cell at RT60 " + grid::NumberText(r) + " s, DRR " + grid::NumberText(d) +
+        throw std::invalid_argument("the grid has a hole: no cell at RT60 " + multirobot_audio::tools::NumberText(r) + " s, DRR " + multirobot_audio::tools::NumberText(d) +
                                     " dB (expected every RT60 with every DRR)");
       }
     }
@@ -83,7 +84,7 @@ DirectionErrors::DirectionErrors(std::string profile, std::vector<DirectionCell>
       return c.drr_db == drrs_.back() && Of(c, omni).size() >= min_packets_;
     });
     if (!some) {
-      throw std::invalid_argument("no cell at the driest DRR (" + grid::NumberText(drrs_.back()) + " dB) has " +
+      throw std::invalid_argument("no cell at the driest DRR (" + multirobot_audio::tools::NumberText(drrs_.back()) + " dB) has " +
                                   std::to_string(min_packets_) + " packets for the " + (omni ? "omni" : "bidirectional") +
                                   " array; a cell with fewer draws from one that has");
     }
@@ -137,7 +138,7 @@ SensedDirection DirectionErrors::Sense(world_sim::Microphone microphone, double 
   std::uniform_int_distribution<std::size_t> pick(0, alike.size() - 1);
   const DirectionSample& s = *alike[pick(rng)];
   if (!std::isfinite(s.estimate)) return {kNaN, 0.0};
-  const bool right = std::cos(s.truth) * std::cos(s.estimate) > 0.0;
+  const bool right = nava_modem::SameEndOfAxis(s.truth, s.estimate);
   const bool front = std::cos(relative) >= 0.0;
   return {front == right ? 0.0 : M_PI, s.confidence};
 }

@@ -8,7 +8,6 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "grid/number_text.h"
 #include "grid/input_error.h"
 #include "grid/option_checks.h"
 #include "grid/yaml_fields.h"
@@ -17,6 +16,7 @@
 #include "nava_modem/modem_options.h"
 #include "nava_modem/noise_sources.h"
 #include "nava_modem/room_channel.h"
+#include "tool_args/number_text.h"
 
 namespace audio_propagation {
 namespace {
@@ -91,7 +91,7 @@ Scene LoadScene(const std::string& path) {
   if (!std::isfinite(scene.start)) f.Fail("start", "expected a finite time in s");
   scene.duration = f.Number("duration");
   if (!(scene.duration > 0.0 && scene.duration <= 3600.0)) {
-    f.Fail("duration", "expected a length above 0 and at most 3600 s, got " + grid::NumberText(scene.duration));
+    f.Fail("duration", "expected a length above 0 and at most 3600 s, got " + multirobot_audio::tools::NumberText(scene.duration));
   }
   if (!f.Has("robots") || !f.node()["robots"].IsMap() || f.node()["robots"].size() == 0) {
     f.Fail("robots", "expected a mapping of robot names to lists of keyframes [t, x, y, yaw]");
@@ -108,7 +108,7 @@ Scene LoadScene(const std::string& path) {
       const std::string field = robot.name + "[" + std::to_string(k) + "]";
       robot.keyframes.push_back(ReadKeyframe(robots, field, frames[k]));
       if (k > 0 && !(robot.keyframes[k].t > robot.keyframes[k - 1].t)) {
-        robots.Fail(field, "keyframe time " + grid::NumberText(robot.keyframes[k].t) + " s: expected times in ascending order");
+        robots.Fail(field, "keyframe time " + multirobot_audio::tools::NumberText(robot.keyframes[k].t) + " s: expected times in ascending order");
       }
     }
     scene.robots.push_back(std::move(robot));
@@ -118,8 +118,8 @@ Scene LoadScene(const std::string& path) {
     ScenePacket packet;
     packet.time = p.Number("time");
     if (!(packet.time >= scene.start && packet.time < scene.start + scene.duration)) {
-      p.Fail("time", grid::NumberText(packet.time) + " s: expected a time within the scene, from " + grid::NumberText(scene.start) +
-                         " to before " + grid::NumberText(scene.start + scene.duration) + " s");
+      p.Fail("time", multirobot_audio::tools::NumberText(packet.time) + " s: expected a time within the scene, from " + multirobot_audio::tools::NumberText(scene.start) +
+                         " to before " + multirobot_audio::tools::NumberText(scene.start + scene.duration) + " s");
     }
     packet.sender = p.String("sender");
     const bool known = std::any_of(scene.robots.begin(), scene.robots.end(),
@@ -150,7 +150,7 @@ Scene LoadScene(const std::string& path) {
   }
   scene.self_distance = f.Number("self_distance", scene.self_distance);
   if (!(scene.self_distance >= 0.01 && scene.self_distance <= 2.0)) {
-    f.Fail("self_distance", "expected 0.01 to 2 m, got " + grid::NumberText(scene.self_distance));
+    f.Fail("self_distance", "expected 0.01 to 2 m, got " + multirobot_audio::tools::NumberText(scene.self_distance));
   }
   if (f.Has("sound_cards")) {
     if (!f.node()["sound_cards"].IsMap()) f.Fail("sound_cards", "expected a mapping of robot names to {rate_ppm, latency}");
@@ -163,10 +163,10 @@ Scene LoadScene(const std::string& path) {
       card.ExpectOnlyKeys({"rate_ppm", "latency"});
       SceneSoundCard c;
       const double ppm = card.Number("rate_ppm", 0.0);
-      if (!(std::abs(ppm) <= 1000.0)) card.Fail("rate_ppm", "expected -1000 to 1000 ppm, got " + grid::NumberText(ppm));
+      if (!(std::abs(ppm) <= 1000.0)) card.Fail("rate_ppm", "expected -1000 to 1000 ppm, got " + multirobot_audio::tools::NumberText(ppm));
       c.rate_error = ppm * 1e-6;
       c.latency = card.Number("latency", 0.0);
-      if (!(c.latency >= 0.0 && c.latency <= 1.0)) card.Fail("latency", "expected 0 to 1 s, got " + grid::NumberText(c.latency));
+      if (!(c.latency >= 0.0 && c.latency <= 1.0)) card.Fail("latency", "expected 0 to 1 s, got " + multirobot_audio::tools::NumberText(c.latency));
       scene.sound_cards[name] = c;
     }
   }
@@ -188,7 +188,7 @@ void CheckScene(const std::string& file, const Scene& scene, const std::vector<s
       const SceneKeyframe& f = r.keyframes[k];
       if (!map.IsFreeAt({f.x, f.y})) {
         throw grid::InputError(file, "robots." + r.name + "[" + std::to_string(k) + "]",
-                               "(" + grid::NumberText(f.x) + ", " + grid::NumberText(f.y) + ") is not in the map's free space");
+                               "(" + multirobot_audio::tools::NumberText(f.x) + ", " + multirobot_audio::tools::NumberText(f.y) + ") is not in the map's free space");
       }
     }
   }

@@ -14,9 +14,11 @@
 
 #include "nava_bench_support.h"
 #include "nava_modem/array_decode.h"
+#include "nava_modem/direction_estimator.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
+#include "tool_args/number_text.h"
 #include "tool_args/parallel_for.h"
 
 namespace nava_modem::tools {
@@ -24,13 +26,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDeg = 180.0 / M_PI;
-
-// A number as the command line would take it back.
-std::string FormatNumber(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
 
 // The two arrays the simulated microphones stand for.
 struct MicArray {
@@ -58,12 +53,6 @@ struct DirectionCell {
   std::vector<DirectionSample> samples[2];  // per array, in Arrays()'s order
 };
 
-// The pair's bit, judged on the pair's own axis (`axis`, rad): right when the estimate falls on
-// the half-plane the sound came from.
-bool BitRight(double truth, double estimate, double axis) {
-  return std::isfinite(estimate) && std::cos(truth - axis) * std::cos(estimate - axis) > 0.0;
-}
-
 // Packets from random bearings in one cell, decoded by one array.
 std::vector<DirectionSample> MeasureCell(const ModemProfile& profile, const MicArray& array, const DirectionRequest& r, double rt60,
                                 double drr_db, unsigned seed, int* sent) {
@@ -78,11 +67,8 @@ std::vector<DirectionSample> MeasureCell(const ModemProfile& profile, const MicA
   for (; k < r.max_packets && (k < r.packets || static_cast<int>(out.size()) < r.min_decoded); ++k) {
     std::vector<std::uint8_t> data(kDataBytes);
     for (auto& b : data) b = static_cast<std::uint8_t>(byte(rng));
-    std::vector<float> clean(static_cast<std::size_t>(0.4 * fs), 0.0f);
-    const std::vector<float> burst = profile.ModulatePacket(data);
-    clean.insert(clean.end(), burst.begin(), burst.end());
-    // Room for the tail to die away before the receiver's flush.
-    clean.insert(clean.end(), static_cast<std::size_t>((0.4 + rt60) * fs), 0.0f);
+    // Room behind it for the tail to die away before the receiver's flush.
+    const std::vector<float> clean = PacketInSilence(profile, data, 0.4, 0.4 + rt60);
     ArraySource source;
     source.mics = array.mics;
     source.bearing = bearing(rng);
@@ -118,7 +104,7 @@ DirectionSummary Summarise(const std::vector<DirectionSample>& samples, bool pai
   for (const DirectionSample& x : samples) {
     if (pair) {
       if (!std::isfinite(x.estimate)) ++s.none;
-      else if (BitRight(x.truth, x.estimate, axis)) ++s.right;
+      else if (SameEndOfAxis(x.truth, x.estimate, axis)) ++s.right;
       else ++s.wrong;
     } else {
       errors.push_back(std::isfinite(x.estimate) ? std::abs(std::remainder(x.estimate - x.truth, 2.0 * M_PI)) * kDeg : 180.0);
@@ -141,22 +127,22 @@ void WriteTable(const DirectionRequest& r, const std::vector<DirectionCell>& cel
                ProfileName(r.profile));
   std::fprintf(f, "profile: %s\n", ProfileName(r.profile));
   std::string rt60s, drrs;
-  for (double v : r.rt60) rt60s += (rt60s.empty() ? "" : ",") + FormatNumber(v);
-  for (double v : r.drr_db) drrs += (drrs.empty() ? "" : ",") + FormatNumber(v);
+  for (double v : r.rt60) rt60s += (rt60s.empty() ? "" : ",") + multirobot_audio::tools::NumberText(v);
+  for (double v : r.drr_db) drrs += (drrs.empty() ? "" : ",") + multirobot_audio::tools::NumberText(v);
   std::fprintf(f,
                "command: \"nava_bench --direction --profile %s --packets %d --min-decoded %d --max-packets %d --snr %s --rt60 %s "
                "--drr %s --seed %u --rate %.0f --errors-out %s\"\n",
-               ProfileName(r.profile), r.packets, r.min_decoded, r.max_packets, FormatNumber(r.snr_db).c_str(), rt60s.c_str(),
+               ProfileName(r.profile), r.packets, r.min_decoded, r.max_packets, multirobot_audio::tools::NumberText(r.snr_db).c_str(), rt60s.c_str(),
                drrs.c_str(), r.seed, r.options.sample_rate, r.errors_out.c_str());
-  std::fprintf(f, "snr_db: %s\npackets: %d\nmin_packets: %d\nrt60_s: [%s]\ndrr_db: [%s]\n", FormatNumber(r.snr_db).c_str(),
+  std::fprintf(f, "snr_db: %s\npackets: %d\nmin_packets: %d\nrt60_s: [%s]\ndrr_db: [%s]\n", multirobot_audio::tools::NumberText(r.snr_db).c_str(),
                r.packets, std::max(1, r.min_decoded), rt60s.c_str(), drrs.c_str());
   const std::vector<MicArray> arrays = Arrays();
   std::fprintf(f, "arrays:\n");
   for (const MicArray& a : arrays) std::fprintf(f, "  %s: \"%s\"\n", a.name, a.geometry);
   std::fprintf(f, "cells:\n");
   for (const DirectionCell& c : cells) {
-    std::fprintf(f, "  - rt60_s: %s\n    drr_db: %s\n    sent: {omni: %d, bidirectional: %d}\n", FormatNumber(c.rt60).c_str(),
-                 FormatNumber(c.drr_db).c_str(), c.sent[0], c.sent[1]);
+    std::fprintf(f, "  - rt60_s: %s\n    drr_db: %s\n    sent: {omni: %d, bidirectional: %d}\n", multirobot_audio::tools::NumberText(c.rt60).c_str(),
+                 multirobot_audio::tools::NumberText(c.drr_db).c_str(), c.sent[0], c.sent[1]);
     for (std::size_t a = 0; a < arrays.size(); ++a) {
       std::fprintf(f, "    %s: [", arrays[a].name);
       for (std::size_t k = 0; k < c.samples[a].size(); ++k) {
@@ -266,7 +252,7 @@ void MeasuredPairs(const ModemProfile& profile, const DirectionRequest& r, const
       }
       ++decoded;
       if (!std::isfinite(e.direction)) ++none;
-      else if (BitRight(truth, e.direction, M_PI / 2)) ++right;
+      else if (SameEndOfAxis(truth, e.direction, M_PI / 2)) ++right;
       else ++wrong;
     }
     // The rendered pair lies on x; the head's ears on y: compare bearings off each pair's axis.
@@ -281,7 +267,7 @@ void MeasuredPairs(const ModemProfile& profile, const DirectionRequest& r, const
     for (const DirectionSample& s : nearest->samples[1]) {
       if (std::abs(std::abs(std::remainder(s.truth, M_PI)) - off_axis) > 20.0 / kDeg) continue;
       if (!std::isfinite(s.estimate)) ++c_none;
-      else if (BitRight(s.truth, s.estimate, 0.0)) ++c_right;
+      else if (SameEndOfAxis(s.truth, s.estimate, 0.0)) ++c_right;
       else ++c_wrong;
     }
     std::printf("%-44s %+8.0f %7.2f %+7.1f %5d/%-2d %6d %6d %6d   rt60 %.1f drr %+.0f: %d/%d/%d\n", file.name.c_str(),
@@ -342,7 +328,7 @@ int DirectionTable(const DirectionRequest& request, const multirobot_audio::tool
           driest = driest || c.drr_db == request.drr_db.back();
           continue;
         }
-        thin += " " + std::string(arrays[a].name) + " at RT60 " + FormatNumber(c.rt60) + " s, DRR " + FormatNumber(c.drr_db) +
+        thin += " " + std::string(arrays[a].name) + " at RT60 " + multirobot_audio::tools::NumberText(c.rt60) + " s, DRR " + multirobot_audio::tools::NumberText(c.drr_db) +
                 " dB (" + std::to_string(c.samples[a].size()) + ");";
       }
       if (!driest) {

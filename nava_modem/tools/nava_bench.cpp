@@ -71,6 +71,7 @@
 #include "splice_table.h"
 #include "link_cost.h"
 #include "nava_modem/array_decode.h"
+#include "nava_modem/direction_estimator.h"
 #include "nava_modem/measured_response.h"
 #include "nava_modem/room_array.h"
 #include "nava_modem/room_channel.h"
@@ -552,10 +553,7 @@ DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, 
   for (int k = 0; k < packets; ++k) {
     std::vector<std::uint8_t> data(kDataBytes);
     for (auto& b : data) b = static_cast<std::uint8_t>(byte(rng));
-    std::vector<float> clean(static_cast<std::size_t>(0.4 * rate), 0.0f);
-    const std::vector<float> burst = profile->ModulatePacket(data);
-    clean.insert(clean.end(), burst.begin(), burst.end());
-    clean.insert(clean.end(), static_cast<std::size_t>(0.4 * rate), 0.0f);
+    const std::vector<float> clean = PacketInSilence(*profile, data, 0.4, 0.4);
     ArraySource source;
     source.mics = g.mics;
     source.bearing = bearing(rng);
@@ -580,7 +578,7 @@ DoaResult MeasureDoa(Profile p, const ModemOptions& options, const Geometry& g, 
       // The bit is judged where a pair can tell: more than 20 degrees off its broadside.
       if (std::abs(std::cos(truth)) <= std::sin(20.0 * M_PI / 180.0)) continue;
       ++r.eligible;
-      r.bit_right += std::isfinite(estimate) && std::cos(truth) * std::cos(estimate) > 0.0;
+      r.bit_right += SameEndOfAxis(truth, estimate);
     } else {
       const double error = std::isfinite(estimate) ? std::abs(std::remainder(estimate - truth, 2.0 * M_PI)) * 180.0 / M_PI : 180.0;
       r.errors_deg.push_back(error);

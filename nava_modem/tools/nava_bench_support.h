@@ -100,6 +100,17 @@ inline CleanSignal RandomPackets(const ModemProfile& profile, int packets, doubl
   return c;
 }
 
+// One packet of `data` with `before` s of silence ahead of it and `after` s behind.
+inline std::vector<float> PacketInSilence(const ModemProfile& profile, const std::vector<std::uint8_t>& data, double before,
+                                          double after) {
+  const double rate = profile.options().sample_rate;
+  std::vector<float> clean(static_cast<std::size_t>(before * rate), 0.0f);
+  const std::vector<float> burst = profile.ModulatePacket(data);
+  clean.insert(clean.end(), burst.begin(), burst.end());
+  clean.insert(clean.end(), static_cast<std::size_t>(after * rate), 0.0f);
+  return clean;
+}
+
 // The p-quantile (nearest rank) of `v`, sorted in place; NaN for none.
 inline double Percentile(std::vector<double>& v, double p) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();

@@ -52,6 +52,7 @@
 //
 // Cost: at most 8 segment FFTs per channel and one inverse FFT per pair, whatever the length
 // given (the tests print the time per estimate; docs/audio_link.md compares it with decoding).
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -122,5 +123,12 @@ class DirectionEstimator {
   GccPhat gcc_;                         // the second: each pair's correlation over lags
   std::vector<double> grid_x_, grid_y_;  // the bearing grid's unit vectors
 };
+
+// Whether a pair's (or a collinear array's) `estimate` names the end of its axis (at `axis`
+// rad) that a sound from `truth` rad is nearer to: the one bit such an array gives. False for a
+// NaN estimate. Bearings in the array's frame.
+inline bool SameEndOfAxis(double truth, double estimate, double axis = 0.0) {
+  return std::isfinite(estimate) && std::cos(truth - axis) * std::cos(estimate - axis) > 0.0;
+}
 
 }  // namespace nava_modem

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-namespace grid {
+namespace multirobot_audio::tools {
 
 // A number as a person would type it back ("%g": 0.3, -15, 1e-06), for messages and files.
 inline std::string NumberText(double v) {
@@ -12,4 +12,4 @@ inline std::string NumberText(double v) {
   return text;
 }
 
-}  // namespace grid
+}  // namespace multirobot_audio::tools
